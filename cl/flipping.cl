@@ -1,0 +1,214 @@
+// clmesh — Phase 5 of GPU-DT: parallel edge flipping (thesis §4.1.2, §3.3.2, §3.6).
+//
+// Works on an active list of triangles (§3.6.2). A pass (1) tests the edges of
+// every active triangle with the floating-point filter and sends the few
+// uncertain ones to a second kernel that runs the exact predicate (§3.6.3),
+// (2) lets each triangle propose its first non-Delaunay edge and mark both
+// sides with atomic minimum of the edge key, (3) flips the edges that own both
+// marks (2-2 flip), (4) relinks neighbours in a second step and (5) collects
+// the flipped and the still-unhappy triangles as the next active list with a
+// prefix sum. Ghost triangles make the hull convex: two ghosts sharing a hull
+// vertex flip when that vertex is reflex; real-ghost edges never flip.
+#include "common.h"
+
+#define CLM_FLIP 1
+#define CLM_KEEP 0
+
+// Must the edge opposite vertex i of t flip? Real-real edges are left to the
+// in-circle test (*real_edge set, CLM_KEEP returned); ghost edges are decided
+// here with the exact orientation test.
+inline int ghost_edge_must_flip(__global const double2 *points, __global const int *tri_vertex,
+                                __global const int *tri_neighbor, int t, int i,
+                                int *real_edge) {
+  const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
+            b = tri_vertex[3 * t + prev3(i)];
+  const int link = tri_neighbor[3 * t + i];
+  const int d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+  *real_edge = 0;
+  if (a == CLM_INFINITE) // ghost-ghost edge at hull vertex b: flip if b is reflex
+    return orient_vertices(points, d, b, c) > 0 ? CLM_FLIP : CLM_KEEP;
+  if (b == CLM_INFINITE)
+    return orient_vertices(points, c, a, d) > 0 ? CLM_FLIP : CLM_KEEP;
+  if (c == CLM_INFINITE || d == CLM_INFINITE)
+    return CLM_KEEP; // a hull edge: the hull only grows
+  *real_edge = 1;
+  return CLM_KEEP;
+}
+
+// The four points of the in-circle test of edge i of a real triangle t.
+inline void edge_quad(__global const double2 *points, __global const int *tri_vertex,
+                      __global const int *tri_neighbor, int t, int i, double2 *quad) {
+  const int link = tri_neighbor[3 * t + i];
+  quad[0] = points[tri_vertex[3 * t + i]];
+  quad[1] = points[tri_vertex[3 * t + next3(i)]];
+  quad[2] = points[tri_vertex[3 * t + prev3(i)]];
+  quad[3] = points[tri_vertex[3 * link_triangle(link) + link_edge(link)]];
+}
+
+// flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
+__kernel void flip_check_fast(__global const int *active, __global const double2 *points,
+                              __global const int *tri_vertex, __global const int *tri_neighbor,
+                              __global int *flags, __global int *exact_list,
+                              volatile __global int *exact_count, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int t = active[gid];
+  int bits = 0;
+  if (t >= 0)
+    for (int i = 0; i < 3; ++i) {
+      int real_edge;
+      int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, t, i, &real_edge);
+      if (real_edge) {
+        double2 q[4];
+        edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
+        const int inside =
+            clm_incircle_filter(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x, q[3].y);
+        verdict = inside == CLM_UNCERTAIN ? CLM_UNCERTAIN : (inside > 0 ? CLM_FLIP : CLM_KEEP);
+      }
+      if (verdict == CLM_FLIP)
+        bits |= 1 << i;
+      else if (verdict == CLM_UNCERTAIN)
+        bits |= 8 << i;
+    }
+  flags[gid] = bits;
+  if (bits & 0x38)
+    exact_list[atomic_inc(exact_count)] = gid;
+}
+
+// Resolves the uncertain edges with the exact, perturbed in-circle test.
+__kernel void flip_check_exact(__global const int *exact_list, __global const int *active,
+                               __global const double2 *points, __global const int *tri_vertex,
+                               __global const int *tri_neighbor, __global int *flags,
+                               const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int index = exact_list[gid], t = active[index];
+  int bits = flags[index];
+  for (int i = 0; i < 3; ++i)
+    if (bits & (8 << i)) {
+      double2 q[4];
+      edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
+      if (clm_incircle_sos_exact(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x,
+                                 q[3].y) > 0)
+        bits |= 1 << i;
+    }
+  flags[index] = bits & 7;
+}
+
+// Each unhappy triangle proposes its first flippable edge, keyed 3t + i, and
+// marks both triangles of that edge with atomic minimum of the key.
+__kernel void flip_propose(__global const int *active, __global const int *flags,
+                           __global const int *tri_neighbor, volatile __global uint *tri_mark,
+                           __global int *proposal, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int t = active[gid], bits = flags[gid] & 7;
+  if (t < 0 || bits == 0) {
+    proposal[gid] = -1;
+    return;
+  }
+  const int i = (bits & 1) ? 0 : ((bits & 2) ? 1 : 2);
+  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  const uint key = (uint)(3 * t + i);
+  atomic_min(&tri_mark[t], key);
+  atomic_min(&tri_mark[u], key);
+  proposal[gid] = encode_link(u, i);
+}
+
+// 2-2 flip of the proposals that own both marks: t = (c,a,b), u = (d,b,a)
+// become t = (a,d,c), u = (b,c,d); edge 0 of both is the new diagonal.
+__kernel void flip_apply(__global const int *active, __global const int *proposal,
+                         __global const uint *tri_mark, __global int *tri_vertex,
+                         __global int *tri_neighbor, __global int *modified_stamp,
+                         __global int *children, __global int *flipped,
+                         volatile __global int *flip_count, const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int t = active[gid], prop = proposal[gid];
+  int did_flip = 0;
+  if (prop >= 0) {
+    const int u = link_triangle(prop), i = link_edge(prop);
+    const uint key = (uint)(3 * t + i);
+    if (tri_mark[t] == key && tri_mark[u] == key) {
+      const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
+                b = tri_vertex[3 * t + prev3(i)];
+      const int t_opp_a = tri_neighbor[3 * t + next3(i)], t_opp_b = tri_neighbor[3 * t + prev3(i)];
+      const int j = link_edge(tri_neighbor[3 * t + i]);
+      const int d = tri_vertex[3 * u + j];
+      const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
+      store_triangle(tri_vertex, tri_neighbor, t, a, d, c, encode_link(u, 0), t_opp_b, u_opp_b);
+      store_triangle(tri_vertex, tri_neighbor, u, b, c, d, encode_link(t, 0), u_opp_a, t_opp_a);
+      modified_stamp[t] = stamp;
+      modified_stamp[u] = stamp;
+      children[CLM_CHILDREN * t] = t;
+      children[CLM_CHILDREN * t + 1] = u;
+      children[CLM_CHILDREN * t + 2] = -1;
+      children[CLM_CHILDREN * u] = u;
+      children[CLM_CHILDREN * u + 1] = t;
+      children[CLM_CHILDREN * u + 2] = -1;
+      atomic_inc(flip_count);
+      did_flip = 1;
+    }
+  }
+  flipped[gid] = did_flip;
+}
+
+// Second step: outward edges (1 and 2) of both flipped triangles.
+__kernel void flip_relink(__global const int *active, __global const int *proposal,
+                          __global const int *flipped, __global const int *tri_vertex,
+                          __global int *tri_neighbor, __global const int *modified_stamp,
+                          __global const int *children, const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || !flipped[gid])
+    return;
+  const int t = active[gid], u = link_triangle(proposal[gid]);
+  for (int e = 1; e < 3; ++e) {
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
+  }
+}
+
+// How many entries each active triangle passes to the next list: both sides
+// of its flip, itself when its proposal lost, nothing when it is happy or was
+// flipped by a neighbour (which passes it on).
+__kernel void flip_count_next(__global const int *active, __global const int *proposal,
+                              __global const int *flipped, __global const int *modified_stamp,
+                              __global int *count, const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int t = active[gid], prop = proposal[gid];
+  int next = 0;
+  if (flipped[gid])
+    next = 2;
+  else if (prop >= 0 && modified_stamp[t] != stamp)
+    next = 1;
+  count[gid] = next;
+}
+
+// Clears this pass's marks (after every kernel that reads them).
+__kernel void flip_clear_marks(__global const int *active, __global const int *proposal,
+                               __global uint *tri_mark, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || proposal[gid] < 0)
+    return;
+  tri_mark[active[gid]] = CLM_NO_MARK;
+  tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
+}
+
+__kernel void flip_gather_next(__global const int *active, __global const int *proposal,
+                               __global const int *flipped, __global const int *count,
+                               __global const int *offset, __global int *next_active,
+                               const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || count[gid] == 0)
+    return;
+  const int o = offset[gid];
+  next_active[o] = active[gid];
+  if (flipped[gid])
+    next_active[o + 1] = link_triangle(proposal[gid]);
+}

@@ -1,0 +1,213 @@
+// clmesh — Phase 4 of GPU-DT: missing-point insertion (thesis §4.1.2, §2.3).
+//
+// Every point not yet in the mesh keeps the triangle that contains it. A round
+// (1) walks each point to its containing triangle or edge, (2) marks the
+// triangles it would split with atomic minimum of its priority, (3) lets the
+// points whose marks all survived split their triangles (1-3 flip inside a
+// triangle, 2-4 flip on an edge; a ghost triangle receives points outside the
+// hull), new slots being allocated by prefix sums so the result is
+// deterministic, and (4) relinks neighbours in a second step. The flipping
+// phase restores the Delaunay property after each round, so walks always run
+// in a Delaunay triangulation, where the visibility walk cannot cycle.
+#include "common.h"
+
+#define CLM_PENDING 0
+#define CLM_DUPLICATE 1
+#define CLM_LOST 2
+
+// Walks from location[p] to the triangle holding p. Results: location[p],
+// location_edge[p] (-1: interior or ghost region, i: on edge i), status.
+__kernel void locate_points(__global const double2 *points, __global const int *tri_vertex,
+                            __global const int *tri_neighbor, __global const int *remaining,
+                            __global int *location, __global int *location_edge,
+                            __global int *duplicate_of, __global int *status,
+                            const int max_steps, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int p = remaining[gid];
+  const double2 point = points[p];
+  int t = location[p];
+  int edge = -1, result = CLM_LOST;
+  for (int step = 0; step < max_steps; ++step) {
+    const VertexTriple tri = load_vertices(tri_vertex, t);
+    int cross = -1;
+    if (is_ghost(tri)) {
+      const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+      const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
+      const int side = orient_point(points, a, b, point);
+      if (side > 0) {
+        result = CLM_PENDING; // strictly outside hull edge a-b
+        break;
+      }
+      if (side == 0) {
+        // On the line of the hull edge: inside the segment it splits the edge.
+        const double2 pa = points[a], pb = points[b];
+        const bool between = (pa.x != pb.x) ? ((point.x > fmin(pa.x, pb.x)) && (point.x < fmax(pa.x, pb.x)))
+                                            : ((point.y > fmin(pa.y, pb.y)) && (point.y < fmax(pa.y, pb.y)));
+        if (between) {
+          edge = k;
+          result = CLM_PENDING;
+          break;
+        }
+      }
+      cross = k; // back into the hull through the real edge
+    } else {
+      int zeros = 0, nonzero = -1, on_edge = -1;
+      for (int i = 0; i < 3 && cross < 0; ++i) {
+        const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], point);
+        if (side < 0)
+          cross = i;
+        else if (side == 0) {
+          ++zeros;
+          on_edge = i;
+        } else
+          nonzero = i;
+      }
+      if (cross < 0) {
+        if (zeros == 2) { // p coincides with the vertex shared by both edges
+          duplicate_of[p] = tri.v[nonzero];
+          result = CLM_DUPLICATE;
+        } else {
+          edge = zeros == 1 ? on_edge : -1;
+          result = CLM_PENDING;
+        }
+        break;
+      }
+    }
+    t = link_triangle(tri_neighbor[3 * t + cross]);
+  }
+  location[p] = t;
+  location_edge[p] = edge;
+  status[gid] = result;
+}
+
+// Marks the triangle(s) each pending point would split with its priority.
+__kernel void mark_containers(__global const int *remaining, __global const int *location,
+                              __global const int *location_edge, __global const int *status,
+                              __global const int *tri_neighbor, volatile __global uint *tri_mark,
+                              const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || status[gid] != CLM_PENDING)
+    return;
+  const int p = remaining[gid], t = location[p], edge = location_edge[p];
+  const uint key = priority_of((uint)p);
+  atomic_min(&tri_mark[t], key);
+  if (edge >= 0)
+    atomic_min(&tri_mark[link_triangle(tri_neighbor[3 * t + edge])], key);
+}
+
+// winner[gid] = 1 when every mark written by the point survived.
+__kernel void select_winners(__global const int *remaining, __global const int *location,
+                             __global const int *location_edge, __global const int *status,
+                             __global const int *tri_neighbor, __global const uint *tri_mark,
+                             __global int *winner, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  int wins = 0;
+  if (status[gid] == CLM_PENDING) {
+    const int p = remaining[gid], t = location[p], edge = location_edge[p];
+    const uint key = priority_of((uint)p);
+    wins = tri_mark[t] == key &&
+           (edge < 0 || tri_mark[link_triangle(tri_neighbor[3 * t + edge])] == key);
+  }
+  winner[gid] = wins;
+}
+
+// Clears the marks of this round (before the topology changes).
+__kernel void clear_container_marks(__global const int *remaining, __global const int *location,
+                                    __global const int *location_edge,
+                                    __global const int *status, __global const int *tri_neighbor,
+                                    __global uint *tri_mark, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || status[gid] != CLM_PENDING)
+    return;
+  const int p = remaining[gid], t = location[p], edge = location_edge[p];
+  tri_mark[t] = CLM_NO_MARK;
+  if (edge >= 0)
+    tri_mark[link_triangle(tri_neighbor[3 * t + edge])] = CLM_NO_MARK;
+}
+
+// Splits the winners' triangles. Each winner takes two new slots at
+// first_slot + 2 * winner_offset; every child has the new point at index 2,
+// so its edge 2 is the only one facing outwards. Children are listed in
+// changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
+__kernel void split_triangles(__global const int *remaining, __global const int *winner,
+                              __global const int *winner_offset, __global const int *location,
+                              __global const int *location_edge, __global int *tri_vertex,
+                              __global int *tri_neighbor, __global int *modified_stamp,
+                              __global int *children, __global int *vertex_triangle,
+                              __global int *changed, const int stamp, const int first_slot,
+                              const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || !winner[gid])
+    return;
+  const int p = remaining[gid], t = location[p], edge = location_edge[p];
+  const int slot = first_slot + 2 * winner_offset[gid];
+  const int s1 = slot, s2 = slot + 1;
+  __global int *out = changed + 4 * winner_offset[gid];
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  const int n0 = tri_neighbor[3 * t], n1 = tri_neighbor[3 * t + 1], n2 = tri_neighbor[3 * t + 2];
+  if (edge < 0) { // 1-3 flip: (a,b,c) -> (a,b,p) (b,c,p) (c,a,p)
+    const int a = tri.v[0], b = tri.v[1], c = tri.v[2];
+    store_triangle(tri_vertex, tri_neighbor, t, a, b, p, encode_link(s1, 1), encode_link(s2, 0), n2);
+    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(s2, 1), encode_link(t, 0), n0);
+    store_triangle(tri_vertex, tri_neighbor, s2, c, a, p, encode_link(t, 1), encode_link(s1, 0), n1);
+    modified_stamp[t] = stamp;
+    children[CLM_CHILDREN * t] = t;
+    children[CLM_CHILDREN * t + 1] = s1;
+    children[CLM_CHILDREN * t + 2] = s2;
+    out[0] = t;
+    out[1] = s1;
+    out[2] = s2;
+    out[3] = -1;
+  } else { // 2-4 flip on edge a-b shared by t = (c,a,b) and u = (d,b,a)
+    const int c = tri.v[edge], a = tri.v[next3(edge)], b = tri.v[prev3(edge)];
+    const int t_opp_a = tri_neighbor[3 * t + next3(edge)], t_opp_b = tri_neighbor[3 * t + prev3(edge)];
+    const int link = tri_neighbor[3 * t + edge];
+    const int u = link_triangle(link), j = link_edge(link);
+    const int d = tri_vertex[3 * u + j];
+    const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
+    store_triangle(tri_vertex, tri_neighbor, t, c, a, p, encode_link(s2, 1), encode_link(s1, 0), t_opp_b);
+    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(t, 1), encode_link(u, 0), t_opp_a);
+    store_triangle(tri_vertex, tri_neighbor, u, d, b, p, encode_link(s1, 1), encode_link(s2, 0), u_opp_a);
+    store_triangle(tri_vertex, tri_neighbor, s2, a, d, p, encode_link(u, 1), encode_link(t, 0), u_opp_b);
+    modified_stamp[t] = stamp;
+    modified_stamp[u] = stamp;
+    children[CLM_CHILDREN * t] = t;
+    children[CLM_CHILDREN * t + 1] = s1;
+    children[CLM_CHILDREN * t + 2] = -1;
+    children[CLM_CHILDREN * u] = u;
+    children[CLM_CHILDREN * u + 1] = s2;
+    children[CLM_CHILDREN * u + 2] = -1;
+    out[0] = t;
+    out[1] = s1;
+    out[2] = u;
+    out[3] = s2;
+  }
+  vertex_triangle[p] = t;
+}
+
+// Second step: link each child's outward edge (edge 2) to its true neighbour.
+__kernel void relink_split_children(__global const int *changed, __global const int *tri_vertex,
+                                    __global int *tri_neighbor,
+                                    __global const int *modified_stamp,
+                                    __global const int *children, const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || changed[gid] < 0)
+    return;
+  relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[gid], 2);
+}
+
+// keep[gid] = 1 for points still waiting (neither inserted nor duplicate);
+// counts lost walks, which would be a bug, in failures[0].
+__kernel void count_remaining(__global const int *status, __global const int *winner,
+                              __global int *keep, volatile __global int *failures, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  keep[gid] = status[gid] == CLM_PENDING && !winner[gid];
+  if (status[gid] == CLM_LOST)
+    atomic_inc(failures);
+}

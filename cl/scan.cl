@@ -1,0 +1,46 @@
+// clmesh — parallel primitives: exclusive scan of counts (slot allocation by
+// prefix sums, thesis §3.6.1-3.6.2) and list compaction. Results never
+// depend on the work-group size: only its local scratch does.
+
+// Exclusive scan of each work-group's block; block_sums[g] = block total.
+__kernel void scan_blocks(__global const int *in, __global int *out, __global int *block_sums,
+                          __local int *scratch, const int n) {
+  const int gid = get_global_id(0), lid = get_local_id(0), size = get_local_size(0);
+  const int value = gid < n ? in[gid] : 0;
+  scratch[lid] = value;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  // Hillis-Steele inclusive scan in local memory.
+  for (int offset = 1; offset < size; offset <<= 1) {
+    const int add = lid >= offset ? scratch[lid - offset] : 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    scratch[lid] += add;
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (gid < n)
+    out[gid] = scratch[lid] - value;
+  if (lid == size - 1)
+    block_sums[get_group_id(0)] = scratch[lid];
+}
+
+// Adds the scanned block offsets to each block.
+__kernel void scan_add_offsets(__global int *out, __global const int *block_offsets,
+                               const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    out[gid] += block_offsets[get_group_id(0)];
+}
+
+// total[0] = offsets[n-1] + counts[n-1] (0 when n == 0 is handled on the host).
+__kernel void scan_total(__global const int *counts, __global const int *offsets,
+                         __global int *total, const int n) {
+  if (get_global_id(0) == 0)
+    total[0] = offsets[n - 1] + counts[n - 1];
+}
+
+// Stream compaction: out[offset[i]] = list[i] where keep[i] (offset: exclusive scan of keep).
+__kernel void compact_list(__global const int *list, __global const int *keep,
+                           __global const int *offset, __global int *out, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n && keep[gid])
+    out[offset[gid]] = list[gid];
+}

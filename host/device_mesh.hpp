@@ -1,0 +1,77 @@
+// clmesh — every device buffer of a run, owned in one place (RAII through cl::Buffer).
+#pragma once
+
+#include "opencl_context.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace clmesh {
+
+template <typename T> class DeviceArray {
+public:
+  DeviceArray() = default;
+  DeviceArray(Device &device, std::size_t size) : size_(size) {
+    buffer_ = guarded("allocation", "allocating a device array", [&] {
+      return cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(T) * (size ? size : 1));
+    });
+  }
+  std::size_t size() const { return size_; }
+  const cl::Buffer &buffer() const { return buffer_; }
+  operator const cl::Buffer &() const { return buffer_; }
+
+  void upload(Device &device, const std::vector<T> &data, std::size_t offset = 0) const {
+    if (data.empty())
+      return;
+    guarded("transfer", "uploading", [&] {
+      device.queue().enqueueWriteBuffer(buffer_, CL_TRUE, offset * sizeof(T),
+                                        data.size() * sizeof(T), data.data());
+    });
+  }
+  std::vector<T> download(Device &device, std::size_t count, std::size_t offset = 0) const {
+    std::vector<T> data(count);
+    if (count)
+      guarded("transfer", "downloading", [&] {
+        device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T),
+                                         count * sizeof(T), data.data());
+      });
+    return data;
+  }
+  T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }
+  void fill(Device &device, T value, std::size_t count) const {
+    if (count)
+      guarded("setup", "filling a device array", [&] {
+        device.queue().enqueueFillBuffer(buffer_, value, 0, count * sizeof(T));
+      });
+  }
+
+private:
+  cl::Buffer buffer_;
+  std::size_t size_ = 0;
+};
+
+// The triangulation and the per-point state that stay resident on the device
+// from upload to download (thesis §2.2 data structure).
+struct DeviceMesh {
+  DeviceMesh(Device &device, std::size_t point_count);
+
+  std::size_t point_capacity;
+  std::size_t triangle_capacity; // 2n + 2 slots: ghosts included, never grows for a DT
+  std::size_t list_capacity;     // active and scratch lists
+
+  DeviceArray<cl_double2> points;     // in spatial (Hilbert) order
+  DeviceArray<cl_int> original_id;    // input index of each device point
+  DeviceArray<cl_int> tri_vertex;     // 3 per triangle
+  DeviceArray<cl_int> tri_neighbor;   // 3 per triangle, (triangle << 2) | edge
+  DeviceArray<cl_uint> tri_mark;      // atomic-minimum marks
+  DeviceArray<cl_int> modified_stamp; // step that last rewrote the slot
+  DeviceArray<cl_int> children;       // 3 per triangle: its replacements
+  DeviceArray<cl_int> vertex_triangle; // one incident triangle per vertex
+  DeviceArray<cl_int> duplicate_of;
+  DeviceArray<cl_int> location;      // containing triangle of each point not yet inserted
+  DeviceArray<cl_int> location_edge; // -1 or the edge the point lies on
+
+  std::size_t triangle_count = 0; // slots in use (all live: DT never deletes)
+};
+
+} // namespace clmesh

@@ -1,0 +1,36 @@
+// clmesh — Phase 5 of GPU-DT: parallel edge flipping over active lists
+// (thesis §3.3.2, §3.6.2, §3.6.3). Kernels: cl/flipping.cl.
+#pragma once
+
+#include "prefix_scan.hpp"
+
+namespace clmesh {
+
+struct FlipCounts {
+  long flips = 0;
+  long passes = 0;
+  long exact_checks = 0; // active triangles the filter could not decide
+};
+
+class Flipping {
+public:
+  static constexpr const char *kPhase = "flipping";
+
+  Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+
+  // Flips until every edge of the triangles reachable from `active` (n
+  // entries, -1 entries ignored) is locally Delaunay. `stamp` numbers each
+  // pass; it is advanced past the last one used.
+  void run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  cl::Kernel check_fast_, check_exact_, propose_, apply_, relink_, count_next_, clear_marks_,
+      gather_next_;
+  DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, count_,
+      offset_, exact_count_, flip_count_;
+};
+
+} // namespace clmesh

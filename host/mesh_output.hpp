@@ -1,0 +1,34 @@
+// clmesh — final compaction and download of the mesh (thesis §3.6.1).
+// Kernels: cl/mesh_output.cl.
+#pragma once
+
+#include "prefix_scan.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <array>
+#include <vector>
+
+namespace clmesh {
+
+class MeshOutput {
+public:
+  static constexpr const char *kPhase = "download";
+
+  MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+
+  // Real triangles (ghosts dropped) with neighbour links, -1 on the hull, and
+  // for each point the point that stands for it (-1: itself), the smallest
+  // index of each group of identical points standing for the group.
+  void download(std::vector<Triangle> &triangles, std::vector<std::array<int32_t, 3>> &neighbors,
+                std::vector<int32_t> &duplicate_of);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  cl::Kernel flag_real_, write_real_, smallest_representative_, redirect_duplicates_,
+      rename_vertices_, fill_identity_, restore_numbering_;
+};
+
+} // namespace clmesh

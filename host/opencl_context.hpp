@@ -1,0 +1,75 @@
+// clmesh — the OpenCL device: context, queue, program building and launching.
+#pragma once
+
+#include "clmesh/device.hpp"
+#include "clmesh/errors.hpp"
+
+#include <CL/opencl.hpp>
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clmesh {
+
+namespace detail {
+// Kernel sources embedded at build time (cmake/embed_kernels.cmake).
+const char *embedded_source(const char *name);
+} // namespace detail
+
+class Device {
+public:
+  Device(cl::Device device, DeviceDescription description);
+
+  const DeviceDescription &description() const { return description_; }
+  cl::Context &context() { return context_; }
+  cl::CommandQueue &queue() { return queue_; }
+
+  // Builds (once per device) the program made of `file` with its
+  // `#include "x.h"` lines expanded, without fast-math or mad options.
+  // Sources come from CLMESH_KERNEL_DIR when set, else from the embedded copies.
+  cl::Program &program(const std::string &file, const std::string &phase);
+  cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
+
+  // Work-group size used for every launch (results never depend on it).
+  std::size_t work_group() const { return work_group_; }
+  void set_work_group(std::size_t size);
+  std::size_t max_work_group() const;
+
+private:
+  cl::Device device_;
+  DeviceDescription description_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::size_t work_group_ = 64;
+  std::map<std::string, cl::Program> programs_;
+};
+
+// Source text of a kernel file with its includes expanded.
+std::string kernel_source(const std::string &file);
+
+// Launches `kernel` over `items` work-items (rounded up to the work-group
+// size; kernels guard their index). OpenCL failures become OpenCLError
+// naming the phase and the kernel.
+void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase);
+// The same with an explicit work-group size (kernels that use local memory).
+void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
+            std::size_t group);
+
+// Sets kernel arguments in order.
+template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...args) {
+  cl_uint index = 0;
+  (kernel.setArg(index++, args), ...);
+}
+
+// Runs `body`, turning a cl::Error into an OpenCLError for `phase`.
+template <typename Body> auto guarded(const std::string &phase, const std::string &what, Body body) {
+  try {
+    return body();
+  } catch (const cl::Error &error) {
+    throw OpenCLError(error.err(), error.what(), phase, what);
+  }
+}
+
+} // namespace clmesh

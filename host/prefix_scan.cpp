@@ -1,0 +1,61 @@
+#include "prefix_scan.hpp"
+
+#include <algorithm>
+
+namespace clmesh {
+
+PrefixScan::PrefixScan(Device &device)
+    : device_(device), scan_blocks_(device.kernel("scan.cl", "scan_blocks", "scan")),
+      add_offsets_(device.kernel("scan.cl", "scan_add_offsets", "scan")),
+      total_(device.kernel("scan.cl", "scan_total", "scan")),
+      compact_(device.kernel("scan.cl", "compact_list", "scan")), total_buffer_(device, 1),
+      group_(std::min<std::size_t>(256, device.max_work_group())) {}
+
+const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
+  auto it = levels_.find(level);
+  if (it == levels_.end() || it->second.first.size() < size)
+    it = levels_.insert_or_assign(level, std::make_pair(DeviceArray<cl_int>(device_, size),
+                                                        DeviceArray<cl_int>(device_, size)))
+             .first;
+  return it->second.first;
+}
+
+void PrefixScan::scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
+                            const std::string &phase) {
+  const std::size_t group = group_;
+  const std::size_t groups = (n + group - 1) / group;
+  const auto &sums = block_sums(level, groups);
+  set_args(scan_blocks_, in, out, sums.buffer(), cl::Local(sizeof(cl_int) * group),
+           static_cast<cl_int>(n));
+  launch(device_, scan_blocks_, n, phase, group);
+  if (groups == 1)
+    return;
+  const auto &scanned = levels_.at(level).second;
+  scan_level(sums.buffer(), scanned.buffer(), groups, level + 1, phase);
+  set_args(add_offsets_, out, scanned.buffer(), static_cast<cl_int>(n));
+  launch(device_, add_offsets_, n, phase, group);
+}
+
+int PrefixScan::exclusive_scan(const DeviceArray<cl_int> &counts,
+                               const DeviceArray<cl_int> &offsets, std::size_t n,
+                               const std::string &phase) {
+  if (n == 0)
+    return 0;
+  scan_level(counts.buffer(), offsets.buffer(), n, 0, phase);
+  set_args(total_, counts.buffer(), offsets.buffer(), total_buffer_.buffer(),
+           static_cast<cl_int>(n));
+  launch(device_, total_, 1, phase);
+  return total_buffer_.read(device_, 0);
+}
+
+int PrefixScan::compact(const DeviceArray<cl_int> &list, const DeviceArray<cl_int> &keep,
+                        const DeviceArray<cl_int> &offsets, const DeviceArray<cl_int> &out,
+                        std::size_t n, const std::string &phase) {
+  const int kept = exclusive_scan(keep, offsets, n, phase);
+  set_args(compact_, list.buffer(), keep.buffer(), offsets.buffer(), out.buffer(),
+           static_cast<cl_int>(n));
+  launch(device_, compact_, n, phase);
+  return kept;
+}
+
+} // namespace clmesh

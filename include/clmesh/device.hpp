@@ -1,0 +1,32 @@
+// clmesh — choosing an OpenCL device.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace clmesh {
+
+struct DeviceDescription {
+  int platform_index = 0;
+  int device_index = 0;
+  std::string platform_name;
+  std::string device_name;
+  std::string version;
+  bool has_fp64 = false;
+};
+
+// Every OpenCL device visible through the ICD loader.
+std::vector<DeviceDescription> list_devices();
+
+class Device;
+// Opens a device. spec: "" (the CLMESH_DEVICE environment variable, else the
+// first device with fp64), "P:D" (platform and device index), "N" (the N-th
+// device in list order) or a case-insensitive substring of "platform device".
+// Throws DeviceError when nothing matches or the device lacks cl_khr_fp64.
+std::shared_ptr<Device> open_device(const std::string &spec = "");
+
+// Human-readable "device name (platform name)".
+std::string describe(const Device &device);
+
+} // namespace clmesh

@@ -1,0 +1,63 @@
+// clmesh — typed errors. Library code never exits; it throws one of these.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace clmesh {
+
+// Base of every error clmesh throws.
+class Error : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+// Malformed or unusable input: names the file and (when known) the line.
+class InputError : public Error {
+public:
+  InputError(std::string file, long line, const std::string &problem)
+      : Error(format(file, line, problem)), file_(std::move(file)), line_(line) {}
+  const std::string &file() const { return file_; }
+  long line() const { return line_; } // 0 when the problem is not on one line
+
+private:
+  static std::string format(const std::string &file, long line, const std::string &problem) {
+    return line > 0 ? file + ":" + std::to_string(line) + ": " + problem : file + ": " + problem;
+  }
+  std::string file_;
+  long line_;
+};
+
+// Wrong switches or option values.
+class UsageError : public Error {
+public:
+  using Error::Error;
+};
+
+// No usable OpenCL device, or a device without what clmesh needs.
+class DeviceError : public Error {
+public:
+  using Error::Error;
+};
+
+// An OpenCL call failed: carries the symbolic code name, the phase and the kernel.
+class OpenCLError : public Error {
+public:
+  OpenCLError(int code, const std::string &what_failed, const std::string &phase,
+              const std::string &kernel);
+  int code() const { return code_; }
+
+private:
+  int code_;
+};
+
+// The algorithm met a state it cannot handle (a bug, reported rather than hidden).
+class InternalError : public Error {
+public:
+  using Error::Error;
+};
+
+// Symbolic name of an OpenCL status code, e.g. "CL_OUT_OF_RESOURCES".
+const char *opencl_error_name(int code);
+
+} // namespace clmesh

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# The mesh files do not depend on the run, the Voronoi grid or the work-group
+# size: .node, .ele and .neigh must be byte-identical.
+# Usage: determinism.sh CLMESH_BINARY SOURCE_DIR
+set -euo pipefail
+bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+python3 - <<'PY'
+import random
+rng = random.Random(20240601)
+points = [(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) for _ in range(3000)]
+points += points[:25]                                   # a few duplicates
+points += [(round(x, 2), round(y, 2)) for x, y in points[100:400]]  # near-coincident
+with open("random.node", "w") as out:
+    out.write(f"{len(points)} 2 0 0\n")
+    for i, (x, y) in enumerate(points, 1):
+        out.write(f"{i} {x!r} {y!r}\n")
+with open("lattice.node", "w") as out:                  # cocircular everywhere
+    out.write("400 2 1 1\n")
+    for i in range(400):
+        out.write(f"{i} {i % 20} {i // 20} {i * 0.5} {i % 3}\n")
+PY
+
+configs=("" "" "--grid 64" "--grid 512" "--work-group 1" "--work-group 128" "--grid 64 --work-group 1")
+
+for input in random lattice; do
+  reference=""
+  for index in "${!configs[@]}"; do
+    config="${configs[$index]}"
+    dir="$work/$input.$index"
+    mkdir "$dir"
+    cp "$work/$input.node" "$dir/"
+    status=0
+    # -C: every run is also checked with exact predicates.
+    # shellcheck disable=SC2086  # config holds separate arguments
+    (cd "$dir" && "$bin" -nQC $config "$input.node") \
+      > "$dir.log" 2>&1 || status=$?
+    if [[ "$status" -ne 0 ]]; then
+      fail "$input with '$config' exited with $status: $(cat "$dir.log")"
+      continue
+    fi
+    if [[ -z "$reference" ]]; then
+      reference="$dir"
+      continue
+    fi
+    for ext in node ele neigh; do
+      if ! cmp -s "$reference/$input.1.$ext" "$dir/$input.1.$ext"; then
+        fail "$input.1.$ext differs between '${configs[0]}' and '$config'"
+      fi
+    done
+  done
+done
+
+if [[ "$failures" -ne 0 ]]; then
+  echo "determinism.sh: $failures check(s) failed" >&2
+  exit 1
+fi
+echo "determinism.sh: all checks passed"

@@ -1,0 +1,85 @@
+// Point sets for the tests: the thesis distributions and harder cases.
+#pragma once
+
+#include "clmesh/geometry.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fixtures {
+
+using clmesh::Point;
+
+inline std::vector<Point> uniform(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point> p(n);
+  for (auto &q : p)
+    q = {u(rng), u(rng)};
+  return p;
+}
+
+inline std::vector<Point> gaussian(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  std::vector<Point> p(n);
+  for (auto &q : p)
+    q = {g(rng), g(rng)};
+  return p;
+}
+
+inline std::vector<Point> disk(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Point> p;
+  while (static_cast<int>(p.size()) < n) {
+    const double x = u(rng), y = u(rng);
+    if (x * x + y * y <= 1)
+      p.push_back({x, y});
+  }
+  return p;
+}
+
+// Points on the unit circle (as rounded by floating point), the thesis's
+// "circle" distribution: nearly every point is on the hull, many are cocircular.
+inline std::vector<Point> circle(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 2 * M_PI);
+  std::vector<Point> p(n);
+  for (auto &q : p) {
+    const double a = u(rng);
+    q = {std::cos(a), std::sin(a)};
+  }
+  return p;
+}
+
+inline std::vector<Point> lattice(int side, double spacing = 1, Point origin = {0, 0}) {
+  std::vector<Point> p;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      p.push_back({origin.x + i * spacing, origin.y + j * spacing});
+  return p;
+}
+
+// Reads the [[x, y], ...] arrays of the delaunator fixtures.
+inline std::vector<Point> json_points(const std::string &path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  for (char &c : s)
+    if (c == '[' || c == ']' || c == ',')
+      c = ' ';
+  std::istringstream numbers(s);
+  std::vector<Point> p;
+  double x, y;
+  while (numbers >> x >> y)
+    p.push_back({x, y});
+  return p;
+}
+
+} // namespace fixtures

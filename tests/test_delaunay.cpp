@@ -1,0 +1,229 @@
+// GPU-DT end to end on the OpenCL device: every result passes the exact
+// checker and equals CGAL's Delaunay triangulation triangle for triangle (both
+// break cocircular ties with the same symbolic perturbation, so the equality
+// holds for degenerate input too).
+#include <doctest/doctest.h>
+
+#include "clmesh/check.hpp"
+#include "clmesh/delaunay.hpp"
+#include "clmesh/errors.hpp"
+#include "clmesh/io.hpp"
+#include "mesh_fixtures.hpp"
+
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <set>
+
+#ifdef CLMESH_HAVE_CGAL
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#endif
+
+using clmesh::Point;
+using clmesh::Triangle;
+
+namespace {
+
+clmesh::Device &device() {
+  static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
+  return *opened;
+}
+
+std::string problems(const clmesh::CheckReport &report) {
+  std::string text;
+  for (const auto &p : report.problems)
+    text += p + "\n";
+  return text;
+}
+
+#ifdef CLMESH_HAVE_CGAL
+// CGAL's triangles over input indices, each duplicate group named by its smallest index.
+std::set<Triangle> cgal_triangles(const std::vector<Point> &points) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+  std::map<std::pair<double, double>, int> smallest;
+  std::vector<std::pair<K::Point_2, int>> input;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    smallest.emplace(std::make_pair(points[i].x, points[i].y), i);
+    input.push_back({K::Point_2(points[i].x, points[i].y), i});
+  }
+  DT dt(input.begin(), input.end());
+  std::set<Triangle> triangles;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) {
+      const auto &p = f->vertex(k)->point();
+      t[k] = smallest.at({p.x(), p.y()});
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    triangles.insert(t);
+  }
+  return triangles;
+}
+#endif
+
+clmesh::DelaunayResult triangulate_and_check(const std::vector<Point> &points,
+                                             const clmesh::DelaunayOptions &options = {}) {
+  clmesh::DelaunayResult result = clmesh::delaunay(device(), points, options);
+  const auto report = clmesh::check_triangulation(points, result.triangles, result.neighbors,
+                                                  result.duplicate_of, true);
+  INFO(problems(report));
+  CHECK(report.ok);
+  CHECK(result.stats.triangles == static_cast<long>(result.triangles.size()));
+  // Duplicates are named by the smallest index of their group.
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (result.duplicate_of[i] >= 0)
+      CHECK(result.duplicate_of[i] < static_cast<int32_t>(i));
+#ifdef CLMESH_HAVE_CGAL
+  const std::set<Triangle> ours(result.triangles.begin(), result.triangles.end());
+  CHECK(ours.size() == result.triangles.size());
+  CHECK(ours == cgal_triangles(points));
+#endif
+  return result;
+}
+
+} // namespace
+
+TEST_CASE("delaunay: thesis distributions equal CGAL") {
+  SUBCASE("uniform") { triangulate_and_check(fixtures::uniform(30000, 1)); }
+  SUBCASE("gaussian") { triangulate_and_check(fixtures::gaussian(30000, 2)); }
+  SUBCASE("disk") { triangulate_and_check(fixtures::disk(30000, 3)); }
+  SUBCASE("circle") { triangulate_and_check(fixtures::circle(5000, 4)); }
+  SUBCASE("512x512 grid") { triangulate_and_check(fixtures::lattice(512)); }
+}
+
+TEST_CASE("delaunay: degenerate input") {
+  SUBCASE("full lattice, every quad cocircular") {
+    const auto result = triangulate_and_check(fixtures::lattice(60));
+    CHECK(result.triangles.size() == 2u * 59 * 59);
+    CHECK(result.stats.exact_predicate_calls > 0);
+  }
+  SUBCASE("heavy duplicates") {
+    std::vector<Point> points;
+    const auto base = fixtures::uniform(2000, 5);
+    for (int copy = 0; copy < 5; ++copy)
+      points.insert(points.end(), base.begin(), base.end());
+    const auto result = triangulate_and_check(points);
+    CHECK(result.stats.duplicates == 4 * 2000);
+    for (int i = 2000; i < 10000; ++i)
+      CHECK(result.duplicate_of[i] == i % 2000);
+  }
+  SUBCASE("duplicates of hull corners") {
+    auto points = fixtures::lattice(10);
+    points.push_back({0, 0});
+    points.push_back({9, 9});
+    points.push_back({0, 0});
+    const auto result = triangulate_and_check(points);
+    CHECK(result.stats.duplicates == 3);
+  }
+  SUBCASE("a line plus one point") {
+    std::vector<Point> points;
+    for (int i = 0; i < 3000; ++i)
+      points.push_back({static_cast<double>(i), 0.0});
+    points.push_back({1500.5, 1.0});
+    const auto result = triangulate_and_check(points);
+    CHECK(result.triangles.size() == 2999u);
+  }
+  SUBCASE("collinear runs on the hull and inside") {
+    auto points = fixtures::lattice(30);
+    for (int i = 0; i < 100; ++i)
+      points.push_back({i * 0.29, i * 0.29}); // the diagonal, densely
+    triangulate_and_check(points);
+  }
+  SUBCASE("tiny box far from the origin") {
+    auto points = fixtures::uniform(5000, 6);
+    for (auto &p : points)
+      p = {1e6 + p.x * 1e-9, -3e5 + p.y * 1e-9};
+    triangulate_and_check(points);
+  }
+  SUBCASE("lattice far from the origin") {
+    triangulate_and_check(fixtures::lattice(40, 1e-6, {12345.0, -6789.0}));
+  }
+  SUBCASE("huge and tiny magnitudes") {
+    for (const double scale : {1e-40, 1e40}) {
+      auto points = fixtures::uniform(3000, 7);
+      for (auto &p : points)
+        p = {p.x * scale, p.y * scale};
+      triangulate_and_check(points);
+    }
+  }
+  SUBCASE("points on a circle, exactly cocircular") {
+    // 3-4-5 style Pythagorean points: exactly on the circle of radius 5525.
+    std::vector<Point> points;
+    const int r = 5525;
+    for (int x = -r; x <= r; ++x)
+      for (int y : {-1, 1}) {
+        const long long yy = static_cast<long long>(r) * r - static_cast<long long>(x) * x;
+        const auto root = static_cast<long long>(std::llround(std::sqrt(static_cast<double>(yy))));
+        if (root * root == yy)
+          points.push_back({static_cast<double>(x), static_cast<double>(y * root)});
+      }
+    points.push_back({0.5, 0.25});
+    REQUIRE(points.size() > 20);
+    triangulate_and_check(points);
+  }
+}
+
+TEST_CASE("delaunay: all points collinear give no triangle") {
+  std::vector<Point> points;
+  for (int i = 0; i < 100; ++i)
+    points.push_back({i * 0.5, i * 0.25});
+  points.push_back({0, 0});
+  const auto result = clmesh::delaunay(device(), points);
+  CHECK(result.triangles.empty());
+  CHECK(result.duplicate_of[100] == 0);
+}
+
+TEST_CASE("delaunay: reference inputs") {
+  const std::string data = CLMESH_SHARED_DATA;
+  SUBCASE("delaunator robustness fixtures") {
+    for (const char *name : {"issue13", "issue43", "issue44", "robustness1", "robustness2",
+                             "robustness3", "robustness4", "ukraine"}) {
+      INFO(name);
+      const auto points = fixtures::json_points(data + "/delaunator/" + name + ".json");
+      REQUIRE(points.size() >= 3);
+      triangulate_and_check(points);
+      // Delaunator re-runs its fixtures scaled from 1e-9 to 1e9.
+      for (const double scale : {1e-9, 1e9}) {
+        auto scaled = points;
+        for (auto &p : scaled)
+          p = {p.x * scale, p.y * scale};
+        triangulate_and_check(scaled);
+      }
+    }
+  }
+  SUBCASE("Triangle's example .node files") {
+    for (const char *name : {"greenland", "spiral", "dots", "diamond_02_00009", "ell"}) {
+      INFO(name);
+      const auto set = clmesh::read_node(data + "/triangle-examples/inputs/" + name + ".node");
+      triangulate_and_check(set.points);
+    }
+  }
+}
+
+TEST_CASE("delaunay: the same triangles whatever the work-group size") {
+  const auto points = fixtures::gaussian(20000, 8);
+  clmesh::DelaunayOptions options;
+  options.work_group = 1;
+  const auto first = clmesh::delaunay(device(), points, options);
+  options.work_group = 256;
+  const auto second = clmesh::delaunay(device(), points, options);
+  options.work_group = 64;
+  const auto third = clmesh::delaunay(device(), points, options);
+  CHECK(first.triangles == second.triangles);
+  CHECK(first.neighbors == second.neighbors);
+  CHECK(first.triangles == third.triangles);
+  CHECK(first.stats.flips == third.stats.flips);
+}
+
+TEST_CASE("delaunay: bad input is refused with a typed error") {
+  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}}), clmesh::InputError);
+  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {1e300, 0}}), clmesh::InputError);
+  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {1e-300, 0}}), clmesh::InputError);
+  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {std::nan(""), 0}}),
+                  clmesh::InputError);
+}

@@ -1,0 +1,624 @@
+// Tests of Triangle's file formats (clmesh/io.hpp): reading, writing, batches.
+#include "clmesh/errors.hpp"
+#include "clmesh/io.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace clmesh;
+
+namespace {
+
+const fs::path kExamples = fs::path(CLMESH_SHARED_DATA) / "triangle-examples";
+
+// A fresh directory, removed with everything in it at the end of the test.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    static int counter = 0;
+    std::random_device seed;
+    path = fs::temp_directory_path() /
+           ("clmesh_test_io_" + std::to_string(seed()) + "_" + std::to_string(counter++));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+  std::string file(const std::string &name) const { return (path / name).string(); }
+  std::vector<std::string> names() const {
+    std::vector<std::string> found;
+    for (const auto &entry : fs::directory_iterator(path))
+      found.push_back(entry.path().filename().string());
+    std::sort(found.begin(), found.end());
+    return found;
+  }
+};
+
+void write_file(const std::string &path, const std::string &text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string read_file(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// read_node on `text` must fail on `line` with a message containing `words`.
+void expect_input_error(const std::string &text, long line, const std::string &words) {
+  TempDir dir;
+  const std::string path = dir.file("bad.node");
+  write_file(path, text);
+  CAPTURE(text);
+  bool thrown = false;
+  try {
+    read_node(path);
+  } catch (const InputError &error) {
+    thrown = true;
+    const std::string message = error.what();
+    CAPTURE(message);
+    CHECK(error.file() == path);
+    CHECK(error.line() == line);
+    CHECK(message.find(path) == 0);
+    if (line > 0)
+      CHECK(message.find(":" + std::to_string(line) + ": ") != std::string::npos);
+    CHECK(message.find(words) != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK(thrown);
+}
+
+PointSet read_text(const std::string &text) {
+  TempDir dir;
+  write_file(dir.file("in.node"), text);
+  return read_node(dir.file("in.node"));
+}
+
+// Neighbours of a triangle list (opposite vertex i), -1 on the boundary.
+std::vector<std::array<int32_t, 3>> neighbors_of(const std::vector<Triangle> &triangles) {
+  std::map<std::pair<int32_t, int32_t>, int32_t> owner; // directed edge -> triangle
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      owner[{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]}] = static_cast<int32_t>(t);
+  std::vector<std::array<int32_t, 3>> neighbors(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      auto it = owner.find({triangles[t][(i + 2) % 3], triangles[t][(i + 1) % 3]});
+      neighbors[t][i] = it == owner.end() ? -1 : it->second;
+    }
+  return neighbors;
+}
+
+// Triangles of a Triangle .ele file, 0-based (a minimal reader for the tests).
+std::vector<Triangle> read_ele(const std::string &path, int first_index) {
+  std::istringstream in(read_file(path));
+  std::string line;
+  std::vector<Triangle> triangles;
+  long count = -1;
+  while (std::getline(in, line)) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream fields(line);
+    if (count < 0) {
+      if (fields >> count)
+        triangles.reserve(static_cast<std::size_t>(count));
+      continue;
+    }
+    long id;
+    Triangle t;
+    if (fields >> id >> t[0] >> t[1] >> t[2]) {
+      for (auto &v : t)
+        v -= first_index;
+      triangles.push_back(t);
+    }
+  }
+  REQUIRE(static_cast<long>(triangles.size()) == count);
+  return triangles;
+}
+
+std::vector<std::string> lines_of(const std::string &text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------
+// read_node
+// ---------------------------------------------------------------------------
+
+TEST_CASE("read_node reads every .node file of the Triangle examples") {
+  const std::map<std::string, std::pair<std::size_t, bool>> expected = {
+      {"spiral.node", {15, false}},      {"dots.node", {100, false}},
+      {"greenland.node", {33343, true}}, {"diamond_02_00009.node", {9, false}},
+      {"double_hex3.node", {16, true}},  {"ell.node", {21, true}},
+      {"bbox.1.node", {12, true}},
+  };
+  int files = 0;
+  for (const char *folder : {"inputs", "reference-outputs"}) {
+    for (const auto &entry : fs::directory_iterator(kExamples / folder)) {
+      if (entry.path().extension() != ".node")
+        continue;
+      const std::string name = entry.path().filename().string();
+      CAPTURE(name);
+      PointSet set;
+      REQUIRE_NOTHROW(set = read_node(entry.path().string()));
+      ++files;
+      CHECK(set.points.size() >= 3);
+      CHECK(set.first_index == 1);
+      CHECK(set.attributes.size() == set.points.size() * set.attribute_count);
+      CHECK(set.markers.size() == (set.has_markers ? set.points.size() : 0));
+      for (const Point &p : set.points)
+        CHECK((std::isfinite(p.x) && std::isfinite(p.y)));
+      if (std::string(folder) == "inputs") {
+        auto known = expected.find(name);
+        if (known != expected.end()) {
+          CHECK(set.points.size() == known->second.first);
+          CHECK(set.has_markers == known->second.second);
+        }
+      }
+    }
+  }
+  CHECK(files >= 7);
+
+  const PointSet spiral = read_node((kExamples / "inputs" / "spiral.node").string());
+  CHECK(spiral.points[0].x == 0.0);
+  CHECK(spiral.points[1].x == -0.416);
+  CHECK(spiral.points[14].y == 3.49);
+  const PointSet a = read_node((kExamples / "reference-outputs" / "A.1.node").string());
+  CHECK(a.attribute_count == 1);
+  CHECK(a.points.size() == 29);
+  CHECK(a.attributes[0] == -0.56999999999999995);
+}
+
+TEST_CASE("read_node: comments, blank lines, numbering, attributes, markers") {
+  SUBCASE("comments and blank lines anywhere, 1-based") {
+    const PointSet set = read_text("# a comment\n\n   \t\n4 2 0 0 # header comment\n"
+                                   "# between\n1 0 0\n\n2 1.5 -2e3   # trailing\n"
+                                   "  3\t0x1p-2\t+7\r\n#\n4 .5 5.\n# end\n");
+    REQUIRE(set.points.size() == 4);
+    CHECK(set.first_index == 1);
+    CHECK(set.points[1].x == 1.5);
+    CHECK(set.points[1].y == -2000.0);
+    CHECK(set.points[2].x == 0.25);
+    CHECK(set.points[2].y == 7.0);
+    CHECK(set.points[3].x == 0.5);
+    CHECK(set.points[3].y == 5.0);
+    CHECK(set.attribute_count == 0);
+    CHECK_FALSE(set.has_markers);
+    CHECK(set.markers.empty());
+  }
+  SUBCASE("0-based") {
+    const PointSet set = read_text("3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n");
+    CHECK(set.first_index == 0);
+    CHECK(set.points.size() == 3);
+    CHECK(set.points[2].y == 1.0);
+  }
+  SUBCASE("attributes and markers") {
+    const PointSet set = read_text("3 2 2 1\n1 0 0 10 11 5\n2 1 0 20 21 0\n3 0 1 30 31 -7\n");
+    REQUIRE(set.points.size() == 3);
+    CHECK(set.attribute_count == 2);
+    CHECK(set.attributes == std::vector<double>{10, 11, 20, 21, 30, 31});
+    CHECK(set.has_markers);
+    CHECK(set.markers == std::vector<int>{5, 0, -7});
+  }
+  SUBCASE("short header defaults as in Triangle") {
+    const PointSet set = read_text("3\n1 0 0\n2 1 0\n3 0 1\n");
+    CHECK(set.points.size() == 3);
+    CHECK(set.attribute_count == 0);
+    CHECK_FALSE(set.has_markers);
+  }
+  SUBCASE("fields beyond the declared ones are ignored, as Triangle does") {
+    const PointSet set = read_text("3 2 0 0\n1 0 0 9\n2 1 0 9\n3 0 1 9\n");
+    CHECK(set.points.size() == 3);
+    CHECK_FALSE(set.has_markers);
+  }
+  SUBCASE("fewer than three vertices is the caller's business") {
+    CHECK(read_text("0 2 0 0\n").points.empty());
+    CHECK(read_text("1 2 0 0\n1 5 5\n").points.size() == 1);
+  }
+}
+
+TEST_CASE("read_node errors name the file and the line") {
+  SUBCASE("missing file") {
+    TempDir dir;
+    const std::string path = dir.file("absent.node");
+    try {
+      read_node(path);
+      FAIL("no error");
+    } catch (const InputError &error) {
+      CHECK(error.file() == path);
+      CHECK(error.line() == 0);
+      CHECK(std::string(error.what()).find(path) == 0);
+    }
+  }
+  SUBCASE("directory") {
+    TempDir dir;
+    CHECK_THROWS_AS(read_node(dir.path.string()), InputError);
+  }
+  expect_input_error("", 1, "missing header");
+  expect_input_error("# only a comment\n\n", 3, "missing header");
+  expect_input_error("abc 2 0 0\n", 1, "malformed header");
+  expect_input_error("# c\n\n-3 2 0 0\n", 3, "malformed header");
+  expect_input_error("3 2.5 0 0\n", 1, "dimension");
+  expect_input_error("3 3 0 0\n1 0 0 0\n", 1, "dimension must be 2");
+  expect_input_error("3 2 x 0\n", 1, "attribute count");
+  expect_input_error("3 2 0 2\n", 1, "must be 0 or 1");
+  expect_input_error("3 2 0 0\n1 0 0\n2 1\n3 0 1\n", 3, "expected 3");
+  expect_input_error("3 2 1 1\n1 0 0 5 1\n2 1 0 5\n", 3, "expected 5");
+  expect_input_error("3 2 0 0\n1 0 0\n2 1 abc\n3 0 1\n", 3, "'abc'");
+  expect_input_error("3 2 0 0\n1 0 0\n2 1 1.5x\n3 0 1\n", 3, "not a number");
+  expect_input_error("3 2 0 0\n1 0 0\n2 1 0\n\n3 nan 1\n", 5, "not finite");
+  expect_input_error("3 2 0 0\n1 0 0\n2 -inf 0\n3 0 1\n", 3, "not finite");
+  expect_input_error("3 2 0 0\n1 0 0\n2 1e999 0\n3 0 1\n", 3, "not finite");
+  expect_input_error("3 2 1 0\n1 0 0 1\n2 1 0 zz\n3 0 1 1\n", 3, "attribute");
+  expect_input_error("3 2 0 1\n1 0 0 1\n2 1 0 1.5\n3 0 1 1\n", 3, "boundary marker");
+  expect_input_error("3 2 0 0\n1.0 0 0\n", 2, "not an integer");
+  expect_input_error("3 2 0 0\n2 0 0\n", 2, "first vertex id must be 0 or 1");
+  expect_input_error("3 2 0 0\n1 0 0\n3 1 0\n2 0 1\n", 3, "out of sequence");
+  expect_input_error("3 2 0 0\n0 0 0\n1 1 0\n1 0 1\n", 4, "out of sequence");
+  expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", 5, "3 of 4 vertices");
+  expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1", 4, "3 of 4 vertices");
+  expect_input_error("4 2 0 0\n1 0 0\n# gone\n", 4, "1 of 4 vertices");
+}
+
+// ---------------------------------------------------------------------------
+// Writers
+// ---------------------------------------------------------------------------
+
+TEST_CASE("writers reproduce Triangle's reference output byte for byte") {
+  struct Case {
+    const char *input, *reference, *command;
+  };
+  for (const Case &c :
+       {Case{"spiral.node", "spiral.1", "triangle spiral"},
+        Case{"diamond_02_00009.node", "diamond_02_00009.1", "triangle -v diamond_02_00009.node"}}) {
+    CAPTURE(c.input);
+    const PointSet input = read_node((kExamples / "inputs" / c.input).string());
+    const std::string reference = (kExamples / "reference-outputs" / c.reference).string();
+    const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
+    const auto neighbors = neighbors_of(triangles);
+    MeshView mesh;
+    mesh.points = &input;
+    mesh.triangles = &triangles;
+    mesh.neighbors = &neighbors;
+    WriteOptions options;
+    options.first_index = input.first_index;
+    options.command_line = c.command;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("out.node"), mesh, options);
+    batch.write_ele(dir.file("out.ele"), mesh, options);
+    batch.commit();
+    CHECK(read_file(dir.file("out.node")) == read_file(reference + ".node"));
+    CHECK(read_file(dir.file("out.ele")) == read_file(reference + ".ele"));
+  }
+}
+
+TEST_CASE("write_node then read_node gives the same points") {
+  std::mt19937_64 random(12345);
+  std::uniform_real_distribution<double> coordinate(-1e6, 1e6);
+  PointSet set;
+  set.attribute_count = 2;
+  set.has_markers = true;
+  for (int i = 0; i < 500; ++i) {
+    set.points.push_back(Point{coordinate(random), coordinate(random) * 1e-9});
+    set.attributes.push_back(coordinate(random));
+    set.attributes.push_back(i * 0.1);
+    set.markers.push_back(i % 7 - 3);
+  }
+  set.points.push_back(Point{0.1, -0.0});
+  set.points.push_back(Point{5e-324, 1.7976931348623157e308});
+  for (int i = 0; i < 2; ++i) {
+    set.attributes.insert(set.attributes.end(), {1.0 / 3, -2.5});
+    set.markers.push_back(0);
+  }
+  for (int first : {0, 1}) {
+    CAPTURE(first);
+    MeshView mesh;
+    mesh.points = &set;
+    WriteOptions options;
+    options.first_index = first;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("p.node"), mesh, options);
+    batch.commit();
+    const PointSet back = read_node(dir.file("p.node"));
+    CHECK(back.first_index == first);
+    REQUIRE(back.points.size() == set.points.size());
+    for (std::size_t i = 0; i < set.points.size(); ++i) {
+      CHECK(back.points[i].x == set.points[i].x);
+      CHECK(back.points[i].y == set.points[i].y);
+    }
+    CHECK(back.attribute_count == 2);
+    CHECK(back.attributes == set.attributes);
+    CHECK(back.has_markers);
+    CHECK(back.markers == set.markers);
+    CHECK(read_file(dir.file("p.node")).find("# Generated by") == std::string::npos);
+  }
+}
+
+TEST_CASE("writers: formats, hull markers, numbering") {
+  // Unit square split along 0-2, plus an interior-free layout.
+  PointSet set;
+  set.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}};
+  const std::vector<std::array<int32_t, 3>> neighbors = {{-1, 1, -1}, {-1, -1, 0}};
+  CHECK(neighbors == neighbors_of(triangles));
+  MeshView mesh;
+  mesh.points = &set;
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+
+  SUBCASE("mesh_edges: each edge once, by triangle then edge, marker 1 on the hull") {
+    const std::vector<Edge> edges = mesh_edges(triangles, neighbors);
+    REQUIRE(edges.size() == 5);
+    const std::vector<std::array<int, 3>> expected = {
+        {1, 2, 1}, {2, 0, 0}, {0, 1, 1}, {2, 3, 1}, {3, 0, 1}};
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      CHECK(edges[e].a == expected[e][0]);
+      CHECK(edges[e].b == expected[e][1]);
+      CHECK(edges[e].marker == expected[e][2]);
+    }
+    CHECK_THROWS_AS(mesh_edges(triangles, {}), Error);
+  }
+
+  for (int first : {0, 1}) {
+    CAPTURE(first);
+    WriteOptions options;
+    options.first_index = first;
+    options.command_line = "clmesh -en square";
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("s.node"), mesh, options);
+    batch.write_ele(dir.file("s.ele"), mesh, options);
+    batch.write_edge(dir.file("s.edge"), mesh, options);
+    batch.write_neigh(dir.file("s.neigh"), mesh, options);
+    batch.commit();
+    const std::string f = std::to_string(first), g = std::to_string(first + 1);
+    auto id = [&](int k) { return std::to_string(k + first); };
+    const auto node = lines_of(read_file(dir.file("s.node")));
+    REQUIRE(node.size() == 6);
+    CHECK(node[0] == "4  2  0  1");
+    CHECK(node[1] == "   " + id(0) + "    0  0    1"); // hull vertex: marker 1
+    CHECK(node[3] == "   " + id(2) + "    1  1    1");
+    CHECK(node[5] == "# Generated by clmesh -en square");
+    const auto ele = lines_of(read_file(dir.file("s.ele")));
+    REQUIRE(ele.size() == 4);
+    CHECK(ele[0] == "2  3  0");
+    CHECK(ele[1] == "   " + id(0) + "       " + id(0) + "     " + id(1) + "     " + id(2));
+    CHECK(ele[3] == "# Generated by clmesh -en square");
+    const auto edge = lines_of(read_file(dir.file("s.edge")));
+    REQUIRE(edge.size() == 7);
+    CHECK(edge[0] == "5  1");
+    CHECK(edge[1] == "   " + id(0) + "   " + id(1) + "  " + id(2) + "  1");
+    CHECK(edge[2] == "   " + id(1) + "   " + id(2) + "  " + id(0) + "  0");
+    const auto neigh = lines_of(read_file(dir.file("s.neigh")));
+    REQUIRE(neigh.size() == 4);
+    CHECK(neigh[0] == "2  3");
+    CHECK(neigh[1] == "   " + id(0) + "    -1  " + id(1) + "  -1");
+    CHECK(neigh[2] == "   " + id(1) + "    -1  -1  " + id(0));
+  }
+
+  SUBCASE("input markers are kept; only zero markers on the hull become 1") {
+    PointSet marked = set;
+    marked.points.push_back({0.5, 0.25});
+    marked.has_markers = true;
+    marked.markers = {0, 7, 0, -2, 0};
+    const std::vector<Triangle> fan = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+    const auto fan_neighbors = neighbors_of(fan);
+    MeshView view;
+    view.points = &marked;
+    view.triangles = &fan;
+    view.neighbors = &fan_neighbors;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("m.node"), view, WriteOptions{});
+    batch.commit();
+    const PointSet back = read_node(dir.file("m.node"));
+    CHECK(back.markers == std::vector<int>{1, 7, 1, -2, 0});
+  }
+}
+
+TEST_CASE("-j drops duplicate vertices and renumbers the rest") {
+  PointSet set;
+  set.points = {{0, 0}, {1, 0}, {0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  set.has_markers = true;
+  set.markers = {0, 0, 4, 0, 0, 0};
+  const std::vector<int32_t> duplicate_of = {-1, -1, 0, -1, 1, -1};
+  const std::vector<Triangle> triangles = {{0, 1, 3}, {0, 3, 5}};
+  const auto neighbors = neighbors_of(triangles);
+  MeshView mesh;
+  mesh.points = &set;
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+  mesh.duplicate_of = &duplicate_of;
+
+  WriteOptions keep;
+  CHECK(output_vertex_numbers(mesh, keep) == std::vector<int32_t>{0, 1, 2, 3, 4, 5});
+  WriteOptions jettison;
+  jettison.jettison_duplicates = true;
+  CHECK(output_vertex_numbers(mesh, jettison) == std::vector<int32_t>{0, 1, -1, 2, -1, 3});
+  MeshView no_duplicates = mesh;
+  no_duplicates.duplicate_of = nullptr;
+  CHECK(output_vertex_numbers(no_duplicates, jettison) == std::vector<int32_t>{0, 1, 2, 3, 4, 5});
+
+  for (int first : {0, 1}) {
+    CAPTURE(first);
+    jettison.first_index = first;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("j.node"), mesh, jettison);
+    batch.write_ele(dir.file("j.ele"), mesh, jettison);
+    batch.write_edge(dir.file("j.edge"), mesh, jettison);
+    batch.commit();
+    const PointSet back = read_node(dir.file("j.node"));
+    REQUIRE(back.points.size() == 4);
+    CHECK(back.first_index == first);
+    CHECK(back.points[2].x == 1.0);
+    CHECK(back.points[2].y == 1.0);
+    CHECK(back.points[3].y == 1.0);
+    const std::vector<Triangle> ele = read_ele(dir.file("j.ele"), first);
+    CHECK(ele == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
+    const auto edge = lines_of(read_file(dir.file("j.edge")));
+    CHECK(edge[0] == "5  1");
+    for (std::size_t i = 1; i < 6; ++i) {
+      std::istringstream fields(edge[i]);
+      long id, a, b, marker;
+      REQUIRE(static_cast<bool>(fields >> id >> a >> b >> marker));
+      CHECK(a - first < 4);
+      CHECK(b - first < 4);
+    }
+  }
+
+  SUBCASE("without -j every vertex is written, duplicates keep their markers") {
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("k.node"), mesh, keep);
+    batch.commit();
+    const PointSet back = read_node(dir.file("k.node"));
+    CHECK(back.points.size() == 6);
+    CHECK(back.markers == std::vector<int>{1, 1, 4, 1, 0, 1});
+  }
+}
+
+// ---------------------------------------------------------------------------
+// OutputBatch
+// ---------------------------------------------------------------------------
+
+TEST_CASE("OutputBatch writes all files on commit, none without it") {
+  PointSet set;
+  set.points = {{0, 0}, {1, 0}, {0, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}};
+  const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
+  MeshView mesh;
+  mesh.points = &set;
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+
+  SUBCASE("not committed: nothing is left") {
+    TempDir dir;
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+      batch.write_text(dir.file("a.json"), "{}\n");
+      CHECK_FALSE(fs::exists(dir.file("a.node")));
+    }
+    CHECK(dir.names().empty());
+  }
+  SUBCASE("committed: the files and no temporaries") {
+    TempDir dir;
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_edge(dir.file("a.edge"), mesh, WriteOptions{});
+      batch.write_neigh(dir.file("a.neigh"), mesh, WriteOptions{});
+      batch.write_text(dir.file("a.json"), "{}\n");
+      batch.write_text(dir.file("a.json"), "{\"again\": 1}\n");
+      batch.commit();
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.edge", "a.json", "a.neigh", "a.node"});
+    CHECK(read_file(dir.file("a.json")) == "{\"again\": 1}\n");
+    CHECK(read_node(dir.file("a.node")).points.size() == 3);
+  }
+  SUBCASE("committing replaces an existing file") {
+    TempDir dir;
+    write_file(dir.file("a.ele"), "old");
+    OutputBatch batch;
+    batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+    CHECK(read_file(dir.file("a.ele")) == "old");
+    batch.commit();
+    CHECK(read_file(dir.file("a.ele")).rfind("1  3  0\n", 0) == 0);
+  }
+  SUBCASE("a failed write names the file and leaves nothing behind") {
+    TempDir dir;
+    const std::string bad = dir.file("no-such-dir/a.ele");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      try {
+        batch.write_ele(bad, mesh, WriteOptions{});
+        FAIL("no error");
+      } catch (const InputError &error) {
+        CHECK(error.file() == bad);
+        CHECK(std::string(error.what()).find(bad) == 0);
+      }
+    }
+    CHECK(dir.names().empty());
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Pictures
+// ---------------------------------------------------------------------------
+
+TEST_CASE("mesh_svg draws the triangles and, when few, the points") {
+  const std::vector<Point> points = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}};
+  const std::string svg = mesh_svg(points, triangles);
+  CHECK(svg.rfind("<?xml", 0) == 0);
+  CHECK(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 ") != std::string::npos);
+  CHECK(svg.find("</svg>") != std::string::npos);
+  auto count = [](const std::string &text, const std::string &word) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
+      ++n;
+    return n;
+  };
+  CHECK(count(svg, "<path") == 1);
+  CHECK(count(svg, "Z") == 2);
+  CHECK(count(svg, "<circle") == 4);
+  CHECK(svg.find("nan") == std::string::npos);
+
+  std::vector<Point> many(6000);
+  for (std::size_t i = 0; i < many.size(); ++i)
+    many[i] = {double(i % 100), double(i / 100)};
+  CHECK(count(mesh_svg(many, {}), "<circle") == 0);
+  // Degenerate extents do not give a zero or invalid view box.
+  const std::string flat = mesh_svg({{1, 1}, {1, 1}, {1, 1}}, {});
+  CHECK(flat.find("viewBox=\"0 0 0 0\"") == std::string::npos);
+  CHECK(mesh_svg({}, {}).find("</svg>") != std::string::npos);
+}
+
+TEST_CASE("voronoi_pgm writes a binary grey map") {
+  const int grid = 4;
+  std::vector<int32_t> sites(grid * grid, 0);
+  for (int i = 0; i < grid * grid; ++i)
+    sites[i] = i % 3 - 1; // -1, 0, 1, ...
+  const std::string pgm = voronoi_pgm(sites, grid);
+  const std::string header = "P5\n4 4\n255\n";
+  REQUIRE(pgm.size() == header.size() + 16);
+  CHECK(pgm.compare(0, header.size(), header) == 0);
+  // Row 0 of the grid is the bottom row of the picture.
+  for (int y = 0; y < grid; ++y)
+    for (int x = 0; x < grid; ++x) {
+      const unsigned char grey = pgm[header.size() + (grid - 1 - y) * grid + x];
+      const int32_t site = sites[y * grid + x];
+      if (site < 0)
+        CHECK(grey == 0);
+      else
+        CHECK(grey >= 40);
+    }
+  // Same site, same grey.
+  CHECK(voronoi_pgm(std::vector<int32_t>(4, 7), 2).substr(11) ==
+        std::string(4, voronoi_pgm({7}, 1).back()));
+  CHECK_THROWS_AS(voronoi_pgm(sites, 3), Error);
+}

@@ -6,6 +6,7 @@
 #include "flipping.hpp"
 #include "mesh_output.hpp"
 #include "missing_point_insertion.hpp"
+#include "voronoi_banding.hpp"
 #include "predicates.h"
 
 #include <algorithm>
@@ -254,8 +255,8 @@ DelaunayResult delaunay(Device &device, const std::vector<Point> &points,
   const std::size_t n = points.size();
 
   // Build every program before the clock starts.
-  for (const char *file : {"scan.cl", "missing_point_insertion.cl", "flipping.cl",
-                           "mesh_output.cl"})
+  for (const char *file : {"scan.cl", "voronoi_banding.cl", "missing_point_insertion.cl",
+                           "flipping.cl", "mesh_output.cl"})
     device.program(file, "setup");
 
   const auto start = Clock::now();
@@ -310,6 +311,23 @@ DelaunayResult delaunay(Device &device, const std::vector<Point> &points,
   insertion.set_points(missing);
   stats.missing_points = static_cast<long>(missing.size());
   timer.charge("upload");
+
+  // Phase 1. Phases 2 and 3 (triangulation construction from the digital
+  // Voronoi vertices, shifting) are not built yet, so the diagram serves the
+  // picture only and every point is placed by Phase 4: the run is skipped
+  // unless the picture is wanted.
+  if (options.want_voronoi_image) {
+    stats.grid = options.grid > 0 ? options.grid : VoronoiBanding::default_grid(n);
+    VoronoiBanding banding(device, mesh, scan);
+    const auto [low_x, high_x] = std::minmax_element(
+        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
+    const auto [low_y, high_y] = std::minmax_element(
+        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
+    const double span = std::max(high_x->x - low_x->x, high_y->y - low_y->y);
+    stats.pixel_collisions = static_cast<long>(banding.run(stats.grid, {low_x->x, low_y->y}, span));
+    result.voronoi = banding.download_image();
+    timer.charge(VoronoiBanding::kPhase);
+  }
 
   // The fan is a triangulation, not yet a Delaunay one: flip it first.
   int stamp = 1;

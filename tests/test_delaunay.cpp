@@ -227,3 +227,41 @@ TEST_CASE("delaunay: bad input is refused with a typed error") {
   CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {std::nan(""), 0}}),
                   clmesh::InputError);
 }
+
+TEST_CASE("voronoi banding: every pixel is coloured with a nearest site") {
+  for (const int grid : {37, 64, 256}) {
+    auto points = fixtures::gaussian(300, 9);
+    points.push_back(points[5]); // a pixel shared by two points
+    clmesh::DelaunayOptions options;
+    options.want_voronoi_image = true;
+    options.grid = grid;
+    const auto result = clmesh::delaunay(device(), points, options);
+    REQUIRE(result.stats.grid == grid);
+    REQUIRE(result.voronoi.size() == static_cast<std::size_t>(grid) * grid);
+    CHECK(result.stats.pixel_collisions >= 1);
+    double min_x = points[0].x, min_y = points[0].y, max_x = min_x, max_y = min_y;
+    for (const auto &p : points) {
+      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+    }
+    const double scale = grid / std::max(max_x - min_x, max_y - min_y);
+    std::vector<std::pair<long, long>> pixel(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      pixel[i] = {std::min<long>(static_cast<long>((points[i].x - min_x) * scale), grid - 1),
+                  std::min<long>(static_cast<long>((points[i].y - min_y) * scale), grid - 1)};
+    long wrong = 0;
+    for (long y = 0; y < grid; ++y)
+      for (long x = 0; x < grid; ++x) {
+        const int site = result.voronoi[y * grid + x];
+        REQUIRE(site >= 0);
+        long best = -1;
+        for (const auto &[px, py] : pixel) {
+          const long d = (px - x) * (px - x) + (py - y) * (py - y);
+          best = best < 0 ? d : std::min(best, d);
+        }
+        const auto [sx, sy] = pixel[site];
+        wrong += (sx - x) * (sx - x) + (sy - y) * (sy - y) != best;
+      }
+    CHECK(wrong == 0);
+  }
+}

@@ -27,13 +27,14 @@ struct DelaunayStats {
   std::vector<PhaseTime> phases;
   long input_points = 0;
   long duplicates = 0;
-  long missing_points = 0; // points not placed by the digital Voronoi phase
+  long missing_points = 0;   // points inserted by Phase 4 (all but the hull vertices for now)
+  long pixel_collisions = 0; // points that lost their Voronoi pixel to another (Phase 1)
   long flips = 0;
   long insertion_rounds = 0;
   long flip_passes = 0;
   long exact_predicate_calls = 0; // items that needed the exact fallback
   long triangles = 0;
-  int grid = 0;
+  int grid = 0; // side of the digital Voronoi texture, 0 when Phase 1 did not run
 };
 
 struct DelaunayResult {

@@ -1,0 +1,68 @@
+#include "voronoi_banding.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "voronoi_banding.cl";
+}
+
+VoronoiBanding::VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      map_points_(device.kernel(kFile, "map_points_to_pixels", kPhase)),
+      clear_empty_(device.kernel(kFile, "clear_empty_pixels", kPhase)),
+      count_missing_(device.kernel(kFile, "count_missing_points", kPhase)),
+      column_sweep_(device.kernel(kFile, "column_sweep", kPhase)),
+      row_colour_(device.kernel(kFile, "row_proximate_and_colour", kPhase)),
+      renumber_(device.kernel(kFile, "voronoi_input_numbering", kPhase)) {}
+
+int VoronoiBanding::default_grid(std::size_t n) {
+  const double target = 2 * std::sqrt(static_cast<double>(n));
+  int grid = 256;
+  while (grid < target && grid < kMaxGrid)
+    grid *= 2;
+  return grid;
+}
+
+std::size_t VoronoiBanding::run(int grid, Point min, double span) {
+  if (grid < 2 || grid > kMaxGrid)
+    throw UsageError("--grid must be between 2 and " + std::to_string(kMaxGrid));
+  grid_ = grid;
+  const std::size_t pixels = static_cast<std::size_t>(grid) * grid;
+  const std::size_t n = mesh_.point_capacity;
+  DeviceArray<cl_int> site_of_pixel(device_, pixels), column_site_row(device_, pixels),
+      stack_x(device_, pixels), stack_y(device_, pixels), pixel_of(device_, n),
+      missing(device_, n), missing_offset(device_, n);
+  voronoi_ = DeviceArray<cl_int>(device_, pixels);
+  site_of_pixel.fill(device_, 0x7fffffff, pixels);
+  const double scale = span > 0 ? grid / span : 0.0;
+  set_args(map_points_, mesh_.points.buffer(), pixel_of.buffer(), site_of_pixel.buffer(), min.x,
+           min.y, scale, static_cast<cl_int>(grid), static_cast<cl_int>(n));
+  launch(device_, map_points_, n, kPhase);
+  set_args(clear_empty_, site_of_pixel.buffer(), static_cast<cl_int>(pixels));
+  launch(device_, clear_empty_, pixels, kPhase);
+  set_args(count_missing_, pixel_of.buffer(), site_of_pixel.buffer(), missing.buffer(),
+           static_cast<cl_int>(n));
+  launch(device_, count_missing_, n, kPhase);
+  const int missing_points = scan_.exclusive_scan(missing, missing_offset, n, kPhase);
+  set_args(column_sweep_, site_of_pixel.buffer(), column_site_row.buffer(),
+           static_cast<cl_int>(grid));
+  launch(device_, column_sweep_, static_cast<std::size_t>(grid), kPhase);
+  set_args(row_colour_, site_of_pixel.buffer(), column_site_row.buffer(), stack_x.buffer(),
+           stack_y.buffer(), voronoi_.buffer(), static_cast<cl_int>(grid));
+  launch(device_, row_colour_, static_cast<std::size_t>(grid), kPhase);
+  return static_cast<std::size_t>(missing_points);
+}
+
+std::vector<int32_t> VoronoiBanding::download_image() {
+  const std::size_t pixels = static_cast<std::size_t>(grid_) * grid_;
+  DeviceArray<cl_int> image(device_, pixels);
+  set_args(renumber_, voronoi_.buffer(), mesh_.original_id.buffer(), image.buffer(),
+           static_cast<cl_int>(pixels));
+  launch(device_, renumber_, pixels, kPhase);
+  return image.download(device_, pixels);
+}
+
+} // namespace clmesh

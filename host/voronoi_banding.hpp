@@ -1,0 +1,40 @@
+// clmesh — Phase 1 of GPU-DT: digital Voronoi diagram by parallel banding
+// (thesis §4.1.2, [CTMT10]). Kernels: cl/voronoi_banding.cl.
+#pragma once
+
+#include "prefix_scan.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <vector>
+
+namespace clmesh {
+
+class VoronoiBanding {
+public:
+  static constexpr const char *kPhase = "voronoi_banding";
+  static constexpr int kMaxGrid = 8192;
+
+  VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+
+  // A texture side suited to n points: the power of two near 2 sqrt(n).
+  static int default_grid(std::size_t n);
+
+  // Maps the device points into a grid x grid texture over the square
+  // [min, min + span]^2 and colours every pixel with its nearest site.
+  // Returns how many points lost their pixel to another (missing points).
+  std::size_t run(int grid, Point min, double span);
+
+  // The diagram in the input numbering (-1: no site), for pictures.
+  std::vector<int32_t> download_image();
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  cl::Kernel map_points_, clear_empty_, count_missing_, column_sweep_, row_colour_, renumber_;
+  int grid_ = 0;
+  DeviceArray<cl_int> voronoi_;
+};
+
+} // namespace clmesh

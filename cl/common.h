@@ -60,6 +60,74 @@ inline int orient_point(__global const double2 *points, int a, int b, double2 p)
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, p.x, p.y);
 }
 
+#define CLM_WALK_LOST 0
+#define CLM_WALK_LOCATED 1
+#define CLM_WALK_AT_VERTEX 2
+
+typedef struct {
+  int outcome;  // CLM_WALK_*
+  int triangle; // containing triangle (a ghost: outside the hull)
+  int edge;     // -1, or the edge of `triangle` the point lies on
+  int vertex;   // the vertex at the point's position (CLM_WALK_AT_VERTEX)
+} WalkResult;
+
+// Visibility walk from triangle t to point p, stepping across the first edge
+// that separates p from the triangle. It cannot cycle in a Delaunay
+// triangulation; max_steps guards against anything else.
+inline WalkResult walk_to_point(__global const double2 *points, __global const int *tri_vertex,
+                                __global const int *tri_neighbor, int t, double2 p, int max_steps) {
+  WalkResult result = {CLM_WALK_LOST, t, -1, -1};
+  for (int step = 0; step < max_steps; ++step) {
+    const VertexTriple tri = load_vertices(tri_vertex, t);
+    int cross = -1;
+    if (is_ghost(tri)) {
+      const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+      const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
+      const int side = orient_point(points, a, b, p);
+      if (side > 0) { // strictly outside hull edge a-b
+        result.outcome = CLM_WALK_LOCATED;
+        break;
+      }
+      if (side == 0) { // on the line of the hull edge: inside the segment it splits the edge
+        const double2 pa = points[a], pb = points[b];
+        const bool between = pa.x != pb.x ? (p.x > fmin(pa.x, pb.x) && p.x < fmax(pa.x, pb.x))
+                                          : (p.y > fmin(pa.y, pb.y) && p.y < fmax(pa.y, pb.y));
+        if (between) {
+          result.outcome = CLM_WALK_LOCATED;
+          result.edge = k;
+          break;
+        }
+      }
+      cross = k; // back into the hull through the real edge
+    } else {
+      int zeros = 0, nonzero = -1, on_edge = -1;
+      for (int i = 0; i < 3 && cross < 0; ++i) {
+        const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], p);
+        if (side < 0)
+          cross = i;
+        else if (side == 0) {
+          ++zeros;
+          on_edge = i;
+        } else
+          nonzero = i;
+      }
+      if (cross < 0) {
+        if (zeros == 2) { // p coincides with the vertex shared by both edges
+          result.outcome = CLM_WALK_AT_VERTEX;
+          result.vertex = tri.v[nonzero];
+        } else {
+          result.outcome = CLM_WALK_LOCATED;
+          result.edge = zeros == 1 ? on_edge : -1;
+        }
+        break;
+      }
+    }
+    t = link_triangle(tri_neighbor[3 * t + cross]);
+    result.triangle = t;
+  }
+  return result;
+}
+
 // A bijective mix of 32-bit integers: a deterministic pseudo-random priority,
 // so that conflict-free rounds do not degrade on sorted input.
 inline uint priority_of(uint x) {
@@ -80,8 +148,8 @@ inline uint priority_of(uint x) {
 // Second step of every topological update: for edge `edge` of triangle t
 // (vertices p -> q), find the true neighbour across it and link both sides.
 inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighbor,
-                        __global const int *modified_stamp, __global const int *children,
-                        int stamp, int t, int edge) {
+                        __global const int *modified_stamp, __global const int *children, int stamp,
+                        int t, int edge) {
   const int link = tri_neighbor[3 * t + edge];
   const int x = link_triangle(link);
   if (modified_stamp[x] != stamp) {
@@ -103,6 +171,43 @@ inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighb
       }
     }
   }
+}
+
+// 2-2 flip of edge i of t: t = (c,a,b), u = (d,b,a) across edge a-b become
+// t = (a,d,c), u = (b,c,d); edge 0 of both is the new diagonal c-d, edges 1
+// and 2 face outwards (relinked afterwards with relink_edge).
+inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
+                      __global int *modified_stamp, __global int *children, int t, int i,
+                      int stamp) {
+  const int link = tri_neighbor[3 * t + i];
+  const int u = link_triangle(link), j = link_edge(link);
+  const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
+            b = tri_vertex[3 * t + prev3(i)];
+  const int t_opp_a = tri_neighbor[3 * t + next3(i)], t_opp_b = tri_neighbor[3 * t + prev3(i)];
+  const int d = tri_vertex[3 * u + j];
+  const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
+  store_triangle(tri_vertex, tri_neighbor, t, a, d, c, encode_link(u, 0), t_opp_b, u_opp_b);
+  store_triangle(tri_vertex, tri_neighbor, u, b, c, d, encode_link(t, 0), u_opp_a, t_opp_a);
+  modified_stamp[t] = stamp;
+  modified_stamp[u] = stamp;
+  children[CLM_CHILDREN * t] = t;
+  children[CLM_CHILDREN * t + 1] = u;
+  children[CLM_CHILDREN * t + 2] = -1;
+  children[CLM_CHILDREN * u] = u;
+  children[CLM_CHILDREN * u + 1] = t;
+  children[CLM_CHILDREN * u + 2] = -1;
+}
+
+// Is u-v a constraint? The constraints are stored per vertex (both
+// directions) in compressed rows: constraint_adjacent[start[u] .. start[u+1]).
+inline bool is_constraint(__global const int *constraint_start,
+                          __global const int *constraint_adjacent, int u, int v) {
+  if (u < 0 || v < 0)
+    return false;
+  for (int k = constraint_start[u]; k < constraint_start[u + 1]; ++k)
+    if (constraint_adjacent[k] == v)
+      return true;
+  return false;
 }
 
 #endif

@@ -14,11 +14,13 @@
 #define CLM_FLIP 1
 #define CLM_KEEP 0
 
-// Must the edge opposite vertex i of t flip? Real-real edges are left to the
-// in-circle test (*real_edge set, CLM_KEEP returned); ghost edges are decided
-// here with the exact orientation test.
+// Must the edge opposite vertex i of t flip? Real-real edges that are not
+// constraints are left to the in-circle test (*real_edge set, CLM_KEEP
+// returned); ghost edges are decided here with the exact orientation test.
 inline int ghost_edge_must_flip(__global const double2 *points, __global const int *tri_vertex,
-                                __global const int *tri_neighbor, int t, int i,
+                                __global const int *tri_neighbor,
+                                __global const int *constraint_start,
+                                __global const int *constraint_adjacent, int t, int i,
                                 int *real_edge) {
   const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
             b = tri_vertex[3 * t + prev3(i)];
@@ -31,6 +33,8 @@ inline int ghost_edge_must_flip(__global const double2 *points, __global const i
     return orient_vertices(points, c, a, d) > 0 ? CLM_FLIP : CLM_KEEP;
   if (c == CLM_INFINITE || d == CLM_INFINITE)
     return CLM_KEEP; // a hull edge: the hull only grows
+  if (is_constraint(constraint_start, constraint_adjacent, a, b))
+    return CLM_KEEP; // constrained Delaunay: constraints never flip (thesis §4.2 step 3)
   *real_edge = 1;
   return CLM_KEEP;
 }
@@ -48,8 +52,10 @@ inline void edge_quad(__global const double2 *points, __global const int *tri_ve
 // flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
-                              __global int *flags, __global int *exact_list,
-                              volatile __global int *exact_count, const int n) {
+                              __global const int *constraint_start,
+                              __global const int *constraint_adjacent, __global int *flags,
+                              __global int *exact_list, volatile __global int *exact_count,
+                              const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -58,7 +64,8 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
   if (t >= 0)
     for (int i = 0; i < 3; ++i) {
       int real_edge;
-      int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, t, i, &real_edge);
+      int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, constraint_start,
+                                         constraint_adjacent, t, i, &real_edge);
       if (real_edge) {
         double2 q[4];
         edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
@@ -79,8 +86,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
 // Resolves the uncertain edges with the exact, perturbed in-circle test.
 __kernel void flip_check_exact(__global const int *exact_list, __global const int *active,
                                __global const double2 *points, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global int *flags,
-                               const int n) {
+                               __global const int *tri_neighbor, __global int *flags, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -90,8 +96,8 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
     if (bits & (8 << i)) {
       double2 q[4];
       edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
-      if (clm_incircle_sos_exact(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x,
-                                 q[3].y) > 0)
+      if (clm_incircle_sos_exact(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x, q[3].y) >
+          0)
         bits |= 1 << i;
     }
   flags[index] = bits & 7;
@@ -118,8 +124,7 @@ __kernel void flip_propose(__global const int *active, __global const int *flags
   proposal[gid] = encode_link(u, i);
 }
 
-// 2-2 flip of the proposals that own both marks: t = (c,a,b), u = (d,b,a)
-// become t = (a,d,c), u = (b,c,d); edge 0 of both is the new diagonal.
+// 2-2 flip of the proposals that own both marks (see flip_edge).
 __kernel void flip_apply(__global const int *active, __global const int *proposal,
                          __global const uint *tri_mark, __global int *tri_vertex,
                          __global int *tri_neighbor, __global int *modified_stamp,
@@ -134,22 +139,7 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
     const int u = link_triangle(prop), i = link_edge(prop);
     const uint key = (uint)(3 * t + i);
     if (tri_mark[t] == key && tri_mark[u] == key) {
-      const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
-                b = tri_vertex[3 * t + prev3(i)];
-      const int t_opp_a = tri_neighbor[3 * t + next3(i)], t_opp_b = tri_neighbor[3 * t + prev3(i)];
-      const int j = link_edge(tri_neighbor[3 * t + i]);
-      const int d = tri_vertex[3 * u + j];
-      const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
-      store_triangle(tri_vertex, tri_neighbor, t, a, d, c, encode_link(u, 0), t_opp_b, u_opp_b);
-      store_triangle(tri_vertex, tri_neighbor, u, b, c, d, encode_link(t, 0), u_opp_a, t_opp_a);
-      modified_stamp[t] = stamp;
-      modified_stamp[u] = stamp;
-      children[CLM_CHILDREN * t] = t;
-      children[CLM_CHILDREN * t + 1] = u;
-      children[CLM_CHILDREN * t + 2] = -1;
-      children[CLM_CHILDREN * u] = u;
-      children[CLM_CHILDREN * u + 1] = t;
-      children[CLM_CHILDREN * u + 2] = -1;
+      flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
       atomic_inc(flip_count);
       did_flip = 1;
     }
@@ -202,8 +192,7 @@ __kernel void flip_clear_marks(__global const int *active, __global const int *p
 
 __kernel void flip_gather_next(__global const int *active, __global const int *proposal,
                                __global const int *flipped, __global const int *count,
-                               __global const int *offset, __global int *next_active,
-                               const int n) {
+                               __global const int *offset, __global int *next_active, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || count[gid] == 0)
     return;

@@ -3,21 +3,28 @@
 // sum, and neighbour links rewritten to the new numbers (-1 on the hull).
 #include "common.h"
 
-__kernel void flag_real_triangles(__global const int *tri_vertex, __global int *is_real,
-                                  const int n) {
+// Real triangles, less those flagged in removed[] when use_removed (the
+// exterior and holes of a CDT).
+__kernel void flag_real_triangles(__global const int *tri_vertex, __global const int *removed,
+                                  const int use_removed, __global int *is_real, const int n) {
   const int t = get_global_id(0);
   if (t < n)
-    is_real[t] = tri_vertex[3 * t] >= 0 && tri_vertex[3 * t + 1] >= 0 && tri_vertex[3 * t + 2] >= 0;
+    is_real[t] = tri_vertex[3 * t] >= 0 && tri_vertex[3 * t + 1] >= 0 &&
+                 tri_vertex[3 * t + 2] >= 0 && !(use_removed && removed[t]);
 }
 
+// label: an optional per-triangle value carried along (regional attributes).
 __kernel void write_real_triangles(__global const int *tri_vertex, __global const int *tri_neighbor,
                                    __global const int *is_real, __global const int *new_index,
+                                   __global const int *label, const int use_label,
                                    __global int *out_vertex, __global int *out_neighbor,
-                                   const int n) {
+                                   __global int *out_label, const int n) {
   const int t = get_global_id(0);
   if (t >= n || !is_real[t])
     return;
   const int o = new_index[t];
+  if (use_label)
+    out_label[o] = label[t];
   for (int i = 0; i < 3; ++i) {
     const int x = link_triangle(tri_neighbor[3 * t + i]);
     out_vertex[3 * o + i] = tri_vertex[3 * t + i];
@@ -67,4 +74,91 @@ __kernel void rename_vertices(__global int *out_vertex, __global const int *orig
   const int i = get_global_id(0);
   if (i < n)
     out_vertex[i] = representative[original_id[out_vertex[i]]];
+}
+
+// Canonical order of the output, so that files depend only on the mesh:
+// each triangle starts at its smallest vertex, and triangles are sorted by
+// (first, second, third) vertex with a counting sort on the first vertex
+// followed by a sort of each (small) bucket.
+__kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_neighbor,
+                                 const int n) {
+  const int t = get_global_id(0);
+  if (t >= n)
+    return;
+  const int a = out_vertex[3 * t], b = out_vertex[3 * t + 1], c = out_vertex[3 * t + 2];
+  const int r = a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
+  if (r == 0)
+    return;
+  int v[3], m[3];
+  for (int i = 0; i < 3; ++i) {
+    v[i] = out_vertex[3 * t + (i + r) % 3];
+    m[i] = out_neighbor[3 * t + (i + r) % 3];
+  }
+  for (int i = 0; i < 3; ++i) {
+    out_vertex[3 * t + i] = v[i];
+    out_neighbor[3 * t + i] = m[i];
+  }
+}
+
+__kernel void count_by_first_vertex(__global const int *out_vertex,
+                                    volatile __global int *bucket_size, const int n) {
+  const int t = get_global_id(0);
+  if (t < n)
+    atomic_inc(&bucket_size[out_vertex[3 * t]]);
+}
+
+// Places each triangle in its bucket; the order inside a bucket is fixed by
+// sort_buckets, so the atomic cursor never reaches the output.
+__kernel void scatter_by_first_vertex(__global const int *out_vertex,
+                                      __global const int *bucket_start,
+                                      volatile __global int *cursor, __global int *order,
+                                      const int n) {
+  const int t = get_global_id(0);
+  if (t < n) {
+    const int v = out_vertex[3 * t];
+    order[bucket_start[v] + atomic_inc(&cursor[v])] = t;
+  }
+}
+
+inline bool triangle_before(__global const int *out_vertex, int s, int t) {
+  const int s1 = out_vertex[3 * s + 1], t1 = out_vertex[3 * t + 1];
+  return s1 < t1 || (s1 == t1 && out_vertex[3 * s + 2] < out_vertex[3 * t + 2]);
+}
+
+__kernel void sort_buckets(__global const int *out_vertex, __global const int *bucket_start,
+                           __global const int *bucket_size, __global int *order,
+                           __global int *position, const int points) {
+  const int v = get_global_id(0);
+  if (v >= points)
+    return;
+  const int start = bucket_start[v], size = bucket_size[v];
+  for (int i = 1; i < size; ++i) {
+    const int t = order[start + i];
+    int j = i - 1;
+    while (j >= 0 && triangle_before(out_vertex, t, order[start + j])) {
+      order[start + j + 1] = order[start + j];
+      --j;
+    }
+    order[start + j + 1] = t;
+  }
+  for (int i = 0; i < size; ++i)
+    position[order[start + i]] = start + i;
+}
+
+__kernel void write_sorted(__global const int *order, __global const int *position,
+                           __global const int *out_vertex, __global const int *out_neighbor,
+                           __global const int *out_label, const int use_label,
+                           __global int *sorted_vertex, __global int *sorted_neighbor,
+                           __global int *sorted_label, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int t = order[k];
+  if (use_label)
+    sorted_label[k] = out_label[t];
+  for (int i = 0; i < 3; ++i) {
+    const int m = out_neighbor[3 * t + i];
+    sorted_vertex[3 * k + i] = out_vertex[3 * t + i];
+    sorted_neighbor[3 * k + i] = m < 0 ? -1 : position[m];
+  }
 }

@@ -20,66 +20,21 @@
 __kernel void locate_points(__global const double2 *points, __global const int *tri_vertex,
                             __global const int *tri_neighbor, __global const int *remaining,
                             __global int *location, __global int *location_edge,
-                            __global int *duplicate_of, __global int *status,
-                            const int max_steps, const int n) {
+                            __global int *duplicate_of, __global int *status, const int max_steps,
+                            const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
   const int p = remaining[gid];
-  const double2 point = points[p];
-  int t = location[p];
-  int edge = -1, result = CLM_LOST;
-  for (int step = 0; step < max_steps; ++step) {
-    const VertexTriple tri = load_vertices(tri_vertex, t);
-    int cross = -1;
-    if (is_ghost(tri)) {
-      const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
-      const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
-      const int side = orient_point(points, a, b, point);
-      if (side > 0) {
-        result = CLM_PENDING; // strictly outside hull edge a-b
-        break;
-      }
-      if (side == 0) {
-        // On the line of the hull edge: inside the segment it splits the edge.
-        const double2 pa = points[a], pb = points[b];
-        const bool between = (pa.x != pb.x) ? ((point.x > fmin(pa.x, pb.x)) && (point.x < fmax(pa.x, pb.x)))
-                                            : ((point.y > fmin(pa.y, pb.y)) && (point.y < fmax(pa.y, pb.y)));
-        if (between) {
-          edge = k;
-          result = CLM_PENDING;
-          break;
-        }
-      }
-      cross = k; // back into the hull through the real edge
-    } else {
-      int zeros = 0, nonzero = -1, on_edge = -1;
-      for (int i = 0; i < 3 && cross < 0; ++i) {
-        const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], point);
-        if (side < 0)
-          cross = i;
-        else if (side == 0) {
-          ++zeros;
-          on_edge = i;
-        } else
-          nonzero = i;
-      }
-      if (cross < 0) {
-        if (zeros == 2) { // p coincides with the vertex shared by both edges
-          duplicate_of[p] = tri.v[nonzero];
-          result = CLM_DUPLICATE;
-        } else {
-          edge = zeros == 1 ? on_edge : -1;
-          result = CLM_PENDING;
-        }
-        break;
-      }
-    }
-    t = link_triangle(tri_neighbor[3 * t + cross]);
-  }
-  location[p] = t;
-  location_edge[p] = edge;
-  status[gid] = result;
+  const WalkResult walk =
+      walk_to_point(points, tri_vertex, tri_neighbor, location[p], points[p], max_steps);
+  location[p] = walk.triangle;
+  location_edge[p] = walk.edge;
+  if (walk.outcome == CLM_WALK_AT_VERTEX)
+    duplicate_of[p] = walk.vertex;
+  status[gid] = walk.outcome == CLM_WALK_LOCATED
+                    ? CLM_PENDING
+                    : (walk.outcome == CLM_WALK_AT_VERTEX ? CLM_DUPLICATE : CLM_LOST);
 }
 
 // Marks the triangle(s) each pending point would split with its priority.
@@ -117,9 +72,9 @@ __kernel void select_winners(__global const int *remaining, __global const int *
 
 // Clears the marks of this round (before the topology changes).
 __kernel void clear_container_marks(__global const int *remaining, __global const int *location,
-                                    __global const int *location_edge,
-                                    __global const int *status, __global const int *tri_neighbor,
-                                    __global uint *tri_mark, const int n) {
+                                    __global const int *location_edge, __global const int *status,
+                                    __global const int *tri_neighbor, __global uint *tri_mark,
+                                    const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || status[gid] != CLM_PENDING)
     return;
@@ -151,9 +106,12 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
   const int n0 = tri_neighbor[3 * t], n1 = tri_neighbor[3 * t + 1], n2 = tri_neighbor[3 * t + 2];
   if (edge < 0) { // 1-3 flip: (a,b,c) -> (a,b,p) (b,c,p) (c,a,p)
     const int a = tri.v[0], b = tri.v[1], c = tri.v[2];
-    store_triangle(tri_vertex, tri_neighbor, t, a, b, p, encode_link(s1, 1), encode_link(s2, 0), n2);
-    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(s2, 1), encode_link(t, 0), n0);
-    store_triangle(tri_vertex, tri_neighbor, s2, c, a, p, encode_link(t, 1), encode_link(s1, 0), n1);
+    store_triangle(tri_vertex, tri_neighbor, t, a, b, p, encode_link(s1, 1), encode_link(s2, 0),
+                   n2);
+    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(s2, 1), encode_link(t, 0),
+                   n0);
+    store_triangle(tri_vertex, tri_neighbor, s2, c, a, p, encode_link(t, 1), encode_link(s1, 0),
+                   n1);
     modified_stamp[t] = stamp;
     children[CLM_CHILDREN * t] = t;
     children[CLM_CHILDREN * t + 1] = s1;
@@ -164,15 +122,20 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
     out[3] = -1;
   } else { // 2-4 flip on edge a-b shared by t = (c,a,b) and u = (d,b,a)
     const int c = tri.v[edge], a = tri.v[next3(edge)], b = tri.v[prev3(edge)];
-    const int t_opp_a = tri_neighbor[3 * t + next3(edge)], t_opp_b = tri_neighbor[3 * t + prev3(edge)];
+    const int t_opp_a = tri_neighbor[3 * t + next3(edge)],
+              t_opp_b = tri_neighbor[3 * t + prev3(edge)];
     const int link = tri_neighbor[3 * t + edge];
     const int u = link_triangle(link), j = link_edge(link);
     const int d = tri_vertex[3 * u + j];
     const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
-    store_triangle(tri_vertex, tri_neighbor, t, c, a, p, encode_link(s2, 1), encode_link(s1, 0), t_opp_b);
-    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(t, 1), encode_link(u, 0), t_opp_a);
-    store_triangle(tri_vertex, tri_neighbor, u, d, b, p, encode_link(s1, 1), encode_link(s2, 0), u_opp_a);
-    store_triangle(tri_vertex, tri_neighbor, s2, a, d, p, encode_link(u, 1), encode_link(t, 0), u_opp_b);
+    store_triangle(tri_vertex, tri_neighbor, t, c, a, p, encode_link(s2, 1), encode_link(s1, 0),
+                   t_opp_b);
+    store_triangle(tri_vertex, tri_neighbor, s1, b, c, p, encode_link(t, 1), encode_link(u, 0),
+                   t_opp_a);
+    store_triangle(tri_vertex, tri_neighbor, u, d, b, p, encode_link(s1, 1), encode_link(s2, 0),
+                   u_opp_a);
+    store_triangle(tri_vertex, tri_neighbor, s2, a, d, p, encode_link(u, 1), encode_link(t, 0),
+                   u_opp_b);
     modified_stamp[t] = stamp;
     modified_stamp[u] = stamp;
     children[CLM_CHILDREN * t] = t;
@@ -191,8 +154,7 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
 
 // Second step: link each child's outward edge (edge 2) to its true neighbour.
 __kernel void relink_split_children(__global const int *changed, __global const int *tri_vertex,
-                                    __global int *tri_neighbor,
-                                    __global const int *modified_stamp,
+                                    __global int *tri_neighbor, __global const int *modified_stamp,
                                     __global const int *children, const int stamp, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || changed[gid] < 0)

@@ -23,8 +23,7 @@ __kernel void scan_blocks(__global const int *in, __global int *out, __global in
 }
 
 // Adds the scanned block offsets to each block.
-__kernel void scan_add_offsets(__global int *out, __global const int *block_offsets,
-                               const int n) {
+__kernel void scan_add_offsets(__global int *out, __global const int *block_offsets, const int n) {
   const int gid = get_global_id(0);
   if (gid < n)
     out[gid] += block_offsets[get_group_id(0)];
@@ -43,4 +42,12 @@ __kernel void compact_list(__global const int *list, __global const int *keep,
   const int gid = get_global_id(0);
   if (gid < n && keep[gid])
     out[offset[gid]] = list[gid];
+}
+
+// Stream compaction of indices: out[offset[i]] = i where keep[i].
+__kernel void compact_indices(__global const int *keep, __global const int *offset,
+                              __global int *out, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n && keep[gid])
+    out[offset[gid]] = gid;
 }

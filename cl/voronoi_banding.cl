@@ -35,9 +35,8 @@ __kernel void clear_empty_pixels(__global int *site_of_pixel, const int pixels) 
 }
 
 // A point whose pixel kept another point is a missing point of phase 1.
-__kernel void count_missing_points(__global const int *pixel_of,
-                                   __global const int *site_of_pixel, __global int *missing,
-                                   const int n) {
+__kernel void count_missing_points(__global const int *pixel_of, __global const int *site_of_pixel,
+                                   __global int *missing, const int n) {
   const int p = get_global_id(0);
   if (p < n)
     missing[p] = site_of_pixel[pixel_of[p]] != p;
@@ -82,9 +81,9 @@ inline long squared_distance(long x, long y, long sx, long sy) {
 // Steps 2 and 3 (one work-item per row): proximate sites, then colouring.
 // stack_x/stack_y are scratch rows of the texture size.
 __kernel void row_proximate_and_colour(__global const int *site_of_pixel,
-                                       __global const int *column_site_row,
-                                       __global int *stack_x, __global int *stack_y,
-                                       __global int *voronoi, const int grid) {
+                                       __global const int *column_site_row, __global int *stack_x,
+                                       __global int *stack_y, __global int *voronoi,
+                                       const int grid) {
   const int y = get_global_id(0);
   if (y >= grid)
     return;
@@ -115,9 +114,8 @@ __kernel void row_proximate_and_colour(__global const int *site_of_pixel,
 }
 
 // The diagram in the input numbering, for pictures.
-__kernel void voronoi_input_numbering(__global const int *voronoi,
-                                      __global const int *original_id, __global int *out,
-                                      const int pixels) {
+__kernel void voronoi_input_numbering(__global const int *voronoi, __global const int *original_id,
+                                      __global int *out, const int pixels) {
   const int i = get_global_id(0);
   if (i < pixels)
     out[i] = voronoi[i] < 0 ? -1 : original_id[voronoi[i]];

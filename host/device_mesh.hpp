@@ -32,17 +32,16 @@ public:
     std::vector<T> data(count);
     if (count)
       guarded("transfer", "downloading", [&] {
-        device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T),
-                                         count * sizeof(T), data.data());
+        device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T), count * sizeof(T),
+                                         data.data());
       });
     return data;
   }
   T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }
   void fill(Device &device, T value, std::size_t count) const {
     if (count)
-      guarded("setup", "filling a device array", [&] {
-        device.queue().enqueueFillBuffer(buffer_, value, 0, count * sizeof(T));
-      });
+      guarded("setup", "filling a device array",
+              [&] { device.queue().enqueueFillBuffer(buffer_, value, 0, count * sizeof(T)); });
   }
 
 private:
@@ -59,17 +58,21 @@ struct DeviceMesh {
   std::size_t triangle_capacity; // 2n + 2 slots: ghosts included, never grows for a DT
   std::size_t list_capacity;     // active and scratch lists
 
-  DeviceArray<cl_double2> points;     // in spatial (Hilbert) order
-  DeviceArray<cl_int> original_id;    // input index of each device point
-  DeviceArray<cl_int> tri_vertex;     // 3 per triangle
-  DeviceArray<cl_int> tri_neighbor;   // 3 per triangle, (triangle << 2) | edge
-  DeviceArray<cl_uint> tri_mark;      // atomic-minimum marks
-  DeviceArray<cl_int> modified_stamp; // step that last rewrote the slot
-  DeviceArray<cl_int> children;       // 3 per triangle: its replacements
+  DeviceArray<cl_double2> points;      // in spatial (Hilbert) order
+  DeviceArray<cl_int> original_id;     // input index of each device point
+  DeviceArray<cl_int> tri_vertex;      // 3 per triangle
+  DeviceArray<cl_int> tri_neighbor;    // 3 per triangle, (triangle << 2) | edge
+  DeviceArray<cl_uint> tri_mark;       // atomic-minimum marks
+  DeviceArray<cl_int> modified_stamp;  // step that last rewrote the slot
+  DeviceArray<cl_int> children;        // 3 per triangle: its replacements
   DeviceArray<cl_int> vertex_triangle; // one incident triangle per vertex
   DeviceArray<cl_int> duplicate_of;
   DeviceArray<cl_int> location;      // containing triangle of each point not yet inserted
   DeviceArray<cl_int> location_edge; // -1 or the edge the point lies on
+  // Constraints (CDT) as compressed rows per vertex, both directions; empty
+  // rows (all starts 0) for a plain Delaunay triangulation.
+  DeviceArray<cl_int> constraint_start;    // point_capacity + 1
+  DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
 
   std::size_t triangle_count = 0; // slots in use (all live: DT never deletes)
 };

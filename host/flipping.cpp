@@ -31,15 +31,15 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
   if (n == 0)
     return;
   guarded(kPhase, "copying the active list", [&] {
-    device_.queue().enqueueCopyBuffer(active.buffer(), active_.buffer(), 0, 0,
-                                      n * sizeof(cl_int));
+    device_.queue().enqueueCopyBuffer(active.buffer(), active_.buffer(), 0, 0, n * sizeof(cl_int));
   });
   while (n > 0) {
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     exact_count_.fill(device_, 0, 1);
     set_args(check_fast_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), flags_.buffer(), exact_list_.buffer(),
+             mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
+             mesh_.constraint_adjacent.buffer(), flags_.buffer(), exact_list_.buffer(),
              exact_count_.buffer(), items);
     launch(device_, check_fast_, n, kPhase);
     const int uncertain = exact_count_.read(device_, 0);
@@ -54,13 +54,12 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
              mesh_.tri_mark.buffer(), proposal_.buffer(), items);
     launch(device_, propose_, n, kPhase);
     set_args(apply_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.modified_stamp.buffer(), mesh_.children.buffer(), flipped_.buffer(),
-             flip_count_.buffer(), pass_stamp, items);
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
+             mesh_.children.buffer(), flipped_.buffer(), flip_count_.buffer(), pass_stamp, items);
     launch(device_, apply_, n, kPhase);
     set_args(relink_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.modified_stamp.buffer(), mesh_.children.buffer(), pass_stamp, items);
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
+             mesh_.children.buffer(), pass_stamp, items);
     launch(device_, relink_, n, kPhase);
     set_args(count_next_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
              mesh_.modified_stamp.buffer(), count_.buffer(), pass_stamp, items);
@@ -68,8 +67,8 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     set_args(clear_marks_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(), items);
     launch(device_, clear_marks_, n, kPhase);
     const int next = scan_.exclusive_scan(count_, offset_, n, kPhase);
-    set_args(gather_next_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
-             count_.buffer(), offset_.buffer(), next_active_.buffer(), items);
+    set_args(gather_next_, active_.buffer(), proposal_.buffer(), flipped_.buffer(), count_.buffer(),
+             offset_.buffer(), next_active_.buffer(), items);
     launch(device_, gather_next_, n, kPhase);
     counts.flips += flip_count_.read(device_, 0);
     flip_count_.fill(device_, 0, 1);

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string_view>
+#include <unordered_map>
 
 namespace clmesh {
 
@@ -131,10 +132,8 @@ bool parse_long(std::string_view token, long &value) {
   return end != small && *end == '\0' && errno != ERANGE;
 }
 
-} // namespace
-
-PointSet read_node(const std::string &path) {
-  FieldReader reader(path, read_whole_file(path));
+// The vertex section of a .node or .poly file: header, then the vertices.
+PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   std::vector<std::string_view> fields;
 
   const char *header_shape = "<#vertices> <dimension> <#attributes> <#boundary markers>";
@@ -223,15 +222,210 @@ PointSet read_node(const std::string &path) {
   return set;
 }
 
+// Numbers of a section header ("<count> [<flag>]"): the count must be a
+// non-negative integer, a marker flag 0 or 1.
+long read_count(FieldReader &reader, std::string_view token, const std::string &shape) {
+  long count = 0;
+  if (!parse_long(token, count) || count < 0 || count > INT32_MAX)
+    reader.fail("malformed header: " + quoted(token) + " is not a count (expected '" + shape +
+                "')");
+  return count;
+}
+
+// Next line of a section, or an InputError at the end of the file.
+void next_line(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
+               const std::string &missing) {
+  if (!reader.next(fields))
+    throw InputError(path, reader.eof_line(), "file ends " + missing);
+}
+
+// A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
+double read_number(FieldReader &reader, std::string_view token, const char *what,
+                   const std::string &owner) {
+  double value = 0;
+  if (!parse_double(token, value))
+    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not a number");
+  if (!std::isfinite(value))
+    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not finite");
+  return value;
+}
+
+// "n of m <items>" for premature ends of file.
+std::string progress(long done, long count, const char *items) {
+  return "after " + std::to_string(done) + " of " + std::to_string(count) + " " + items;
+}
+
+} // namespace
+
+PointSet read_node(const std::string &path) {
+  FieldReader reader(path, read_whole_file(path));
+  return read_vertex_section(reader, path);
+}
+
+PolyFile read_poly(const std::string &path) {
+  FieldReader reader(path, read_whole_file(path));
+  std::vector<std::string_view> fields;
+  PolyFile poly;
+
+  // Vertices, or 0 and the .node file beside the .poly.
+  poly.points = read_vertex_section(reader, path);
+  if (poly.points.points.empty()) {
+    const long header_line = reader.line();
+    const std::string base = path.size() > 5 && path.compare(path.size() - 5, 5, ".poly") == 0
+                                 ? path.substr(0, path.size() - 5)
+                                 : path;
+    poly.node_path = base + ".node";
+    std::FILE *probe = std::fopen(poly.node_path.c_str(), "rb");
+    if (!probe) {
+      int error = errno;
+      throw InputError(path, header_line,
+                       "the vertex count is 0, so the vertices must be in " + poly.node_path +
+                           ", which cannot be opened: " + describe_errno(error));
+    }
+    std::fclose(probe);
+    poly.points = read_node(poly.node_path);
+  }
+  const long n = static_cast<long>(poly.points.points.size());
+  const long first = poly.points.first_index;
+
+  // Segments.
+  const std::string segment_shape = "<#segments> <#boundary markers>";
+  next_line(reader, path, fields, "before the segment section (expected '" + segment_shape + "')");
+  const long segment_count = read_count(reader, fields[0], segment_shape);
+  if (fields.size() > 1) {
+    long markers = 0;
+    if (!parse_long(fields[1], markers) || (markers != 0 && markers != 1))
+      reader.fail("malformed header: segment marker flag " + quoted(fields[1]) + " must be 0 or 1");
+    poly.segment_markers = markers == 1;
+  }
+  const std::size_t reserve =
+      std::min<std::size_t>(static_cast<std::size_t>(segment_count), reader.size() / 6);
+  poly.segments.reserve(reserve);
+  poly.segment_lines.reserve(reserve);
+  for (long i = 0; i < segment_count; ++i) {
+    next_line(reader, path, fields, progress(i, segment_count, "segments"));
+    long id = 0;
+    if (!parse_long(fields[0], id))
+      reader.fail("segment id " + quoted(fields[0]) + " is not an integer");
+    if (fields.size() < 3)
+      reader.fail(
+          "segment " + std::to_string(id) + " has " +
+          (fields.size() == 1 ? std::string("no endpoints") : std::string("only one endpoint")) +
+          " (expected id, endpoint, endpoint" +
+          (poly.segment_markers ? ", boundary marker)" : ")"));
+    long ends[2];
+    for (int k = 0; k < 2; ++k) {
+      if (!parse_long(fields[1 + k], ends[k]))
+        reader.fail("endpoint " + quoted(fields[1 + k]) + " of segment " + std::to_string(id) +
+                    " is not an integer");
+      if (ends[k] < first || ends[k] >= first + n)
+        reader.fail("endpoint " + std::to_string(ends[k]) + " of segment " + std::to_string(id) +
+                    " is out of range (vertices are numbered " + std::to_string(first) + " to " +
+                    std::to_string(first + n - 1) + ")");
+    }
+    Segment segment;
+    segment.a = static_cast<int32_t>(ends[0] - first);
+    segment.b = static_cast<int32_t>(ends[1] - first);
+    // As in Triangle, a missing marker is 0.
+    if (poly.segment_markers && fields.size() > 3) {
+      long marker = 0;
+      if (!parse_long(fields[3], marker) || marker < INT_MIN || marker > INT_MAX)
+        reader.fail("boundary marker " + quoted(fields[3]) + " of segment " + std::to_string(id) +
+                    " is not an integer");
+      segment.marker = static_cast<int>(marker);
+    }
+    poly.segments.push_back(segment);
+    poly.segment_lines.push_back(reader.line());
+  }
+
+  // Holes.
+  next_line(reader, path, fields, "before the hole section (expected '<#holes>')");
+  const long hole_count = read_count(reader, fields[0], "<#holes>");
+  for (long i = 0; i < hole_count; ++i) {
+    next_line(reader, path, fields, progress(i, hole_count, "holes"));
+    long id = 0;
+    if (!parse_long(fields[0], id))
+      reader.fail("hole id " + quoted(fields[0]) + " is not an integer");
+    if (fields.size() < 3)
+      reader.fail("hole " + std::to_string(id) + " has " +
+                  (fields.size() == 1 ? "no coordinates" : "no y coordinate") +
+                  " (expected id, x, y)");
+    const std::string name = "of hole " + std::to_string(id);
+    const double x = read_number(reader, fields[1], "x coordinate", name);
+    const double y = read_number(reader, fields[2], "y coordinate", name);
+    poly.holes.push_back(Point{x, y});
+  }
+
+  // Regions: an optional last section.
+  if (!reader.next(fields))
+    return poly;
+  const long region_count = read_count(reader, fields[0], "<#regions>");
+  for (long i = 0; i < region_count; ++i) {
+    next_line(reader, path, fields, progress(i, region_count, "regions"));
+    long id = 0;
+    if (!parse_long(fields[0], id))
+      reader.fail("region id " + quoted(fields[0]) + " is not an integer");
+    if (fields.size() < 4)
+      reader.fail("region " + std::to_string(id) + " has " + std::to_string(fields.size() - 1) +
+                  " number(s), expected at least 3 (x, y, attribute[, maximum area])");
+    const std::string name = "of region " + std::to_string(id);
+    Region region;
+    region.seed.x = read_number(reader, fields[1], "x coordinate", name);
+    region.seed.y = read_number(reader, fields[2], "y coordinate", name);
+    region.attribute = read_number(reader, fields[3], "attribute", name);
+    region.max_area = fields.size() > 4 ? read_number(reader, fields[4], "maximum area", name)
+                                        : region.attribute; // as Triangle reads a line without one
+    poly.regions.push_back(region);
+  }
+  return poly;
+}
+
 // ---------------------------------------------------------------------------
 // Mesh helpers
 // ---------------------------------------------------------------------------
 
+namespace {
+
+// Key of the undirected edge {a, b}.
+uint64_t edge_key(int32_t a, int32_t b) {
+  const uint32_t lo = static_cast<uint32_t>(std::min(a, b)),
+                 hi = static_cast<uint32_t>(std::max(a, b));
+  return (static_cast<uint64_t>(lo) << 32) | hi;
+}
+
+void check_neighbors(const std::vector<Triangle> &triangles,
+                     const std::vector<std::array<int32_t, 3>> &neighbors, const char *caller) {
+  if (neighbors.size() != triangles.size())
+    throw InternalError(std::string(caller) + ": " + std::to_string(triangles.size()) +
+                        " triangles but " + std::to_string(neighbors.size()) +
+                        " neighbour entries");
+}
+
+// Every edge of the mesh, mapped to whether it lies on the mesh boundary.
+std::unordered_map<uint64_t, bool>
+edges_on_boundary(const std::vector<Triangle> &triangles,
+                  const std::vector<std::array<int32_t, 3>> &neighbors) {
+  std::unordered_map<uint64_t, bool> edges;
+  edges.reserve(triangles.size() * 2 + 4);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      edges.emplace(edge_key(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]),
+                    neighbors[t][i] == -1);
+  return edges;
+}
+
+// Triangle's -p marker of a segment in the mesh: its own when non-zero, else 1
+// when it lies on the mesh boundary (Triangle marks the subsegments that
+// become boundary when it carves holes and the exterior), else 0.
+int segment_marker(const Segment &segment, bool on_boundary) {
+  return segment.marker != 0 ? segment.marker : on_boundary ? 1 : 0;
+}
+
+} // namespace
+
 std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
                              const std::vector<std::array<int32_t, 3>> &neighbors) {
-  if (neighbors.size() != triangles.size())
-    throw InternalError("mesh_edges: " + std::to_string(triangles.size()) + " triangles but " +
-                        std::to_string(neighbors.size()) + " neighbour entries");
+  check_neighbors(triangles, neighbors, "mesh_edges");
   std::vector<Edge> edges;
   edges.reserve(triangles.size() * 3 / 2 + 3);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -247,14 +441,72 @@ std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
   return edges;
 }
 
+std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
+                             const std::vector<std::array<int32_t, 3>> &neighbors,
+                             const std::vector<Segment> &segments) {
+  std::vector<Edge> edges = mesh_edges(triangles, neighbors);
+  std::unordered_map<uint64_t, int> marker_of; // segment edge -> its marker (first one wins)
+  marker_of.reserve(segments.size() * 2 + 1);
+  for (const Segment &segment : segments)
+    marker_of.emplace(edge_key(segment.a, segment.b), segment.marker);
+  for (Edge &edge : edges) {
+    auto found = marker_of.find(edge_key(edge.a, edge.b));
+    if (found != marker_of.end())
+      edge.marker = segment_marker(Segment{edge.a, edge.b, found->second}, edge.marker == 1);
+  }
+  return edges;
+}
+
+std::vector<int> output_vertex_markers(const MeshView &mesh) {
+  const std::size_t n = mesh.points ? mesh.points->points.size() : 0;
+  std::vector<int> markers(n, 0);
+  if (mesh.points && mesh.points->has_markers && mesh.points->markers.size() == n)
+    markers = mesh.points->markers;
+  auto in_range = [n](int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < n; };
+  // As Triangle inserts the segments in order: an endpoint whose marker is
+  // still 0 takes the segment's.
+  if (mesh.segments)
+    for (const Segment &segment : *mesh.segments)
+      for (int32_t v : {segment.a, segment.b})
+        if (in_range(v) && markers[v] == 0)
+          markers[v] = segment.marker;
+  // Vertices on the mesh boundary (the convex hull without -p) whose marker is 0 get 1.
+  if (mesh.triangles && mesh.neighbors && mesh.neighbors->size() == mesh.triangles->size()) {
+    for (std::size_t t = 0; t < mesh.triangles->size(); ++t)
+      for (int i = 0; i < 3; ++i)
+        if ((*mesh.neighbors)[t][i] == -1)
+          for (int k = 1; k <= 2; ++k) {
+            int32_t v = (*mesh.triangles)[t][(i + k) % 3];
+            if (in_range(v) && markers[v] == 0)
+              markers[v] = 1;
+          }
+  }
+  return markers;
+}
+
 std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options) {
   std::size_t n = mesh.points ? mesh.points->points.size() : 0;
+  std::vector<char> dropped(n, 0);
+  if (options.jettison_duplicates) {
+    const std::vector<int32_t> *duplicates = mesh.duplicate_of;
+    if (duplicates && duplicates->size() == n)
+      for (std::size_t i = 0; i < n; ++i)
+        dropped[i] = (*duplicates)[i] != -1;
+    // -p: Triangle's -j also drops the vertices that are in no triangle.
+    if (mesh.segments && mesh.triangles) {
+      std::vector<char> used(n, 0);
+      for (const Triangle &t : *mesh.triangles)
+        for (int32_t v : t)
+          if (v >= 0 && static_cast<std::size_t>(v) < n)
+            used[v] = 1;
+      for (std::size_t i = 0; i < n; ++i)
+        dropped[i] = dropped[i] || !used[i];
+    }
+  }
   std::vector<int32_t> numbers(n);
-  const std::vector<int32_t> *duplicates = mesh.duplicate_of;
-  bool jettison = options.jettison_duplicates && duplicates && duplicates->size() == n;
   int32_t next = 0;
   for (std::size_t i = 0; i < n; ++i)
-    numbers[i] = jettison && (*duplicates)[i] != -1 ? -1 : next++;
+    numbers[i] = dropped[i] ? -1 : next++;
   return numbers;
 }
 
@@ -406,27 +658,14 @@ void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
   std::size_t written = 0;
   for (int32_t number : numbers)
     written += number >= 0;
-
-  // As Triangle without -p: vertices on the convex hull whose marker is 0 get 1.
-  std::vector<int> markers(n, 0);
-  if (set.has_markers && set.markers.size() == n)
-    markers = set.markers;
-  if (mesh.triangles && mesh.neighbors && mesh.neighbors->size() == mesh.triangles->size()) {
-    for (std::size_t t = 0; t < mesh.triangles->size(); ++t)
-      for (int i = 0; i < 3; ++i)
-        if ((*mesh.neighbors)[t][i] == -1)
-          for (int k = 1; k <= 2; ++k) {
-            int32_t v = (*mesh.triangles)[t][(i + k) % 3];
-            if (v >= 0 && static_cast<std::size_t>(v) < n && markers[v] == 0)
-              markers[v] = 1;
-          }
-  }
+  const std::vector<int> markers =
+      options.boundary_markers ? output_vertex_markers(mesh) : std::vector<int>();
 
   const std::size_t attributes = static_cast<std::size_t>(std::max(set.attribute_count, 0));
   if (set.attributes.size() < n * attributes)
     throw InternalError("point set holds fewer attributes than its attribute count says");
   TextFile file(temporary_for(path), path);
-  file.format("%zu  2  %zu  1\n", written, attributes);
+  file.format("%zu  2  %zu  %d\n", written, attributes, options.boundary_markers ? 1 : 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (numbers[i] < 0)
       continue;
@@ -434,7 +673,10 @@ void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
                 set.points[i].x, set.points[i].y);
     for (std::size_t a = 0; a < attributes; ++a)
       file.format("  %.17g", set.attributes[i * attributes + a]);
-    file.format("    %d\n", markers[i]);
+    if (options.boundary_markers)
+      file.format("    %d\n", markers[i]);
+    else
+      file.end_line();
   }
   file.footer(options);
   file.close();
@@ -444,15 +686,22 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
                             const WriteOptions &options) {
   const std::vector<Triangle> &triangles = triangles_of(mesh);
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  const std::vector<double> *attributes = mesh.triangle_attributes;
+  if (attributes && attributes->size() != triangles.size())
+    throw InternalError("output writer called with " + std::to_string(attributes->size()) +
+                        " triangle attributes for " + std::to_string(triangles.size()) +
+                        " triangles");
   TextFile file(temporary_for(path), path);
-  file.format("%zu  3  0\n", triangles.size());
+  file.format("%zu  3  %d\n", triangles.size(), attributes ? 1 : 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    // "%4ld    %4d  %4d  %4d"
+    // "%4ld    %4d  %4d  %4d", then "  %.17g" per attribute
     file.integer(static_cast<long>(t) + options.first_index, 4);
     for (int k = 0; k < 3; ++k) {
       file.text(k == 0 ? "    " : "  ");
       file.integer(written_vertex(numbers, triangles[t][k], options), 4);
     }
+    if (attributes)
+      file.format("  %.17g", (*attributes)[t]);
     file.end_line();
   }
   file.footer(options);
@@ -461,20 +710,73 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
 
 void OutputBatch::write_edge(const std::string &path, const MeshView &mesh,
                              const WriteOptions &options) {
-  const std::vector<Edge> edges = mesh_edges(triangles_of(mesh), neighbors_of(mesh));
+  const std::vector<Edge> edges =
+      mesh.segments ? mesh_edges(triangles_of(mesh), neighbors_of(mesh), *mesh.segments)
+                    : mesh_edges(triangles_of(mesh), neighbors_of(mesh));
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
   TextFile file(temporary_for(path), path);
-  file.format("%zu  1\n", edges.size());
+  file.format("%zu  %d\n", edges.size(), options.boundary_markers ? 1 : 0);
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    // "%4ld   %d  %d  %d"
+    // "%4ld   %d  %d  %d" ("%4ld   %d  %d" with -B)
     file.integer(static_cast<long>(e) + options.first_index, 4);
     file.text("   ");
     file.integer(written_vertex(numbers, edges[e].a, options));
     file.text("  ");
     file.integer(written_vertex(numbers, edges[e].b, options));
-    file.text("  ");
-    file.integer(edges[e].marker);
+    if (options.boundary_markers) {
+      file.text("  ");
+      file.integer(edges[e].marker);
+    }
     file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_poly(const std::string &path, const MeshView &mesh,
+                             const std::vector<Point> &holes, const std::vector<Region> &regions,
+                             const WriteOptions &options) {
+  const PointSet &set = points_of(mesh);
+  if (!mesh.segments)
+    throw InternalError("write_poly called without segments");
+  const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  struct Written {
+    int32_t a, b;
+    int marker;
+  };
+  std::vector<Written> segments;
+  segments.reserve(mesh.segments->size());
+  for (const Segment &segment : *mesh.segments) {
+    auto edge = on_boundary.find(edge_key(segment.a, segment.b));
+    if (edge == on_boundary.end())
+      continue; // no edge of the mesh: eaten with a hole or the exterior
+    segments.push_back(Written{written_vertex(numbers, segment.a, options),
+                               written_vertex(numbers, segment.b, options),
+                               segment_marker(segment, edge->second)});
+  }
+  const int flag = options.boundary_markers ? 1 : 0;
+  TextFile file(temporary_for(path), path);
+  // The vertices are in the .node file: 0 of them here.
+  file.format("0  2  %d  %d\n", std::max(set.attribute_count, 0), flag);
+  file.format("%zu  %d\n", segments.size(), flag);
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const long id = static_cast<long>(s) + options.first_index;
+    if (options.boundary_markers)
+      file.format("%4ld    %4d  %4d    %4d\n", id, segments[s].a, segments[s].b,
+                  segments[s].marker);
+    else
+      file.format("%4ld    %4d  %4d\n", id, segments[s].a, segments[s].b);
+  }
+  file.format("%zu\n", holes.size());
+  for (std::size_t h = 0; h < holes.size(); ++h)
+    file.format("%4ld   %.17g  %.17g\n", static_cast<long>(h) + options.first_index, holes[h].x,
+                holes[h].y);
+  if (!regions.empty()) {
+    file.format("%zu\n", regions.size());
+    for (std::size_t r = 0; r < regions.size(); ++r)
+      file.format("%4ld   %.17g  %.17g  %.17g  %.17g\n", static_cast<long>(r) + options.first_index,
+                  regions[r].seed.x, regions[r].seed.y, regions[r].attribute, regions[r].max_area);
   }
   file.footer(options);
   file.close();
@@ -521,7 +823,8 @@ void OutputBatch::commit() {
 // Pictures
 // ---------------------------------------------------------------------------
 
-std::string mesh_svg(const std::vector<Point> &points, const std::vector<Triangle> &triangles) {
+std::string mesh_svg(const std::vector<Point> &points, const std::vector<Triangle> &triangles,
+                     const std::vector<Segment> *segments) {
   double min_x = 0, max_x = 1, min_y = 0, max_y = 1;
   if (!points.empty()) {
     min_x = max_x = points[0].x;
@@ -569,6 +872,18 @@ std::string mesh_svg(const std::vector<Point> &points, const std::vector<Triangl
     add("M%.8g %.8gL%.8g %.8gL%.8g %.8gZ", sx(a.x), sy(a.y), sx(b.x), sy(b.y), sx(c.x), sy(c.y));
   }
   svg += "\"/>\n";
+  if (segments && !segments->empty()) {
+    svg += "<path fill=\"none\" stroke=\"#e67e22\" stroke-width=\"2\" stroke-linecap=\"round\" "
+           "vector-effect=\"non-scaling-stroke\" d=\"";
+    for (const Segment &s : *segments) {
+      if (s.a < 0 || s.b < 0 || static_cast<std::size_t>(s.a) >= points.size() ||
+          static_cast<std::size_t>(s.b) >= points.size())
+        continue;
+      const Point &a = points[s.a], &b = points[s.b];
+      add("M%.8g %.8gL%.8g %.8g", sx(a.x), sy(a.y), sx(b.x), sy(b.y));
+    }
+    svg += "\"/>\n";
+  }
   if (points.size() <= 5000) {
     add("<g fill=\"#c0392b\" stroke=\"none\">\n");
     const double radius = 0.004 * extent;

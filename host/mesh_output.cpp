@@ -14,19 +14,30 @@ MeshOutput::MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       redirect_duplicates_(device.kernel(kFile, "redirect_duplicates", kPhase)),
       rename_vertices_(device.kernel(kFile, "rename_vertices", kPhase)),
       fill_identity_(device.kernel(kFile, "fill_identity", kPhase)),
-      restore_numbering_(device.kernel(kFile, "restore_input_numbering", kPhase)) {}
+      restore_numbering_(device.kernel(kFile, "restore_input_numbering", kPhase)),
+      rotate_(device.kernel(kFile, "rotate_to_smallest", kPhase)),
+      count_buckets_(device.kernel(kFile, "count_by_first_vertex", kPhase)),
+      scatter_buckets_(device.kernel(kFile, "scatter_by_first_vertex", kPhase)),
+      sort_buckets_(device.kernel(kFile, "sort_buckets", kPhase)),
+      write_sorted_(device.kernel(kFile, "write_sorted", kPhase)) {}
 
 void MeshOutput::download(std::vector<Triangle> &triangles,
                           std::vector<std::array<int32_t, 3>> &neighbors,
-                          std::vector<int32_t> &duplicate_of) {
+                          std::vector<int32_t> &duplicate_of, const DeviceArray<cl_int> *removed,
+                          const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> is_real(device_, slots), new_index(device_, slots);
-  set_args(flag_real_, mesh_.tri_vertex.buffer(), is_real.buffer(), static_cast<cl_int>(slots));
+  set_args(flag_real_, mesh_.tri_vertex.buffer(), removed ? removed->buffer() : is_real.buffer(),
+           static_cast<cl_int>(removed != nullptr), is_real.buffer(), static_cast<cl_int>(slots));
   launch(device_, flag_real_, slots, kPhase);
-  const auto count = static_cast<std::size_t>(scan_.exclusive_scan(is_real, new_index, slots, kPhase));
-  DeviceArray<cl_int> out_vertex(device_, 3 * count), out_neighbor(device_, 3 * count);
+  const auto count =
+      static_cast<std::size_t>(scan_.exclusive_scan(is_real, new_index, slots, kPhase));
+  DeviceArray<cl_int> out_vertex(device_, 3 * count), out_neighbor(device_, 3 * count),
+      out_label(device_, label ? count : 1), sorted_label(device_, label ? count : 1);
+  const auto use_label = static_cast<cl_int>(label != nullptr);
   set_args(write_real_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), is_real.buffer(),
-           new_index.buffer(), out_vertex.buffer(), out_neighbor.buffer(),
+           new_index.buffer(), label ? label->buffer() : is_real.buffer(), use_label,
+           out_vertex.buffer(), out_neighbor.buffer(), out_label.buffer(),
            static_cast<cl_int>(slots));
   launch(device_, write_real_, slots, kPhase);
   const std::size_t points = mesh_.point_capacity;
@@ -40,22 +51,48 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   set_args(smallest_representative_, input_duplicate_of.buffer(), representative.buffer(),
            point_count);
   launch(device_, smallest_representative_, points, kPhase);
-  set_args(redirect_duplicates_, input_duplicate_of.buffer(), representative.buffer(),
-           point_count);
+  set_args(redirect_duplicates_, input_duplicate_of.buffer(), representative.buffer(), point_count);
   launch(device_, redirect_duplicates_, points, kPhase);
   set_args(rename_vertices_, out_vertex.buffer(), mesh_.original_id.buffer(),
            representative.buffer(), static_cast<cl_int>(3 * count));
   launch(device_, rename_vertices_, 3 * count, kPhase);
   duplicate_of = input_duplicate_of.download(device_, points);
-  const auto vertices = out_vertex.download(device_, 3 * count);
-  const auto links = out_neighbor.download(device_, 3 * count);
+
+  const auto triangle_count = static_cast<cl_int>(count);
+  set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), triangle_count);
+  launch(device_, rotate_, count, kPhase);
+  DeviceArray<cl_int> bucket_size(device_, points), bucket_start(device_, points),
+      order(device_, count), position(device_, count);
+  bucket_size.fill(device_, 0, points);
+  set_args(count_buckets_, out_vertex.buffer(), bucket_size.buffer(), triangle_count);
+  launch(device_, count_buckets_, count, kPhase);
+  scan_.exclusive_scan(bucket_size, bucket_start, points, kPhase);
+  representative.fill(device_, 0, points); // reused as the buckets' cursors
+  set_args(scatter_buckets_, out_vertex.buffer(), bucket_start.buffer(), representative.buffer(),
+           order.buffer(), triangle_count);
+  launch(device_, scatter_buckets_, count, kPhase);
+  set_args(sort_buckets_, out_vertex.buffer(), bucket_start.buffer(), bucket_size.buffer(),
+           order.buffer(), position.buffer(), point_count);
+  launch(device_, sort_buckets_, points, kPhase);
+  DeviceArray<cl_int> sorted_vertex(device_, 3 * count), sorted_neighbor(device_, 3 * count);
+  set_args(write_sorted_, order.buffer(), position.buffer(), out_vertex.buffer(),
+           out_neighbor.buffer(), out_label.buffer(), use_label, sorted_vertex.buffer(),
+           sorted_neighbor.buffer(), sorted_label.buffer(), triangle_count);
+  launch(device_, write_sorted_, count, kPhase);
+  // Triangle and the neighbour triples are three packed ints, as on the device.
+  static_assert(sizeof(Triangle) == 3 * sizeof(cl_int));
+  static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(cl_int));
   triangles.resize(count);
   neighbors.resize(count);
-  for (std::size_t t = 0; t < count; ++t)
-    for (int i = 0; i < 3; ++i) {
-      triangles[t][i] = vertices[3 * t + i];
-      neighbors[t][i] = links[3 * t + i];
-    }
+  if (count)
+    guarded(kPhase, "downloading the mesh", [&] {
+      device_.queue().enqueueReadBuffer(sorted_vertex.buffer(), CL_TRUE, 0,
+                                        3 * count * sizeof(cl_int), triangles.data());
+      device_.queue().enqueueReadBuffer(sorted_neighbor.buffer(), CL_TRUE, 0,
+                                        3 * count * sizeof(cl_int), neighbors.data());
+    });
+  if (label && labels)
+    *labels = sorted_label.download(device_, count);
 }
 
 } // namespace clmesh

@@ -17,18 +17,22 @@ public:
 
   MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // Real triangles (ghosts dropped) with neighbour links, -1 on the hull, and
+  // Real triangles (ghosts dropped) in canonical order (each from its smallest
+  // vertex, sorted) with neighbour links, -1 on the hull, the per-slot
+  // `label` of each (when given) in `labels`, and
   // for each point the point that stands for it (-1: itself), the smallest
   // index of each group of identical points standing for the group.
   void download(std::vector<Triangle> &triangles, std::vector<std::array<int32_t, 3>> &neighbors,
-                std::vector<int32_t> &duplicate_of);
+                std::vector<int32_t> &duplicate_of, const DeviceArray<cl_int> *removed = nullptr,
+                const DeviceArray<cl_int> *label = nullptr, std::vector<int32_t> *labels = nullptr);
 
 private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel flag_real_, write_real_, smallest_representative_, redirect_duplicates_,
-      rename_vertices_, fill_identity_, restore_numbering_;
+      rename_vertices_, fill_identity_, restore_numbering_, rotate_, count_buckets_,
+      scatter_buckets_, sort_buckets_, write_sorted_;
 };
 
 } // namespace clmesh

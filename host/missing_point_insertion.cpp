@@ -45,12 +45,11 @@ std::size_t MissingPointInsertion::run_round(int stamp) {
            status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, pending_, kPhase);
   set_args(select_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           winner_.buffer(), n);
+           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), winner_.buffer(),
+           n);
   launch(device_, select_, pending_, kPhase);
-  set_args(clear_marks_, remaining_.buffer(), mesh_.location.buffer(),
-           mesh_.location_edge.buffer(), status_.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.tri_mark.buffer(), n);
+  set_args(clear_marks_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, clear_marks_, pending_, kPhase);
 
   const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
@@ -69,8 +68,8 @@ std::size_t MissingPointInsertion::run_round(int stamp) {
            static_cast<cl_int>(4 * winners));
   launch(device_, relink_, 4 * static_cast<std::size_t>(winners), kPhase);
 
-  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(),
-           failures_.buffer(), n);
+  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),
+           n);
   launch(device_, count_remaining_, pending_, kPhase);
   const int kept =
       scan_.compact(remaining_, keep_, keep_offset_, remaining_next_, pending_, kPhase);

@@ -134,8 +134,8 @@ std::vector<FoundDevice> find_devices() {
 }
 
 bool is_number(const std::string &text) {
-  return !text.empty() && std::all_of(text.begin(), text.end(),
-                                      [](unsigned char c) { return std::isdigit(c); });
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 bool matches(const FoundDevice &found, const std::string &spec, std::size_t list_position) {
@@ -298,8 +298,7 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
     if (profile)
       device.queue().finish();
   } catch (const cl::Error &error) {
-    throw OpenCLError(error.err(), "launching", phase,
-                      kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
+    throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
   if (profile) {
     // CLMESH_PROFILE=1: per-kernel seconds on stderr at exit (development aid).

@@ -64,7 +64,8 @@ template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...arg
 }
 
 // Runs `body`, turning a cl::Error into an OpenCLError for `phase`.
-template <typename Body> auto guarded(const std::string &phase, const std::string &what, Body body) {
+template <typename Body>
+auto guarded(const std::string &phase, const std::string &what, Body body) {
   try {
     return body();
   } catch (const cl::Error &error) {

@@ -8,14 +8,16 @@ PrefixScan::PrefixScan(Device &device)
     : device_(device), scan_blocks_(device.kernel("scan.cl", "scan_blocks", "scan")),
       add_offsets_(device.kernel("scan.cl", "scan_add_offsets", "scan")),
       total_(device.kernel("scan.cl", "scan_total", "scan")),
-      compact_(device.kernel("scan.cl", "compact_list", "scan")), total_buffer_(device, 1),
-      group_(std::min<std::size_t>(256, device.max_work_group())) {}
+      compact_(device.kernel("scan.cl", "compact_list", "scan")),
+      compact_indices_(device.kernel("scan.cl", "compact_indices", "scan")),
+      total_buffer_(device, 1), group_(std::min<std::size_t>(256, device.max_work_group())) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   auto it = levels_.find(level);
   if (it == levels_.end() || it->second.first.size() < size)
-    it = levels_.insert_or_assign(level, std::make_pair(DeviceArray<cl_int>(device_, size),
-                                                        DeviceArray<cl_int>(device_, size)))
+    it = levels_
+             .insert_or_assign(level, std::make_pair(DeviceArray<cl_int>(device_, size),
+                                                     DeviceArray<cl_int>(device_, size)))
              .first;
   return it->second.first;
 }
@@ -55,6 +57,15 @@ int PrefixScan::compact(const DeviceArray<cl_int> &list, const DeviceArray<cl_in
   set_args(compact_, list.buffer(), keep.buffer(), offsets.buffer(), out.buffer(),
            static_cast<cl_int>(n));
   launch(device_, compact_, n, phase);
+  return kept;
+}
+
+int PrefixScan::compact_indices(const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
+                                const DeviceArray<cl_int> &out, std::size_t n,
+                                const std::string &phase) {
+  const int kept = exclusive_scan(keep, offsets, n, phase);
+  set_args(compact_indices_, keep.buffer(), offsets.buffer(), out.buffer(), static_cast<cl_int>(n));
+  launch(device_, compact_indices_, n, phase);
   return kept;
 }
 

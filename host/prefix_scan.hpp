@@ -20,13 +20,17 @@ public:
               const DeviceArray<cl_int> &offsets, const DeviceArray<cl_int> &out, std::size_t n,
               const std::string &phase);
 
+  // out[offset[i]] = i for every i with keep[i]; returns how many were kept.
+  int compact_indices(const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
+                      const DeviceArray<cl_int> &out, std::size_t n, const std::string &phase);
+
 private:
   void scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
                   const std::string &phase);
   const DeviceArray<cl_int> &block_sums(int level, std::size_t size);
 
   Device &device_;
-  cl::Kernel scan_blocks_, add_offsets_, total_, compact_;
+  cl::Kernel scan_blocks_, add_offsets_, total_, compact_, compact_indices_;
   DeviceArray<cl_int> total_buffer_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned

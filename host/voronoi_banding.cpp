@@ -33,8 +33,8 @@ std::size_t VoronoiBanding::run(int grid, Point min, double span) {
   const std::size_t pixels = static_cast<std::size_t>(grid) * grid;
   const std::size_t n = mesh_.point_capacity;
   DeviceArray<cl_int> site_of_pixel(device_, pixels), column_site_row(device_, pixels),
-      stack_x(device_, pixels), stack_y(device_, pixels), pixel_of(device_, n),
-      missing(device_, n), missing_offset(device_, n);
+      stack_x(device_, pixels), stack_y(device_, pixels), pixel_of(device_, n), missing(device_, n),
+      missing_offset(device_, n);
   voronoi_ = DeviceArray<cl_int>(device_, pixels);
   site_of_pixel.fill(device_, 0x7fffffff, pixels);
   const double scale = span > 0 ? grid / span : 0.0;

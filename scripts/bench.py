@@ -18,8 +18,35 @@ loaded point array.  --repeat K keeps the best time of K runs (and the largest
 peak memory).  A tool that fails gets 'fail' in its cells; the reasons are
 listed under the table.
 
+With --cdt the inputs are planar straight-line graphs instead (.poly files,
+N uniform points in the unit square and N/10 segments, cached in build/bench/)
+and each tool builds the constrained Delaunay triangulation of the whole convex
+hull:
+
+  clmesh    build/clmesh -pc -Q --stats-json F.json INPUT.poly
+            time = seconds.compute (the constraint phases are in the phases column)
+  Triangle  triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc'),
+            timing only that call
+  CGAL      build/cgal_bench cdt INPUT.poly  (Constrained_Delaunay_triangulation_2,
+            Epick: range insert of the points, then insert_constraint per segment)
+
+Two kinds of segments (--variants):
+  short  edges of the Delaunay triangulation (Triangle's) of a random quarter
+         of the points, N/10 of them picked at random: non-crossing because they
+         are edges of one planar triangulation, about two point spacings long,
+         and mostly not Delaunay edges of all the points (the other points fall
+         in their circumcircles), so each crosses a few triangles.
+  long   the square is cut into N/100 horizontal strips; in each, 11 of its
+         points (about 100) are joined left to right by an x-monotone chain of
+         10 segments.  Segments of one chain have disjoint x ranges but for the
+         shared endpoint, and the points of a strip all lie strictly below those
+         of the next (strip = floor(y * strips), monotone in y), so no two
+         segments cross.  Each is about 1/11 of the square long: some 30 (100k
+         points) to 90 (1M) point spacings, crossing that many triangles or more.
+
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
            [--dists uniform,grid] [--repeat K] [--markdown OUT.md]
+       python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
 """
 import argparse
 import glob
@@ -65,6 +92,75 @@ out = triangle.triangulate({'vertices': pts}, '')
 t1 = time.perf_counter()
 print(json.dumps({'seconds': t1 - t0, 'triangles': int(len(out['triangles'])),
                   'vertices': int(len(out['vertices']))}))
+"""
+
+
+# Runs in a child Python: loads a .poly file (vertices in it), then times only the CDT.
+TRIANGLE_CDT_CHILD = r"""
+import json, sys, time
+import numpy as np
+import triangle
+
+def read_poly(path):
+    lines = []
+    with open(path) as f:
+        for line in f:
+            line = line.split('#', 1)[0].split()
+            if line:
+                lines.append(line)
+    n = int(lines[0][0])
+    ids = np.array([float(l[0]) for l in lines[1:n + 1]])
+    base = int(ids[0]) if n else 0
+    pts = np.array([[float(l[1]), float(l[2])] for l in lines[1:n + 1]], dtype=np.float64)
+    m = int(lines[n + 1][0])
+    segs = np.array([[int(l[1]) - base, int(l[2]) - base] for l in lines[n + 2:n + 2 + m]],
+                    dtype=np.int32).reshape(-1, 2)
+    return pts, segs
+
+pts, segs = read_poly(sys.argv[1])
+t0 = time.perf_counter()
+out = triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc')
+t1 = time.perf_counter()
+print(json.dumps({'seconds': t1 - t0, 'triangles': int(len(out['triangles'])),
+                  'vertices': int(len(out['vertices']))}))
+"""
+
+# Runs in a child Python: writes a PSLG as a .poly (see the module docstring).
+PSLG_GENERATOR = r"""
+import sys
+import numpy as np
+
+variant, n, path, seed = sys.argv[1], int(sys.argv[2]), sys.argv[3], int(sys.argv[4])
+m = n // 10
+rng = np.random.default_rng(seed)
+pts = rng.random((n, 2))
+if variant == 'short':
+    import triangle
+    subset = rng.choice(n, size=max(3, n // 4), replace=False)
+    out = triangle.triangulate({'vertices': pts[subset]}, 'e')
+    edges = subset[out['edges']]
+    segs = edges[rng.choice(len(edges), size=min(m, len(edges)), replace=False)]
+elif variant == 'long':
+    per_chain = 11
+    strips = max(1, m // (per_chain - 1))
+    strip = np.minimum(np.floor(pts[:, 1] * strips).astype(np.int64), strips - 1)
+    order = np.lexsort((rng.random(n), strip))  # random order inside each strip
+    bounds = np.searchsorted(strip[order], np.arange(strips + 1))
+    segs = []
+    for s in range(strips):
+        ids = order[bounds[s]:bounds[s + 1]][:per_chain]
+        ids = ids[np.lexsort((pts[ids, 1], pts[ids, 0]))]  # left to right
+        segs.extend(zip(ids[:-1], ids[1:]))
+    segs = np.array(segs, dtype=np.int64).reshape(-1, 2)
+else:
+    raise SystemExit(f'unknown PSLG variant {variant!r}')
+with open(path, 'w') as f:
+    f.write(f'# {variant} PSLG: {n} uniform points, {len(segs)} segments, seed {seed}\n')
+    f.write(f'{n} 2 0 0\n')
+    f.write(''.join(f'{i} {x!r} {y!r}\n' for i, (x, y) in enumerate(pts.tolist())))
+    f.write(f'{len(segs)} 0\n')
+    f.write(''.join(f'{i} {a} {b}\n' for i, (a, b) in enumerate(segs.tolist())))
+    f.write('0\n')
 """
 
 
@@ -146,14 +242,14 @@ def last_json_line(stdout):
 
 # ---- the three tools -------------------------------------------------------
 
-def run_clmesh(exe, node, timeout):
+def run_clmesh(exe, node, timeout, switches=()):
     if not os.path.isfile(exe):
         raise ToolFailure(f"{exe} not built")
-    stem = node[:-len(".node")]
+    stem = os.path.splitext(node)[0]
     fd, stats_path = tempfile.mkstemp(suffix=".json", dir=os.path.dirname(node))
     os.close(fd)
     try:
-        _, peak = run_measured([exe, "-Q", "--stats-json", stats_path, node], timeout)
+        _, peak = run_measured([exe, *switches, "-Q", "--stats-json", stats_path, node], timeout)
         with open(stats_path) as f:
             stats = json.load(f)
     except (OSError, ValueError) as e:
@@ -183,18 +279,18 @@ def ensure_triangle_package():
     return subprocess.run(probe, capture_output=True).returncode == 0
 
 
-def run_triangle(available, node, timeout):
+def run_triangle(available, node, timeout, child=TRIANGLE_CHILD):
     if not available:
         raise ToolFailure("the Python package 'triangle' is not available")
-    stdout, peak = run_measured([sys.executable, "-c", TRIANGLE_CHILD, node], timeout)
+    stdout, peak = run_measured([sys.executable, "-c", child, node], timeout)
     r = last_json_line(stdout)
     return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles")}
 
 
-def run_cgal(exe, node, timeout):
+def run_cgal(exe, node, timeout, mode="dt"):
     if not os.path.isfile(exe):
         raise ToolFailure(f"{exe} not built (needs libcgal-dev at configure time)")
-    stdout, peak = run_measured([exe, "dt", node], timeout)
+    stdout, peak = run_measured([exe, mode, node], timeout)
     r = last_json_line(stdout)
     return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles")}
 
@@ -225,6 +321,28 @@ def input_file(bench_dir, dist, n, seed):
                         dist, str(n), tmp, "--seed", str(seed)], check=True)
         os.replace(tmp, path)
     return path
+
+
+def pslg_file(bench_dir, variant, n, seed):
+    path = os.path.join(bench_dir, f"pslg-{variant}-{n}-s{seed}.poly")
+    if not os.path.isfile(path):
+        log(f"bench.py: generating {path}")
+        tmp = path + ".tmp"
+        proc = subprocess.run([sys.executable, "-c", PSLG_GENERATOR, variant, str(n), tmp,
+                               str(seed)], capture_output=True, text=True)
+        if proc.returncode != 0:
+            raise ToolFailure(f"cannot generate the {variant} PSLG: "
+                              + (proc.stderr.strip().splitlines() or ["?"])[-1])
+        os.replace(tmp, path)
+    return path
+
+
+def poly_segment_count(path):
+    with open(path) as f:
+        lines = (l.split("#", 1)[0].split() for l in f)
+        lines = [l for l in lines if l]
+    n = int(lines[0][0])
+    return int(lines[n + 1][0])
 
 
 # ---- report ---------------------------------------------------------------
@@ -279,7 +397,13 @@ def main(argv=None):
     ap.add_argument("--clmesh", help="clmesh binary (default BUILD/clmesh)")
     ap.add_argument("--cgal", help="cgal_bench binary (default BUILD/cgal_bench)")
     ap.add_argument("--timeout", type=float, default=600, help="seconds per run (default 600)")
+    ap.add_argument("--cdt", action="store_true",
+                    help="constrained Delaunay of generated PSLGs (N points, N/10 segments)")
+    ap.add_argument("--variants", default="short,long",
+                    help="with --cdt: comma-separated subset of short,long")
     a = ap.parse_args(argv)
+    if a.cdt:
+        return main_cdt(a, ap)
 
     sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
     dists = [d for d in a.dists.replace(" ", "").split(",") if d]
@@ -332,6 +456,81 @@ def main(argv=None):
              f"Best of {a.repeat} run(s), seed {a.seed}; times exclude file reading and writing; "
              "ratios are clmesh time / other time (below 1: clmesh is faster); "
              "peak MB is each process's maximum resident set size (Triangle's includes Python and numpy)."]
+    notes += [f"Warning: {w}" for w in warnings]
+    notes += [f"Failed: {f}" for f in failures]
+    text = "\n".join(lines + notes) + "\n"
+    print(text, end="")
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(text)
+    return 0
+
+
+def main_cdt(a, ap):
+    sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
+    variants = [v for v in a.variants.replace(" ", "").split(",") if v]
+    for v in variants:
+        if v not in ("short", "long"):
+            ap.error(f"unknown PSLG variant {v!r} (choose from short, long)")
+    if a.repeat < 1:
+        ap.error("--repeat must be >= 1")
+    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
+    cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
+    bench_dir = os.path.join(a.build_dir, "bench")
+    os.makedirs(bench_dir, exist_ok=True)
+    have_triangle = ensure_triangle_package()
+
+    rows, failures, warnings = [], [], []
+    device = None
+    for variant in variants:
+        for n in sizes:
+            try:
+                poly = pslg_file(bench_dir, variant, n, a.seed)
+                m = poly_segment_count(poly)
+            except ToolFailure as e:
+                failures.append(f"{variant} n={n}: {e}")
+                log(f"bench.py:   fail: {e}")
+                continue
+            results = {}
+            for name, fn, args in (
+                    ("clmesh", run_clmesh, (clmesh, poly, a.timeout, ("-pc",))),
+                    ("Triangle", run_triangle, (have_triangle, poly, a.timeout, TRIANGLE_CDT_CHILD)),
+                    ("CGAL", run_cgal, (cgal, poly, a.timeout, "cdt"))):
+                log(f"bench.py: cdt {variant} n={n} m={m}: {name} ...")
+                t0 = time.time()
+                try:
+                    results[name] = best_of(a.repeat, fn, *args)
+                    log(f"bench.py:   {results[name]['seconds']:.3f} s "
+                        f"(wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
+                except ToolFailure as e:
+                    results[name] = None
+                    failures.append(f"cdt {variant} n={n}: {name}: {e}")
+                    log(f"bench.py:   fail: {e}")
+            cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
+            if cl and cl.get("device"):
+                device = cl["device"]
+            counts = {k: r["triangles"] for k, r in results.items()
+                      if r and r.get("triangles") is not None}
+            if len(set(counts.values())) > 1:
+                warnings.append(f"cdt {variant} n={n}: triangle counts differ: "
+                                + ", ".join(f"{k} {v}" for k, v in counts.items()))
+            rows.append([variant, str(n), str(m), fmt_s(cl), fmt_s(tr), fmt_s(cg),
+                         fmt_ratio(cl, tr), fmt_ratio(cl, cg), fmt_mb(cl), fmt_mb(tr),
+                         fmt_mb(cg), fmt_phases(cl)])
+
+    header = ["segments", "n", "m", "clmesh compute s", "Triangle -pc s", "CGAL CDT s",
+              "clmesh/Triangle", "clmesh/CGAL", "clmesh peak MB", "Triangle peak MB",
+              "CGAL peak MB", "clmesh phases (s)"]
+    lines = ["| " + " | ".join(header) + " |",
+             "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    notes = ["", machine_line(device),
+             f"Constrained Delaunay triangulation of the whole convex hull (-pc); best of "
+             f"{a.repeat} run(s), seed {a.seed}; n uniform points, m segments ('short': random "
+             "edges of the Delaunay triangulation of a quarter of the points; 'long': x-monotone "
+             "chains in horizontal strips, segments about 1/11 of the square long); times "
+             "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
+             "clmesh is faster)."]
     notes += [f"Warning: {w}" for w in warnings]
     notes += [f"Failed: {f}" for f in failures]
     text = "\n".join(lines + notes) + "\n"

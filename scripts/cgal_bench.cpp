@@ -1,24 +1,37 @@
 // cgal_bench: CGAL reference timings for scripts/bench.py.
 //
 //   cgal_bench [MODE] FILE.node
+//   cgal_bench cdt FILE.poly
 //
 // MODE (default dt):
 //   dt    Delaunay triangulation of the points: times only the construction of
 //         CGAL::Delaunay_triangulation_2<Epick> from the point range (the range
 //         insert spatially sorts the points first), not the file reading.
-//   (cdt and mesh are reserved for the constrained triangulation and the
-//    refinement benchmarks.)
+//   cdt   Constrained Delaunay triangulation of a .poly (the whole convex hull,
+//         like Triangle's -pc; holes and regions are ignored): times the
+//         construction of CGAL::Constrained_Delaunay_triangulation_2<Epick>:
+//         the points inserted as a range (spatially sorted, each tagged with its
+//         index), the vertex handle of every index looked up, then every
+//         segment inserted with insert_constraint(handle, handle).  Segments
+//         must not cross (CGAL's default intersection tag throws).
+//   (mesh is reserved for the refinement benchmark.)
 //
 // Prints one line of JSON on stdout:
 //   {"mode": "dt", "seconds": s, "triangles": n, "vertices": n}
 // where triangles counts the finite faces and vertices the distinct vertices.
 //
-// The .node reader is deliberately simple: '#' comments, a header
+// The readers are deliberately simple: '#' comments, a header
 // "<#vertices> <dim> <#attributes> <#markers>", then "<id> <x> <y> ..." lines
-// whose ids may start at 0 or 1 (they are not used: points keep file order).
+// whose ids may start at 0 or 1 (points keep file order).  A .poly must hold
+// its vertices (node section count > 0); its segment section
+// "<#segments> <#markers>" follows, with "<id> <a> <b> [marker]" lines whose
+// endpoints use the numbering of the first vertex id.
 
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <chrono>
 #include <cstdio>
@@ -26,9 +39,11 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -36,14 +51,19 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
 using DT = CGAL::Delaunay_triangulation_2<Kernel>;
+using CdtVb = CGAL::Triangulation_vertex_base_with_info_2<long, Kernel>;
+using CdtFb = CGAL::Constrained_triangulation_face_base_2<Kernel>;
+using CdtTds = CGAL::Triangulation_data_structure_2<CdtVb, CdtFb>;
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<Kernel, CdtTds>;
 
 // Splits the file into the whitespace-separated tokens of its non-comment
 // parts, one vector of tokens per non-empty line.
 class NodeReader {
- public:
-  explicit NodeReader(const std::string& path) {
+public:
+  explicit NodeReader(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot open " + path);
+    if (!in)
+      throw std::runtime_error("cannot open " + path);
     std::ostringstream ss;
     ss << in.rdbuf();
     text_ = ss.str();
@@ -51,13 +71,15 @@ class NodeReader {
   }
 
   // Fills `tok` with the tokens of the next line that has any; false at EOF.
-  bool next_line(std::vector<const char*>& tok) {
+  bool next_line(std::vector<const char *> &tok) {
     tok.clear();
     while (pos_ < text_.size()) {
       size_t end = text_.find('\n', pos_);
-      if (end == std::string::npos) end = text_.size();
-      const void* hash = std::memchr(&text_[pos_], '#', end - pos_);
-      size_t stop = hash ? static_cast<size_t>(static_cast<const char*>(hash) - text_.data()) : end;
+      if (end == std::string::npos)
+        end = text_.size();
+      const void *hash = std::memchr(&text_[pos_], '#', end - pos_);
+      size_t stop =
+          hash ? static_cast<size_t>(static_cast<const char *>(hash) - text_.data()) : end;
       for (size_t i = pos_; i < stop; ++i) {
         char c = text_[i];
         if (c == ' ' || c == '\t' || c == '\r') {
@@ -66,51 +88,132 @@ class NodeReader {
           tok.push_back(&text_[i]);
         }
       }
-      if (stop < text_.size()) text_[stop] = '\0';
+      if (stop < text_.size())
+        text_[stop] = '\0';
       pos_ = end + 1;
-      if (!tok.empty()) return true;
+      if (!tok.empty())
+        return true;
     }
     return false;
   }
 
- private:
+private:
   std::string text_;
   size_t pos_;
 };
 
-double to_double(const char* s, const std::string& what) {
-  char* end = nullptr;
+double to_double(const char *s, const std::string &what) {
+  char *end = nullptr;
   double v = std::strtod(s, &end);
-  if (end == s || *end != '\0') throw std::runtime_error("bad number '" + std::string(s) + "' in " + what);
+  if (end == s || *end != '\0')
+    throw std::runtime_error("bad number '" + std::string(s) + "' in " + what);
   return v;
 }
 
-std::vector<Point> read_node(const std::string& path) {
+std::vector<Point> read_node(const std::string &path) {
   NodeReader r(path);
-  std::vector<const char*> tok;
-  if (!r.next_line(tok)) throw std::runtime_error(path + ": empty file");
+  std::vector<const char *> tok;
+  if (!r.next_line(tok))
+    throw std::runtime_error(path + ": empty file");
   long n = std::strtol(tok[0], nullptr, 10);
-  if (n <= 0) throw std::runtime_error(path + ": no vertices in the header (a .poly that refers to a .node?)");
+  if (n <= 0)
+    throw std::runtime_error(path +
+                             ": no vertices in the header (a .poly that refers to a .node?)");
   if (tok.size() >= 2 && std::strtol(tok[1], nullptr, 10) != 2)
     throw std::runtime_error(path + ": dimension must be 2");
   std::vector<Point> pts;
   pts.reserve(static_cast<size_t>(n));
   for (long i = 0; i < n; ++i) {
-    if (!r.next_line(tok)) throw std::runtime_error(path + ": expected " + std::to_string(n) + " vertices, got " + std::to_string(i));
-    if (tok.size() < 3) throw std::runtime_error(path + ": short vertex line " + std::to_string(i + 1));
+    if (!r.next_line(tok))
+      throw std::runtime_error(path + ": expected " + std::to_string(n) + " vertices, got " +
+                               std::to_string(i));
+    if (tok.size() < 3)
+      throw std::runtime_error(path + ": short vertex line " + std::to_string(i + 1));
     pts.emplace_back(to_double(tok[1], path), to_double(tok[2], path));
   }
   return pts;
 }
 
+// The node section and the segments of a .poly (0-based endpoints).
+struct Poly {
+  std::vector<Point> points;
+  std::vector<std::pair<long, long>> segments;
+};
+
+Poly read_poly(const std::string &path) {
+  NodeReader r(path);
+  std::vector<const char *> tok;
+  if (!r.next_line(tok))
+    throw std::runtime_error(path + ": empty file");
+  const long n = std::strtol(tok[0], nullptr, 10);
+  if (n <= 0)
+    throw std::runtime_error(path + ": the node section must hold the vertices (count > 0)");
+  if (tok.size() >= 2 && std::strtol(tok[1], nullptr, 10) != 2)
+    throw std::runtime_error(path + ": dimension must be 2");
+  Poly poly;
+  poly.points.reserve(static_cast<size_t>(n));
+  long base = 0;
+  for (long i = 0; i < n; ++i) {
+    if (!r.next_line(tok) || tok.size() < 3)
+      throw std::runtime_error(path + ": short or missing vertex line " + std::to_string(i + 1));
+    if (i == 0)
+      base = std::strtol(tok[0], nullptr, 10);
+    poly.points.emplace_back(to_double(tok[1], path), to_double(tok[2], path));
+  }
+  if (!r.next_line(tok))
+    throw std::runtime_error(path + ": no segment section");
+  const long m = std::strtol(tok[0], nullptr, 10);
+  poly.segments.reserve(static_cast<size_t>(std::max(0L, m)));
+  for (long i = 0; i < m; ++i) {
+    if (!r.next_line(tok) || tok.size() < 3)
+      throw std::runtime_error(path + ": short or missing segment line " + std::to_string(i + 1));
+    const long a = std::strtol(tok[1], nullptr, 10) - base,
+               b = std::strtol(tok[2], nullptr, 10) - base;
+    if (a < 0 || a >= n || b < 0 || b >= n)
+      throw std::runtime_error(path + ": segment " + std::to_string(i + 1) + " out of range");
+    poly.segments.emplace_back(a, b);
+  }
+  return poly;
+}
+
+// Times CGAL's CDT of the .poly; returns the seconds.
+double time_cdt(const Poly &poly, CDT &cdt) {
+  const size_t n = poly.points.size();
+  std::vector<std::pair<Point, long>> input;
+  input.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+    input.emplace_back(poly.points[i], static_cast<long>(i));
+
+  auto t0 = std::chrono::steady_clock::now();
+  cdt.insert(input.begin(), input.end());
+  // Vertex of every index; a duplicate point's index gets the vertex that stands for it.
+  std::vector<CDT::Vertex_handle> vertex(n);
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
+    vertex[v->info()] = v;
+  std::map<std::pair<double, double>, CDT::Vertex_handle> by_point;
+  for (size_t i = 0; i < n; ++i)
+    if (vertex[i] == CDT::Vertex_handle()) {
+      if (by_point.empty())
+        for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
+          by_point[{v->point().x(), v->point().y()}] = v;
+      vertex[i] = by_point.at({poly.points[i].x(), poly.points[i].y()});
+    }
+  for (const auto &s : poly.segments)
+    if (vertex[s.first] != vertex[s.second])
+      cdt.insert_constraint(vertex[s.first], vertex[s.second]);
+  auto t1 = std::chrono::steady_clock::now();
+  return std::chrono::duration<double>(t1 - t0).count();
+}
+
 int usage() {
-  std::fprintf(stderr, "usage: cgal_bench [dt] FILE.node   (cdt and mesh are not implemented yet)\n");
+  std::fprintf(stderr, "usage: cgal_bench [dt] FILE.node | cgal_bench cdt FILE.poly   (mesh is not "
+                       "implemented yet)\n");
   return 2;
 }
 
-}  // namespace
+} // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char **argv) {
   std::string mode = "dt";
   std::string path;
   if (argc == 2) {
@@ -121,13 +224,24 @@ int main(int argc, char** argv) {
   } else {
     return usage();
   }
-  if (mode == "cdt" || mode == "mesh") {
+  if (mode == "mesh") {
     std::fprintf(stderr, "cgal_bench: mode '%s' is not implemented yet\n", mode.c_str());
     return 2;
   }
-  if (mode != "dt") return usage();
+  if (mode != "dt" && mode != "cdt")
+    return usage();
 
   try {
+    if (mode == "cdt") {
+      const Poly poly = read_poly(path);
+      CDT cdt;
+      const double seconds = time_cdt(poly, cdt);
+      std::printf("{\"mode\": \"cdt\", \"seconds\": %.9g, \"triangles\": %zu, \"vertices\": %zu}\n",
+                  seconds, static_cast<size_t>(cdt.number_of_faces()),
+                  static_cast<size_t>(cdt.number_of_vertices()));
+      return 0;
+    }
+
     std::vector<Point> pts = read_node(path);
 
     auto t0 = std::chrono::steady_clock::now();
@@ -136,9 +250,10 @@ int main(int argc, char** argv) {
     auto t1 = std::chrono::steady_clock::now();
     double seconds = std::chrono::duration<double>(t1 - t0).count();
 
-    std::printf("{\"mode\": \"%s\", \"seconds\": %.9g, \"triangles\": %zu, \"vertices\": %zu}\n", mode.c_str(),
-                seconds, static_cast<size_t>(dt.number_of_faces()), static_cast<size_t>(dt.number_of_vertices()));
-  } catch (const std::exception& e) {
+    std::printf("{\"mode\": \"%s\", \"seconds\": %.9g, \"triangles\": %zu, \"vertices\": %zu}\n",
+                mode.c_str(), seconds, static_cast<size_t>(dt.number_of_faces()),
+                static_cast<size_t>(dt.number_of_vertices()));
+  } catch (const std::exception &e) {
     std::fprintf(stderr, "cgal_bench: %s\n", e.what());
     return 1;
   }

@@ -138,6 +138,55 @@ std::vector<std::string> lines_of(const std::string &text) {
   return lines;
 }
 
+// read_poly on `text` (as bad.poly, beside the given extra files) must fail
+// on `line` of `file` (bad.poly unless given) with a message holding `words`.
+void expect_poly_error(const std::string &text, long line, const std::string &words,
+                       const std::map<std::string, std::string> &extra = {},
+                       const std::string &file = "bad.poly") {
+  TempDir dir;
+  const std::string path = dir.file("bad.poly");
+  write_file(path, text);
+  for (const auto &other : extra)
+    write_file(dir.file(other.first), other.second);
+  CAPTURE(text);
+  bool thrown = false;
+  try {
+    read_poly(path);
+  } catch (const InputError &error) {
+    thrown = true;
+    const std::string message = error.what();
+    CAPTURE(message);
+    CHECK(error.file() == dir.file(file));
+    CHECK(error.line() == line);
+    CHECK(message.find(dir.file(file)) == 0);
+    if (line > 0)
+      CHECK(message.find(":" + std::to_string(line) + ": ") != std::string::npos);
+    CHECK(message.find(words) != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK(thrown);
+}
+
+// The .poly text of `path` with its vertex section replaced by "0 2 0 1": the
+// first `vertices` + 1 lines holding fields are dropped, comments are kept.
+std::string without_vertices(const std::string &path, int vertices) {
+  std::string out = "0  2  0  1\n";
+  int fields_lines = 0;
+  for (const std::string &line : lines_of(read_file(path))) {
+    const std::string data = line.substr(0, line.find('#'));
+    const bool has_fields = data.find_first_not_of(" \t\r") != std::string::npos;
+    if (has_fields && fields_lines++ <= vertices)
+      continue;
+    out += line + "\n";
+  }
+  return out;
+}
+
+// Endpoints as an unordered pair.
+std::pair<int32_t, int32_t> ends_of(const Segment &s) {
+  return {std::min(s.a, s.b), std::max(s.a, s.b)};
+}
+
 } // namespace
 
 // ---------------------------------------------------------------------------
@@ -277,6 +326,223 @@ TEST_CASE("read_node errors name the file and the line") {
   expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", 5, "3 of 4 vertices");
   expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1", 4, "3 of 4 vertices");
   expect_input_error("4 2 0 0\n1 0 0\n# gone\n", 4, "1 of 4 vertices");
+}
+
+// ---------------------------------------------------------------------------
+// read_poly
+// ---------------------------------------------------------------------------
+
+TEST_CASE("read_poly reads every .poly file of the Triangle examples") {
+  struct Expected {
+    std::size_t points;
+    int attributes;
+    bool point_markers;
+    std::size_t segments;
+    bool segment_markers;
+    std::size_t holes, regions;
+  };
+  const std::map<std::string, Expected> expected = {
+      {"A.poly", {29, 1, false, 29, false, 1, 0}},
+      {"box.poly", {8, 0, true, 5, true, 1, 0}},
+      {"face.poly", {26, 0, true, 22, true, 3, 0}},
+      {"la.poly", {141, 0, true, 148, true, 0, 6}},
+      {"double_hex.poly", {96, 0, true, 96, true, 2, 0}},
+      {"double_hex2.poly", {48, 0, true, 48, true, 2, 0}},
+      {"double_hex3.poly", {16, 0, true, 16, true, 2, 0}},
+      {"square_circle_hole.poly", {826, 0, true, 135, true, 1, 0}},
+      // Triangle's outputs: 0 vertices, read from the .1.node beside them.
+      {"A.1.poly", {29, 1, true, 29, true, 1, 0}},
+      {"box.1.poly", {8, 0, true, 8, true, 1, 0}},
+      {"face.1.poly", {26, 0, true, 22, true, 3, 0}},
+      {"la.1.poly", {860, 0, true, 499, true, 0, 6}},
+      {"double_hex.1.poly", {96, 0, true, 96, true, 2, 0}},
+  };
+  std::size_t files = 0;
+  for (const char *folder : {"inputs", "reference-outputs"}) {
+    for (const auto &entry : fs::directory_iterator(kExamples / folder)) {
+      if (entry.path().extension() != ".poly")
+        continue;
+      const std::string name = entry.path().filename().string();
+      CAPTURE(name);
+      PolyFile poly;
+      REQUIRE_NOTHROW(poly = read_poly(entry.path().string()));
+      ++files;
+      auto known = expected.find(name);
+      REQUIRE(known != expected.end());
+      const Expected &want = known->second;
+      CHECK(poly.points.points.size() == want.points);
+      CHECK(poly.points.attribute_count == want.attributes);
+      CHECK(poly.points.has_markers == want.point_markers);
+      CHECK(poly.points.first_index == 1);
+      CHECK(poly.segments.size() == want.segments);
+      CHECK(poly.segment_lines.size() == want.segments);
+      CHECK(poly.segment_markers == want.segment_markers);
+      CHECK(poly.holes.size() == want.holes);
+      CHECK(poly.regions.size() == want.regions);
+      CHECK(poly.node_path.empty() == (std::string(folder) == "inputs"));
+      for (const Segment &segment : poly.segments) {
+        CHECK(segment.a >= 0);
+        CHECK(segment.b >= 0);
+        CHECK(static_cast<std::size_t>(segment.a) < poly.points.points.size());
+        CHECK(static_cast<std::size_t>(segment.b) < poly.points.points.size());
+      }
+      CHECK(std::is_sorted(poly.segment_lines.begin(), poly.segment_lines.end()));
+    }
+  }
+  CHECK(files == expected.size());
+
+  const std::string inputs = (kExamples / "inputs").string();
+  const PolyFile a = read_poly(inputs + "/A.poly");
+  CHECK(a.points.attributes[0] == -0.57);
+  CHECK(a.segments[0].a == 28); // "1 29 1", numbered from 1
+  CHECK(a.segments[0].b == 0);
+  CHECK(a.segments[0].marker == 0);
+  CHECK(a.segment_lines[0] == 32);
+  CHECK(a.segment_lines[28] == 60);
+  CHECK(a.holes[0].x == 0.47);
+  CHECK(a.holes[0].y == -0.5);
+  const PolyFile box = read_poly(inputs + "/box.poly");
+  CHECK(box.points.markers[3] == 33);
+  CHECK(box.segments[0].marker == 5);
+  CHECK(box.segments[3].a == 7);
+  CHECK(box.segments[3].b == 5);
+  CHECK(box.segments[3].marker == 10);
+  CHECK(box.segment_lines[0] == 24);
+  CHECK(box.holes[0].x == 1.5);
+  const PolyFile la = read_poly(inputs + "/la.poly");
+  // "1 6 -0.2 0.05": no maximum area, so Triangle takes the attribute as one.
+  CHECK(la.regions[0].seed.x == 6);
+  CHECK(la.regions[0].seed.y == -0.2);
+  CHECK(la.regions[0].attribute == 0.05);
+  CHECK(la.regions[0].max_area == 0.05);
+  CHECK(la.regions[5].seed.x == 5);
+  CHECK(la.regions[5].attribute == 3);
+  CHECK(la.segments.back().marker == 0);
+}
+
+TEST_CASE("read_poly: a vertex count of 0 reads the .node file beside the .poly") {
+  const fs::path inputs = kExamples / "inputs";
+  const PolyFile original = read_poly((inputs / "double_hex3.poly").string());
+  TempDir dir;
+  fs::copy_file(inputs / "double_hex3.node", dir.path / "double_hex3.node");
+  write_file(dir.file("double_hex3.poly"),
+             without_vertices((inputs / "double_hex3.poly").string(), 16));
+  const PolyFile poly = read_poly(dir.file("double_hex3.poly"));
+  CHECK(poly.node_path == dir.file("double_hex3.node"));
+  const PointSet node = read_node((inputs / "double_hex3.node").string());
+  REQUIRE(poly.points.points.size() == 16);
+  for (std::size_t i = 0; i < 16; ++i) {
+    CHECK(poly.points.points[i].x == node.points[i].x);
+    CHECK(poly.points.points[i].y == node.points[i].y);
+  }
+  CHECK(poly.points.markers == node.markers);
+  REQUIRE(poly.segments.size() == original.segments.size());
+  for (std::size_t i = 0; i < poly.segments.size(); ++i) {
+    CHECK(poly.segments[i].a == original.segments[i].a);
+    CHECK(poly.segments[i].b == original.segments[i].b);
+    CHECK(poly.segments[i].marker == original.segments[i].marker);
+  }
+  CHECK(poly.holes.size() == 2);
+  CHECK(poly.holes[1].x == 0.6);
+
+  SUBCASE("numbering follows the .node file") {
+    TempDir zero;
+    write_file(zero.file("z.node"), "3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n");
+    write_file(zero.file("z.poly"), "0 2 0 0\n3 0\n0 0 1\n1 1 2\n2 2 0\n0\n");
+    const PolyFile z = read_poly(zero.file("z.poly"));
+    CHECK(z.points.first_index == 0);
+    REQUIRE(z.segments.size() == 3);
+    CHECK(z.segments[1].a == 1);
+    CHECK(z.segments[1].b == 2);
+    // The same .poly beside a 1-based .node: endpoint 0 is out of range.
+    write_file(zero.file("z.node"), "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n");
+    CHECK_THROWS_WITH_AS(read_poly(zero.file("z.poly")),
+                         doctest::Contains("endpoint 0 of segment 0 is out of range"), InputError);
+  }
+  SUBCASE("no .node beside it: the error names the .node file and the header line") {
+    expect_poly_error("# vertices elsewhere\n0 2 0 0\n0 0\n0\n", 2, "bad.node");
+    expect_poly_error("0 2 0 0\n0 0\n0\n", 1, "cannot be opened");
+  }
+  SUBCASE("errors in the .node file name the .node file and its line") {
+    expect_poly_error("0 2 0 0\n0 0\n0\n", 4, "'oops'",
+                      {{"bad.node", "3\n1 0 0\n2 1 0\n3 oops 1\n"}}, "bad.node");
+  }
+}
+
+TEST_CASE("read_poly: comments, optional fields, regions") {
+  TempDir dir;
+  write_file(dir.file("p.poly"), "# square with a hole\n4 2 0 1 # header\n"
+                                 "0 0 0 3\n1 1 0 0\n2 1 1 0\n3 0 1 0\n"
+                                 "\n4 1\n0 0 1 7\n1 1 2\n2 2 3 -1 extra\n3 3 0 0\n"
+                                 "1\n0 0.5 0.5\n"
+                                 "3\n0 0.1 0.1 5 0.25\n1 0.2 0.2 6\n2 0.3 0.3 7 -1\n");
+  const PolyFile poly = read_poly(dir.file("p.poly"));
+  CHECK(poly.points.first_index == 0);
+  CHECK(poly.points.markers == std::vector<int>{3, 0, 0, 0});
+  REQUIRE(poly.segments.size() == 4);
+  CHECK(poly.segment_markers);
+  CHECK(poly.segments[0].marker == 7);
+  CHECK(poly.segments[1].marker == 0); // omitted: 0, as in Triangle
+  CHECK(poly.segments[2].marker == -1);
+  CHECK(poly.segment_lines == std::vector<long>{9, 10, 11, 12});
+  REQUIRE(poly.regions.size() == 3);
+  CHECK(poly.regions[0].max_area == 0.25);
+  CHECK(poly.regions[1].max_area == 6);
+  CHECK(poly.regions[2].max_area == -1);
+
+  SUBCASE("no region section; segment markers off") {
+    write_file(dir.file("q.poly"), "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n3 0\n1 1 2 9\n2 2 3\n3 3 1\n0\n");
+    const PolyFile q = read_poly(dir.file("q.poly"));
+    CHECK_FALSE(q.segment_markers);
+    CHECK(q.segments[0].marker == 0); // the flag says no markers: the 9 is ignored
+    CHECK(q.holes.empty());
+    CHECK(q.regions.empty());
+  }
+}
+
+TEST_CASE("read_poly errors name the file and the line") {
+  const std::string tri = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n"; // lines 1-4
+  SUBCASE("missing file") {
+    TempDir dir;
+    CHECK_THROWS_WITH_AS(read_poly(dir.file("absent.poly")), doctest::Contains("absent.poly"),
+                         InputError);
+  }
+  // Vertex section (shared with read_node).
+  expect_poly_error("", 1, "missing header");
+  expect_poly_error("abc 2 0 0\n", 1, "malformed header");
+  expect_poly_error("3 2 0 0\n1 0 0\n2 x 0\n", 3, "'x'");
+  // Segments.
+  expect_poly_error(tri, 5, "before the segment section");
+  expect_poly_error(tri + "x 1\n", 5, "malformed header");
+  expect_poly_error(tri + "-2 0\n", 5, "malformed header");
+  expect_poly_error(tri + "1 2\n", 5, "must be 0 or 1");
+  expect_poly_error(tri + "2 0\n1 1 2\n", 7, "after 1 of 2 segments");
+  expect_poly_error(tri + "1 0\n\n1\n", 7, "no endpoints");
+  expect_poly_error(tri + "1 0\n1 2\n", 6, "only one endpoint");
+  expect_poly_error(tri + "1 0\n1 2 b\n", 6, "'b'");
+  expect_poly_error(tri + "1 0\n1 2 3.5\n", 6, "not an integer");
+  expect_poly_error(tri + "1 0\nx 2 3\n", 6, "segment id 'x'");
+  expect_poly_error(tri + "2 0\n1 1 2\n2 3 4\n", 7, "endpoint 4 of segment 2 is out of range");
+  expect_poly_error(tri + "1 0\n7 0 2\n", 6, "endpoint 0 of segment 7 is out of range");
+  expect_poly_error(tri + "1 0\n1 1 5\n", 6, "numbered 1 to 3");
+  expect_poly_error(tri + "1 1\n1 1 2 m\n", 6, "boundary marker 'm'");
+  // Holes.
+  const std::string segs = tri + "1 1\n1 1 2 0\n"; // lines 5-6
+  expect_poly_error(segs, 7, "before the hole section");
+  expect_poly_error(segs + "one\n", 7, "malformed header");
+  expect_poly_error(segs + "2\n1 0.5 0.5\n", 9, "after 1 of 2 holes");
+  expect_poly_error(segs + "1\n1\n", 8, "hole 1 has no coordinates");
+  expect_poly_error(segs + "1\n1 0.5\n", 8, "hole 1 has no y coordinate");
+  expect_poly_error(segs + "1\n1 0.5 y\n", 8, "'y'");
+  expect_poly_error(segs + "1\n1 nan 0.5\n", 8, "not finite");
+  // Regions.
+  const std::string holes = segs + "0\n"; // line 7
+  expect_poly_error(holes + "r\n", 8, "malformed header");
+  expect_poly_error(holes + "2\n1 0.2 0.2 1 1\n", 10, "after 1 of 2 regions");
+  expect_poly_error(holes + "1\n1 0.2 0.2\n", 9, "expected at least 3");
+  expect_poly_error(holes + "1\n1 0.2 0.2 a\n", 9, "attribute 'a' of region 1");
+  expect_poly_error(holes + "1\n1 0.2 0.2 1 big\n", 9, "maximum area 'big'");
+  CHECK_NOTHROW(read_text(tri)); // (the same vertices are a valid .node)
 }
 
 // ---------------------------------------------------------------------------
@@ -434,6 +700,265 @@ TEST_CASE("writers: formats, hull markers, numbering") {
     batch.commit();
     const PointSet back = read_node(dir.file("m.node"));
     CHECK(back.markers == std::vector<int>{1, 7, 1, -2, 0});
+  }
+}
+
+// The '# Generated by' command of a Triangle output file.
+std::string generated_by(const std::string &path) {
+  const std::string text = read_file(path);
+  const std::string mark = "# Generated by ";
+  const std::size_t at = text.rfind(mark);
+  REQUIRE(at != std::string::npos);
+  std::string command = text.substr(at + mark.size());
+  while (!command.empty() && (command.back() == '\n' || command.back() == '\r'))
+    command.pop_back();
+  return command;
+}
+
+TEST_CASE("-p writers reproduce Triangle's reference output byte for byte") {
+  const fs::path inputs = kExamples / "inputs", references = kExamples / "reference-outputs";
+  SUBCASE("from the input .poly, the segments and triangles of Triangle's mesh") {
+    // The segments in Triangle's order, with the input markers: the writers
+    // give them and the vertices Triangle's -p markers.
+    for (const char *name : {"A", "box", "face", "double_hex"}) {
+      CAPTURE(name);
+      const PolyFile input = read_poly((inputs / (std::string(name) + ".poly")).string());
+      const std::string reference = (references / (std::string(name) + ".1")).string();
+      const PolyFile output = read_poly(reference + ".poly");
+      std::map<std::pair<int32_t, int32_t>, int> input_marker;
+      for (const Segment &segment : input.segments)
+        input_marker.emplace(ends_of(segment), segment.marker);
+      std::vector<Segment> segments = output.segments;
+      for (Segment &segment : segments) {
+        auto found = input_marker.find(ends_of(segment));
+        segment.marker = found != input_marker.end() ? found->second : 1; // -c: hull edge, 1
+      }
+      const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
+      const auto neighbors = neighbors_of(triangles);
+      MeshView mesh;
+      mesh.points = &input.points;
+      mesh.triangles = &triangles;
+      mesh.neighbors = &neighbors;
+      mesh.segments = &segments;
+      WriteOptions options;
+      options.first_index = input.points.first_index;
+      options.command_line = generated_by(reference + ".node");
+      TempDir dir;
+      OutputBatch batch;
+      batch.write_node(dir.file("out.node"), mesh, options);
+      batch.write_ele(dir.file("out.ele"), mesh, options);
+      batch.write_poly(dir.file("out.poly"), mesh, input.holes, input.regions, options);
+      batch.commit();
+      CHECK(read_file(dir.file("out.node")) == read_file(reference + ".node"));
+      CHECK(read_file(dir.file("out.ele")) == read_file(reference + ".ele"));
+      CHECK(read_file(dir.file("out.poly")) == read_file(reference + ".poly"));
+    }
+  }
+  SUBCASE("rewriting Triangle's outputs gives them back (regions included)") {
+    for (const char *name : {"A", "box", "face", "double_hex", "la"}) {
+      CAPTURE(name);
+      const std::string reference = (references / (std::string(name) + ".1")).string();
+      const PolyFile output = read_poly(reference + ".poly");
+      const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
+      const auto neighbors = neighbors_of(triangles);
+      MeshView mesh;
+      mesh.points = &output.points;
+      mesh.triangles = &triangles;
+      mesh.neighbors = &neighbors;
+      mesh.segments = &output.segments;
+      WriteOptions options;
+      options.command_line = generated_by(reference + ".poly");
+      TempDir dir;
+      OutputBatch batch;
+      batch.write_node(dir.file("out.node"), mesh, options);
+      batch.write_poly(dir.file("out.poly"), mesh, output.holes, output.regions, options);
+      batch.commit();
+      CHECK(read_file(dir.file("out.node")) == read_file(reference + ".node"));
+      CHECK(read_file(dir.file("out.poly")) == read_file(reference + ".poly"));
+    }
+  }
+}
+
+TEST_CASE("-p writers: markers, -B, -A, -j, eaten segments") {
+  // A square 0-1-2-3 with a centre vertex 4 and a vertex 5 in an eaten corner
+  // region outside the mesh; triangles fan around 4.
+  PointSet set;
+  set.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1}, {3, 3}};
+  set.has_markers = true;
+  set.markers = {0, 0, 0, 9, 0, 0};
+  const std::vector<Triangle> triangles = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const auto neighbors = neighbors_of(triangles);
+  // Segments: bottom (marker 0: on the boundary, becomes 1), right (5), top
+  // (0, becomes 1), left (0), an interior one 0-4 with marker 0 and one 2-4
+  // with marker 6, and one 2-5 that is no edge of the mesh (eaten).
+  const std::vector<Segment> segments = {{0, 1, 0}, {1, 2, 5}, {2, 3, 0}, {3, 0, 0},
+                                         {0, 4, 0}, {4, 2, 6}, {2, 5, 4}};
+  const std::vector<double> attributes = {1.5, 2, -3, 0.1};
+  MeshView mesh;
+  mesh.points = &set;
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+  mesh.segments = &segments;
+
+  // Vertex 1: first non-zero segment marker (5); 2: 5 (segment 1-2 comes
+  // first); 3: its own 9; 0: boundary, 1; 4: interior, from segment 4-2: 6;
+  // 5: from the eaten segment 2-5, as Triangle marks before carving.
+  CHECK(output_vertex_markers(mesh) == std::vector<int>{1, 5, 5, 9, 6, 4});
+
+  const std::vector<Edge> edges = mesh_edges(triangles, neighbors, segments);
+  REQUIRE(edges.size() == 8);
+  std::map<std::pair<int32_t, int32_t>, int> marker;
+  for (const Edge &edge : edges)
+    marker[{std::min(edge.a, edge.b), std::max(edge.a, edge.b)}] = edge.marker;
+  CHECK(marker[{0, 1}] == 1); // segment with marker 0 on the boundary
+  CHECK(marker[{1, 2}] == 5);
+  CHECK(marker[{2, 3}] == 1);
+  CHECK(marker[{0, 3}] == 1);
+  CHECK(marker[{0, 4}] == 0); // interior segment with marker 0
+  CHECK(marker[{2, 4}] == 6);
+  CHECK(marker[{1, 4}] == 0); // interior, no segment
+  CHECK(marker[{3, 4}] == 0);
+  {
+    // Without segments in the list, boundary edges get 1.
+    const std::vector<Edge> plain = mesh_edges(triangles, neighbors, {});
+    for (std::size_t e = 0; e < plain.size(); ++e)
+      CHECK(plain[e].marker == mesh_edges(triangles, neighbors)[e].marker);
+  }
+
+  SUBCASE("the .poly leaves out segments that are no edge of the mesh") {
+    TempDir dir;
+    OutputBatch batch;
+    WriteOptions options;
+    options.command_line = "clmesh -p square";
+    batch.write_poly(dir.file("s.poly"), mesh, {{2.5, 2.5}}, {{{1, 0.5}, 4, -1}}, options);
+    batch.commit();
+    const auto lines = lines_of(read_file(dir.file("s.poly")));
+    REQUIRE(lines.size() == 13);
+    CHECK(lines[0] == "0  2  0  1");
+    CHECK(lines[1] == "6  1");
+    CHECK(lines[2] == "   1       1     2       1");
+    CHECK(lines[3] == "   2       2     3       5");
+    CHECK(lines[6] == "   5       1     5       0");
+    CHECK(lines[7] == "   6       5     3       6");
+    CHECK(lines[8] == "1");
+    CHECK(lines[9] == "   1   2.5  2.5");
+    CHECK(lines[10] == "1");
+    CHECK(lines[11] == "   1   1  0.5  4  -1");
+    CHECK(lines[12] == "# Generated by clmesh -p square");
+  }
+  SUBCASE("-B: no marker column anywhere") {
+    TempDir dir;
+    OutputBatch batch;
+    WriteOptions options;
+    options.boundary_markers = false;
+    options.first_index = 0;
+    batch.write_node(dir.file("b.node"), mesh, options);
+    batch.write_edge(dir.file("b.edge"), mesh, options);
+    batch.write_poly(dir.file("b.poly"), mesh, {}, {}, options);
+    batch.commit();
+    const auto node = lines_of(read_file(dir.file("b.node")));
+    CHECK(node[0] == "6  2  0  0");
+    CHECK(node[1] == "   0    0  0");
+    const PointSet back = read_node(dir.file("b.node"));
+    CHECK_FALSE(back.has_markers);
+    const auto edge = lines_of(read_file(dir.file("b.edge")));
+    CHECK(edge[0] == "8  0");
+    CHECK(edge[1] == "   0   1  4");
+    const auto poly = lines_of(read_file(dir.file("b.poly")));
+    CHECK(poly[0] == "0  2  0  0");
+    CHECK(poly[1] == "6  0");
+    CHECK(poly[2] == "   0       0     1");
+    CHECK(poly[8] == "0");
+    CHECK(poly.size() == 9);
+  }
+  SUBCASE("-A: an attribute column in .ele") {
+    MeshView with = mesh;
+    with.triangle_attributes = &attributes;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_ele(dir.file("a.ele"), with, WriteOptions{});
+    const std::vector<double> short_list = {1};
+    MeshView wrong = mesh;
+    wrong.triangle_attributes = &short_list;
+    CHECK_THROWS_AS(batch.write_ele(dir.file("w.ele"), wrong, WriteOptions{}), InternalError);
+    batch.commit();
+    const auto ele = lines_of(read_file(dir.file("a.ele")));
+    REQUIRE(ele.size() == 5);
+    CHECK(ele[0] == "4  3  1");
+    CHECK(ele[1] == "   1       1     2     5  1.5");
+    CHECK(ele[3] == "   3       3     4     5  -3");
+    CHECK(ele[4] == "   4       4     1     5  0.10000000000000001");
+  }
+  SUBCASE("-j also drops the vertices in no triangle") {
+    WriteOptions jettison;
+    jettison.jettison_duplicates = true;
+    CHECK(output_vertex_numbers(mesh, jettison) == std::vector<int32_t>{0, 1, 2, 3, 4, -1});
+    MeshView without = mesh;
+    without.segments = nullptr; // without -p, only duplicates go
+    CHECK(output_vertex_numbers(without, jettison) == std::vector<int32_t>{0, 1, 2, 3, 4, 5});
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("j.node"), mesh, jettison);
+    batch.write_poly(dir.file("j.poly"), mesh, {}, {}, jettison);
+    batch.commit();
+    CHECK(read_node(dir.file("j.node")).points.size() == 5);
+    CHECK(read_poly(dir.file("j.poly")).segments.size() == 6);
+  }
+  SUBCASE("write_poly needs the segments") {
+    MeshView without = mesh;
+    without.segments = nullptr;
+    OutputBatch batch;
+    TempDir dir;
+    CHECK_THROWS_AS(batch.write_poly(dir.file("x.poly"), without, {}, {}, WriteOptions{}),
+                    InternalError);
+  }
+}
+
+TEST_CASE("write_poly and write_node, then read_poly, give the same PSLG") {
+  const PolyFile input = read_poly((kExamples / "inputs" / "double_hex2.poly").string()); // 2 holes
+  // A fan of triangles through every segment is not needed: give each segment
+  // a triangle of its own so that it is an edge of the "mesh".
+  std::vector<Triangle> triangles;
+  PointSet points = input.points;
+  for (const Segment &segment : input.segments) {
+    points.points.push_back({0, 0});
+    points.markers.push_back(0);
+    triangles.push_back({segment.a, segment.b, static_cast<int32_t>(points.points.size() - 1)});
+  }
+  const auto neighbors = neighbors_of(triangles);
+  const std::vector<Region> regions = {{{0.5, 0.5}, 2.5, 0.01}, {{0.9, 0.1}, -1, -1}};
+  MeshView mesh;
+  mesh.points = &points;
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+  mesh.segments = &input.segments;
+  for (int first : {0, 1}) {
+    CAPTURE(first);
+    WriteOptions options;
+    options.first_index = first;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_node(dir.file("rt.node"), mesh, options);
+    batch.write_poly(dir.file("rt.poly"), mesh, input.holes, regions, options);
+    batch.commit();
+    const PolyFile back = read_poly(dir.file("rt.poly"));
+    CHECK(back.node_path == dir.file("rt.node"));
+    CHECK(back.points.first_index == first);
+    CHECK(back.points.points.size() == points.points.size());
+    REQUIRE(back.segments.size() == input.segments.size());
+    for (std::size_t i = 0; i < back.segments.size(); ++i) {
+      CHECK(back.segments[i].a == input.segments[i].a);
+      CHECK(back.segments[i].b == input.segments[i].b);
+      CHECK(back.segments[i].marker == input.segments[i].marker); // all non-zero
+    }
+    REQUIRE(back.holes.size() == 2);
+    CHECK(back.holes[1].x == input.holes[1].x);
+    CHECK(back.holes[1].y == input.holes[1].y);
+    REQUIRE(back.regions.size() == 2);
+    CHECK(back.regions[0].seed.x == 0.5);
+    CHECK(back.regions[0].attribute == 2.5);
+    CHECK(back.regions[0].max_area == 0.01);
+    CHECK(back.regions[1].max_area == -1);
   }
 }
 
@@ -596,6 +1121,23 @@ TEST_CASE("mesh_svg draws the triangles and, when few, the points") {
   const std::string flat = mesh_svg({{1, 1}, {1, 1}, {1, 1}}, {});
   CHECK(flat.find("viewBox=\"0 0 0 0\"") == std::string::npos);
   CHECK(mesh_svg({}, {}).find("</svg>") != std::string::npos);
+}
+
+TEST_CASE("mesh_svg draws the segments over the triangles") {
+  const std::vector<Point> points = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}};
+  const std::vector<Segment> segments = {{0, 1, 1}, {2, 0, 0}, {3, 9, 0}}; // the last is invalid
+  const std::string svg = mesh_svg(points, triangles, &segments);
+  const std::size_t mesh_path = svg.find("<path");
+  const std::size_t segment_path = svg.find("<path", mesh_path + 1);
+  REQUIRE(segment_path != std::string::npos);
+  const std::string segment_part =
+      svg.substr(segment_path, svg.find("/>", segment_path) - segment_path);
+  CHECK(segment_part.find("stroke-width=\"2\"") != std::string::npos);
+  CHECK(std::count(segment_part.begin(), segment_part.end(), 'M') == 2);
+  CHECK(mesh_svg(points, triangles, nullptr) == mesh_svg(points, triangles));
+  const std::vector<Segment> none;
+  CHECK(mesh_svg(points, triangles, &none) == mesh_svg(points, triangles));
 }
 
 TEST_CASE("voronoi_pgm writes a binary grey map") {

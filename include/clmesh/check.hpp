@@ -4,6 +4,7 @@
 #include "clmesh/geometry.hpp"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,29 @@ CheckReport check_triangulation(const std::vector<Point> &points,
                                 const std::vector<std::array<int32_t, 3>> &neighbors,
                                 const std::vector<int32_t> &duplicate_of,
                                 bool check_delaunay = true);
+
+struct Segment; // clmesh/constrained.hpp
+
+// Checks a constrained Delaunay triangulation of the points and segments (input indices, as in
+// a Pslg; segment endpoints are mapped through duplicate_of, zero-length and repeated segments
+// are ignored, endpoints out of range are reported) with exact predicates:
+//  - whole_hull (the mesh covers the whole convex hull, -c without holes): the topology,
+//    hull and vertex checks of check_triangulation (without its Delaunay test), and every
+//    segment present as one mesh edge or a chain of collinear mesh edges through the vertices
+//    lying on it;
+//  - otherwise (exterior or holes eaten): every triangle valid and counter-clockwise, each edge
+//    in at most two triangles with opposite directions, neighbour links symmetric, the fan of
+//    triangles around every vertex turning at most once, and every boundary edge of the mesh
+//    part of a segment.  (Local checks: two pieces overlapping without sharing a vertex are not
+//    detected; checking that the mesh is a subset of the whole-hull mesh closes that gap.)
+// In both modes every edge between two triangles that is not part of a segment must be
+// locally Delaunay with the symbolically perturbed in-circle test (clm_incircle_sos, the rule
+// of check_triangulation and of CGAL), so the constrained Delaunay triangulation accepted is
+// unique even for cocircular points.
+CheckReport check_constrained(const std::vector<Point> &points,
+                              const std::vector<Triangle> &triangles,
+                              const std::vector<std::array<int32_t, 3>> &neighbors,
+                              const std::vector<int32_t> &duplicate_of,
+                              const std::vector<Segment> &segments, bool whole_hull);
 
 } // namespace clmesh

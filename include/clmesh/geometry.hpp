@@ -17,11 +17,11 @@ using Triangle = std::array<int32_t, 3>;
 // Vertices as read from a Triangle .node file (or the node section of a .poly).
 struct PointSet {
   std::vector<Point> points;
-  int attribute_count = 0;          // attributes per point
-  std::vector<double> attributes;   // points.size() * attribute_count, row-major
+  int attribute_count = 0;        // attributes per point
+  std::vector<double> attributes; // points.size() * attribute_count, row-major
   bool has_markers = false;
-  std::vector<int> markers;         // points.size() when has_markers
-  int first_index = 0;              // 0 or 1: numbering used by the input file
+  std::vector<int> markers; // points.size() when has_markers
+  int first_index = 0;      // 0 or 1: numbering used by the input file
 };
 
 } // namespace clmesh

@@ -73,7 +73,7 @@ expect "dimension 3" 1 "dim3.node:1:" "dimension" -- dim3.node
 expect "unknown switch" 2 "-x" "-z" -- -zx good.node
 expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
 expect "unsupported Triangle switch" 2 "-q" "not supported" -- -q good.node
-expect "unsupported .poly input" 2 "not supported" -- good.poly
+expect "missing .poly input" 1 "good.poly" -- good.poly
 expect "missing option value" 2 "--grid" -- good.node --grid
 expect "bad option value" 2 "--work-group" -- --work-group zero good.node
 expect "two input files" 2 "good.node" -- good.node header.node

@@ -1,0 +1,216 @@
+#include "constraint_insertion.hpp"
+
+#include <algorithm>
+#include <set>
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "constraint_marking.cl";
+constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
+} // namespace
+
+ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      resolve_duplicates_(device.kernel(kFile, "resolve_duplicate_endpoints", kPhase)),
+      record_vertex_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
+      mark_(device.kernel(kFile, "mark_constraint_triangles", kPhase)),
+      plan_(device.kernel(kFile, "plan_constraint_flips", kPhase)),
+      apply_(device.kernel(kFile, "apply_constraint_flips", kPhase)),
+      relink_(device.kernel(kFile, "relink_constraint_flips", kPhase)),
+      remark_(device.kernel(kFile, "remark_after_flips", kPhase)),
+      keep_marked_(device.kernel(kFile, "keep_marked", kPhase)),
+      flag_marked_(device.kernel(kFile, "flag_marked", kPhase)), counters_(device, 5),
+      constraint_mark_(device, mesh.triangle_capacity), active_(device, mesh.triangle_capacity),
+      next_active_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
+      offset_(device, mesh.triangle_capacity), plan_list_(device, mesh.triangle_capacity),
+      next_(device, mesh.triangle_capacity), previous_(device, mesh.triangle_capacity),
+      flipped_(device, mesh.triangle_capacity), flip_count_(device, 1) {}
+
+std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<Segment> &segments) {
+  const std::size_t m = segments.size();
+  if (m == 0)
+    return {};
+  std::vector<cl_int> a(m), b(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    a[i] = segments[i].a;
+    b[i] = segments[i].b;
+  }
+  DeviceArray<cl_int> device_a(device_, m), device_b(device_, m);
+  device_a.upload(device_, a);
+  device_b.upload(device_, b);
+  set_args(resolve_duplicates_, mesh_.duplicate_of.buffer(), device_a.buffer(), device_b.buffer(),
+           static_cast<cl_int>(m));
+  launch(device_, resolve_duplicates_, m, kPhase);
+  a = device_a.download(device_, m);
+  b = device_b.download(device_, m);
+  std::vector<Segment> resolved(segments);
+  for (std::size_t i = 0; i < m; ++i) {
+    resolved[i].a = a[i];
+    resolved[i].b = b[i];
+  }
+  return resolved;
+}
+
+void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
+  // Overlapping collinear segments split at each other's vertices repeat pieces.
+  std::set<std::pair<int32_t, int32_t>> seen;
+  std::vector<Segment> segments;
+  std::vector<int32_t> origin;
+  const bool first = origin_.empty();
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (seen.insert(std::minmax(pieces[i].a, pieces[i].b)).second) {
+      segments.push_back(pieces[i]);
+      origin.push_back(first ? static_cast<int32_t>(i) : origin_[i]);
+    }
+  if (first)
+    split_origin_.assign(pieces.size(), 0);
+  segments_ = segments;
+  origin_ = origin;
+  const std::size_t n = mesh_.point_capacity, m = segments.size();
+  std::vector<cl_int> start(n + 1, 0), adjacent(2 * m), a(m), b(m);
+  for (const Segment &s : segments) {
+    ++start[s.a + 1];
+    ++start[s.b + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  std::vector<cl_int> cursor(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < m; ++i) {
+    adjacent[cursor[segments[i].a]++] = segments[i].b;
+    adjacent[cursor[segments[i].b]++] = segments[i].a;
+    a[i] = segments[i].a;
+    b[i] = segments[i].b;
+  }
+  mesh_.constraint_start.upload(device_, start);
+  mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
+  mesh_.constraint_adjacent.upload(device_, adjacent);
+  segment_a_ = DeviceArray<cl_int>(device_, m);
+  segment_b_ = DeviceArray<cl_int>(device_, m);
+  segment_state_ = DeviceArray<cl_int>(device_, m);
+  split_vertex_ = DeviceArray<cl_int>(device_, m);
+  segment_a_.upload(device_, a);
+  segment_b_.upload(device_, b);
+  segment_state_.fill(device_, 0, m);
+}
+
+long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
+                               const std::vector<int32_t> &original_id) {
+  const std::size_t slots = mesh_.triangle_count, m = segments_.size();
+  set_args(record_vertex_triangles_, mesh_.tri_vertex.buffer(), mesh_.vertex_triangle.buffer(),
+           static_cast<cl_int>(slots));
+  launch(device_, record_vertex_triangles_, slots, kPhase);
+  constraint_mark_.fill(device_, 0x7fffffff, slots);
+  counters_.fill(device_, 0, 5);
+  set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
+           mesh_.constraint_adjacent.buffer(), segment_a_.buffer(), segment_b_.buffer(),
+           segment_state_.buffer(), split_vertex_.buffer(), constraint_mark_.buffer(),
+           counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
+  launch(device_, mark_, m, kPhase);
+  const auto counters = counters_.download(device_, 3);
+  if (first)
+    stats.intersections = counters[1];
+  if (counters[2] == 0)
+    return counters[0];
+  // Splits and crossings are rare: only then is the segment state read back.
+  const auto state = segment_state_.download(device_, m);
+  const auto vertex = split_vertex_.download(device_, m);
+  std::vector<Segment> pieces;
+  std::vector<int32_t> origin; // input segment of each piece
+  for (std::size_t i = 0; i < m; ++i) {
+    const Segment &s = segments_[i];
+    if (state[i] == kCrossing)
+      throw InputError(
+          "segment " + std::to_string(original_id[s.a]) + "-" + std::to_string(original_id[s.b]), 0,
+          "crosses another segment near vertex " + std::to_string(original_id[vertex[i]]) +
+              " (crossing segments are not supported yet)");
+    if (state[i] == kSplit) {
+      pieces.push_back({s.a, vertex[i], s.marker});
+      pieces.push_back({vertex[i], s.b, s.marker});
+      origin.insert(origin.end(), 2, origin_[i]);
+      if (!split_origin_[origin_[i]]) {
+        split_origin_[origin_[i]] = 1;
+        ++stats.split_segments;
+      }
+    } else if (state[i] != 0 && state[i] != kPresent) {
+      throw InternalError("constraint marking: a walk along a segment did not end");
+    } else {
+      pieces.push_back(s);
+      origin.push_back(origin_[i]);
+    }
+  }
+  origin_ = origin;
+  set_constraints(pieces);
+  return -1;
+}
+
+std::size_t ConstraintInsertion::collect_marked() {
+  const std::size_t slots = mesh_.triangle_count;
+  set_args(flag_marked_, constraint_mark_.buffer(), keep_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, flag_marked_, slots, kPhase);
+  return static_cast<std::size_t>(scan_.compact_indices(keep_, offset_, active_, slots, kPhase));
+}
+
+long ConstraintInsertion::inner_iteration(std::size_t &active, int stamp) {
+  const auto n = static_cast<cl_int>(active);
+  flip_count_.fill(device_, 0, 1);
+  set_args(plan_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
+           segment_b_.buffer(), mesh_.tri_mark.buffer(), plan_list_.buffer(), next_.buffer(),
+           previous_.buffer(), n);
+  launch(device_, plan_, active, kPhase);
+  set_args(apply_, active_.buffer(), plan_list_.buffer(), next_.buffer(), previous_.buffer(),
+           mesh_.tri_mark.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), flipped_.buffer(),
+           flip_count_.buffer(), static_cast<cl_int>(stamp), n);
+  launch(device_, apply_, active, kPhase);
+  set_args(relink_, active_.buffer(), next_.buffer(), flipped_.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
+           static_cast<cl_int>(stamp), n);
+  launch(device_, relink_, active, kPhase);
+  set_args(remark_, active_.buffer(), plan_list_.buffer(), next_.buffer(), previous_.buffer(),
+           flipped_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           constraint_mark_.buffer(), mesh_.tri_mark.buffer(), segment_a_.buffer(),
+           segment_b_.buffer(), n);
+  launch(device_, remark_, active, kPhase);
+  set_args(keep_marked_, active_.buffer(), constraint_mark_.buffer(), keep_.buffer(), n);
+  launch(device_, keep_marked_, active, kPhase);
+  active = static_cast<std::size_t>(
+      scan_.compact(active_, keep_, offset_, next_active_, active, kPhase));
+  std::swap(active_, next_active_);
+  return flip_count_.read(device_, 0);
+}
+
+void ConstraintInsertion::run(int &stamp, ConstrainedStats &stats,
+                              const std::vector<int32_t> &original_id) {
+  bool first = true;
+  // Each outer iteration either inserts a segment, splits one, or flips; the
+  // bound only turns a bug into an error instead of a hang.
+  const long max_outer = 64 + 4 * static_cast<long>(segments_.size() + mesh_.triangle_count);
+  for (long outer = 0; outer < max_outer; ++outer) {
+    const long pending = mark(stats, first, original_id);
+    first = false;
+    if (pending < 0)
+      continue; // segments were split: mark again
+    if (pending == 0)
+      return;
+    ++stats.outer_iterations;
+    std::size_t active = collect_marked();
+    long flips = 0;
+    for (int inner = 0; inner < kInnerIterations && active > 0; ++inner) {
+      const long made = inner_iteration(active, stamp++);
+      ++stats.inner_iterations;
+      flips += made;
+      if (made == 0)
+        break;
+    }
+    stats.constraint_flips += flips;
+    if (flips == 0)
+      throw InternalError("constraint insertion made no progress");
+  }
+  throw InternalError("constraint insertion did not finish");
+}
+
+} // namespace clmesh

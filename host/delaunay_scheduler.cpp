@@ -1,0 +1,348 @@
+// clmesh — the GPU-DT scheduler (thesis §4.1.2): runs the phases on one
+// device, keeping the mesh resident from the upload of the points to the
+// download of the triangles; between kernels only small counters come back.
+#include "delaunay_scheduler.hpp"
+
+#include "predicates.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+namespace clmesh {
+
+namespace {
+
+void check_coordinates(const std::vector<Point> &points) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (const double value : {points[i].x, points[i].y}) {
+      const double magnitude = std::fabs(value);
+      if (!std::isfinite(value) || magnitude > kMaxCoordinate ||
+          (value != 0 && magnitude < kMinCoordinate))
+        throw InputError("point " + std::to_string(i), 0,
+                         "coordinate " + std::to_string(value) +
+                             " is outside what exact arithmetic carries (non-zero magnitudes "
+                             "from 1e-50 to 1e50)");
+    }
+}
+
+bool lexicographically_less(const Point &a, const Point &b) {
+  return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+int orient(const Point &a, const Point &b, const Point &c) {
+  return clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+}
+
+// Duplicates of a point set with no triangle (all points collinear).
+std::vector<int32_t> duplicates_on_host(const std::vector<Point> &points) {
+  std::vector<int32_t> order(points.size()), duplicate_of(points.size(), -1);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return lexicographically_less(points[a], points[b]);
+  });
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const Point &p = points[order[i]], &q = points[order[i - 1]];
+    if (p.x == q.x && p.y == q.y)
+      duplicate_of[order[i]] =
+          duplicate_of[order[i - 1]] >= 0 ? duplicate_of[order[i - 1]] : order[i - 1];
+  }
+  return duplicate_of;
+}
+
+// Position along a Hilbert curve of a point quantized to a 2^16 x 2^16 grid.
+uint32_t hilbert_index(uint32_t x, uint32_t y) {
+  uint32_t d = 0;
+  for (uint32_t s = 1u << 15; s > 0; s >>= 1) {
+    const uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += s * s * ((3 * rx) ^ ry);
+    if (ry == 0) { // rotate the quadrant
+      if (rx == 1) {
+        x = s - 1 - (x & (s - 1)) + (x & ~(s - 1));
+        y = s - 1 - (y & (s - 1)) + (y & ~(s - 1));
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+// Input indices sorted along a Hilbert curve (stable, so ties keep input order).
+std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
+  double min_x = points[0].x, max_x = min_x, min_y = points[0].y, max_y = min_y;
+  for (const Point &p : points) {
+    min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
+    min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
+  }
+  const double span = std::max(max_x - min_x, max_y - min_y);
+  const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
+  std::vector<uint32_t> key(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - min_x) * scale));
+    const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - min_y) * scale));
+    key[i] = hilbert_index(qx, qy);
+  }
+  // Two stable counting-sort passes of 16 bits each.
+  std::vector<int32_t> order(points.size()), buffer(points.size());
+  std::iota(order.begin(), order.end(), 0);
+  for (int shift = 0; shift < 32; shift += 16) {
+    std::vector<std::size_t> start(65537, 0);
+    for (const int32_t i : order)
+      ++start[((key[i] >> shift) & 0xffff) + 1];
+    for (std::size_t b = 1; b < start.size(); ++b)
+      start[b] += start[b - 1];
+    for (const int32_t i : order)
+      buffer[start[(key[i] >> shift) & 0xffff]++] = i;
+    order.swap(buffer);
+  }
+  return order;
+}
+
+// Vertices of the convex hull, counter-clockwise, without collinear points
+// (Andrew's monotone chain with the exact orientation predicate).
+// Points strictly inside the quadrilateral of the four extreme points are
+// dropped first (Akl-Toussaint), which leaves few points to sort.
+std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
+  std::array<int32_t, 4> extreme{0, 0, 0, 0}; // min x, min y, max x, max y
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i) {
+    const Point &p = points[i];
+    if (p.x < points[extreme[0]].x)
+      extreme[0] = i;
+    if (p.y < points[extreme[1]].y)
+      extreme[1] = i;
+    if (p.x > points[extreme[2]].x)
+      extreme[2] = i;
+    if (p.y > points[extreme[3]].y)
+      extreme[3] = i;
+  }
+  std::vector<int32_t> order;
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i) {
+    bool inside = true;
+    for (int k = 0; k < 4 && inside; ++k)
+      inside = orient(points[extreme[k]], points[extreme[(k + 1) % 4]], points[i]) > 0;
+    if (!inside)
+      order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return lexicographically_less(points[a], points[b]) ||
+           (!lexicographically_less(points[b], points[a]) && a < b);
+  });
+  std::vector<int32_t> hull(2 * order.size() + 1);
+  std::size_t k = 0;
+  auto push = [&](int32_t v, std::size_t floor) {
+    while (k >= floor + 2 && orient(points[hull[k - 2]], points[hull[k - 1]], points[v]) <= 0)
+      --k;
+    hull[k++] = v;
+  };
+  for (const int32_t v : order)
+    push(v, 0);
+  const std::size_t lower = k - 1;
+  for (auto it = order.rbegin() + 1; it != order.rend(); ++it)
+    push(*it, lower);
+  hull.resize(k > 1 ? k - 1 : k);
+  return hull;
+}
+
+// The hull polygon fanned from its first vertex, closed by one ghost triangle
+// per hull edge; links are (triangle << 2) | edge.
+struct HullFan {
+  std::vector<cl_int> vertices, neighbors;
+};
+
+HullFan hull_fan(const std::vector<int32_t> &hull) {
+  const int h = static_cast<int>(hull.size()), real = h - 2;
+  HullFan fan;
+  fan.vertices.resize(3 * (real + h));
+  fan.neighbors.resize(3 * (real + h));
+  auto set = [&](int t, int i, int vertex, int neighbor, int neighbor_edge) {
+    fan.vertices[3 * t + i] = vertex;
+    fan.neighbors[3 * t + i] = (neighbor << 2) | neighbor_edge;
+  };
+  // Ghost g (slot real + g) stands on hull edge hull[g] -> hull[g+1]:
+  // vertices (hull[g+1], hull[g], infinite).
+  auto ghost = [&](int g) { return real + (g % h); };
+  // Real triangle k (1 <= k+1 < h-1) = (hull[0], hull[k+1], hull[k+2]).
+  for (int k = 0; k < real; ++k) {
+    // Opposite hull[0]: edge hull[k+1] -> hull[k+2] is hull edge k+1.
+    set(k, 0, hull[0], ghost(k + 1), 2);
+    // Opposite hull[k+1]: edge hull[k+2] -> hull[0]: next fan triangle or hull edge h-1.
+    if (k + 1 < real)
+      set(k, 1, hull[k + 1], k + 1, 2);
+    else
+      set(k, 1, hull[k + 1], ghost(h - 1), 2);
+    // Opposite hull[k+2]: edge hull[0] -> hull[k+1]: previous fan triangle or hull edge 0.
+    if (k > 0)
+      set(k, 2, hull[k + 2], k - 1, 1);
+    else
+      set(k, 2, hull[k + 2], ghost(0), 2);
+  }
+  for (int g = 0; g < h; ++g) {
+    const int t = ghost(g);
+    // Real triangle holding hull edge g: edge 0 of fan triangle g-1 for
+    // 1 <= g <= h-2, edge 2 of triangle 0 for g = 0, edge 1 of the last for g = h-1.
+    const int real_t = g == 0 ? 0 : (g == h - 1 ? real - 1 : g - 1);
+    const int real_e = g == 0 ? 2 : (g == h - 1 ? 1 : 0);
+    // (hull[g+1], hull[g], inf): opposite hull[g+1] is edge hull[g] -> inf,
+    // shared with the previous ghost's edge inf -> hull[g] (its edge 1).
+    set(t, 0, hull[(g + 1) % h], ghost(g + h - 1), 1);
+    // Opposite hull[g] is edge inf -> hull[g+1], shared with the next ghost's edge 0.
+    set(t, 1, hull[g], ghost(g + 1), 0);
+    set(t, 2, -1, real_t, real_e);
+  }
+  return fan;
+}
+
+} // namespace
+
+void PhaseTimer::charge(const std::string &name) {
+  device_.queue().finish();
+  const auto now = Clock::now();
+  const double seconds = std::chrono::duration<double>(now - last_).count();
+  last_ = now;
+  for (auto &phase : stats_.phases)
+    if (phase.name == name) {
+      phase.seconds += seconds;
+      return;
+    }
+  stats_.phases.push_back({name, seconds});
+}
+
+DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &points,
+                                     const DelaunayOptions &options, DelaunayStats &stats)
+    : device_(device), points_(points), options_(options), stats_(stats) {
+  if (points.size() < 3)
+    throw InputError("input", 0, "fewer than three points");
+  if (points.size() > (std::size_t{1} << 28))
+    throw InputError("input", 0, "more than 2^28 points");
+  check_coordinates(points);
+  if (options.work_group)
+    device.set_work_group(options.work_group);
+  stats.device = describe(device);
+  stats.input_points = static_cast<long>(points.size());
+  // Build every program before the clock starts.
+  for (const char *file : {"scan.cl", "voronoi_banding.cl", "missing_point_insertion.cl",
+                           "flipping.cl", "mesh_output.cl"})
+    device.program(file, "setup");
+  start_ = Clock::now();
+}
+
+DelaunayScheduler::~DelaunayScheduler() = default;
+
+bool DelaunayScheduler::triangulate() {
+  const std::vector<Point> &points = points_;
+  const std::size_t n = points.size();
+  const std::vector<int32_t> hull = convex_hull(points);
+  if (hull.size() < 3)
+    return false; // all points collinear: no triangle
+
+  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
+  mesh_ = std::make_unique<DeviceMesh>(device_, n);
+  scan_ = std::make_unique<PrefixScan>(device_);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, *scan_);
+  MissingPointInsertion insertion(device_, *mesh_, *scan_);
+  Device &device = device_;
+  DeviceMesh &mesh = *mesh_;
+
+  // Device points follow a Hilbert curve, so that neighbouring work-items
+  // touch neighbouring memory; the output goes back to the input numbering.
+  original_id_ = spatial_order(points);
+  const std::vector<int32_t> &original_id = original_id_;
+  device_id_.assign(n, 0);
+  std::vector<cl_double2> coordinates(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    device_id_[original_id[k]] = static_cast<int32_t>(k);
+    coordinates[k] = {{points[original_id[k]].x, points[original_id[k]].y}};
+  }
+  mesh.points.upload(device, coordinates);
+  mesh.original_id.upload(device, original_id);
+  std::vector<int32_t> device_hull(hull.size());
+  for (std::size_t i = 0; i < hull.size(); ++i)
+    device_hull[i] = device_id_[hull[i]];
+  const HullFan fan = hull_fan(device_hull);
+  mesh.tri_vertex.upload(device, fan.vertices);
+  mesh.tri_neighbor.upload(device, fan.neighbors);
+  mesh.triangle_count = fan.vertices.size() / 3;
+  mesh.tri_mark.fill(device, 0xffffffffu, mesh.triangle_capacity);
+  mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+  mesh.duplicate_of.fill(device, -1, n);
+  mesh.location.fill(device, 0, n);
+  mesh.constraint_start.fill(device, 0, n + 1);
+  std::vector<char> in_mesh(n, 0);
+  for (const int32_t v : device_hull)
+    in_mesh[v] = 1;
+  std::vector<cl_int> missing;
+  missing.reserve(n - hull.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (!in_mesh[i])
+      missing.push_back(static_cast<cl_int>(i));
+  insertion.set_points(missing);
+  stats_.missing_points = static_cast<long>(missing.size());
+  timer_->charge("upload");
+
+  // Phase 1. Phases 2 and 3 (triangulation construction from the digital
+  // Voronoi vertices, shifting) are not built yet, so the diagram serves the
+  // picture only and every point is placed by Phase 4: the run is skipped
+  // unless the picture is wanted.
+  if (options_.want_voronoi_image) {
+    stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::default_grid(n);
+    VoronoiBanding banding(device, mesh, *scan_);
+    const auto [low_x, high_x] = std::minmax_element(
+        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
+    const auto [low_y, high_y] = std::minmax_element(
+        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
+    const double span = std::max(high_x->x - low_x->x, high_y->y - low_y->y);
+    stats_.pixel_collisions =
+        static_cast<long>(banding.run(stats_.grid, {low_x->x, low_y->y}, span));
+    voronoi_ = banding.download_image();
+    timer_->charge(VoronoiBanding::kPhase);
+  }
+
+  // The fan is a triangulation, not yet a Delaunay one: flip it first.
+  flip_all(flips_);
+
+  // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so that
+  // the next round's walks run in a Delaunay triangulation.
+  while (insertion.pending() > 0) {
+    const std::size_t inserted = insertion.run_round(stamp_++);
+    ++stats_.insertion_rounds;
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (inserted == 0 && insertion.pending() > 0)
+      throw InternalError("missing-point insertion made no progress");
+    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    timer_->charge(Flipping::kPhase);
+  }
+  stats_.duplicates = static_cast<long>(insertion.duplicates());
+  stats_.flips = flips_.flips;
+  stats_.flip_passes = flips_.passes;
+  stats_.exact_predicate_calls = flips_.exact_checks;
+  return true;
+}
+
+void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {
+  std::vector<cl_int> every_triangle(mesh_->triangle_count);
+  std::iota(every_triangle.begin(), every_triangle.end(), 0);
+  DeviceArray<cl_int> active(device_, every_triangle.size());
+  active.upload(device_, every_triangle);
+  flipping_->run(active, every_triangle.size(), stamp_, counts);
+  timer_->charge(phase);
+}
+
+void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
+                                 const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
+  MeshOutput output(device_, *mesh_, *scan_);
+  output.download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  result.voronoi = std::move(voronoi_);
+  timer_->charge(MeshOutput::kPhase);
+  stats_.triangles = static_cast<long>(result.triangles.size());
+  stats_.compute_seconds = seconds_since(start_);
+}
+
+void DelaunayScheduler::download_collinear(DelaunayResult &result) {
+  result.duplicate_of = duplicates_on_host(points_);
+  stats_.duplicates = std::count_if(result.duplicate_of.begin(), result.duplicate_of.end(),
+                                    [](int32_t d) { return d >= 0; });
+  stats_.compute_seconds = seconds_since(start_);
+}
+
+} // namespace clmesh

@@ -1,0 +1,82 @@
+// clmesh — the GPU-DT scheduler: owns the device mesh and the phase objects,
+// runs Phases 1, 4 and 5, and hands the resident mesh to later phases (CDT).
+#pragma once
+
+#include "flipping.hpp"
+#include "mesh_output.hpp"
+#include "missing_point_insertion.hpp"
+#include "voronoi_banding.hpp"
+
+#include "clmesh/delaunay.hpp"
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace clmesh {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Charges wall time to named phases, waiting for the device at each boundary.
+class PhaseTimer {
+public:
+  PhaseTimer(Device &device, DelaunayStats &stats) : device_(device), stats_(stats) {}
+  void charge(const std::string &name);
+
+private:
+  Device &device_;
+  DelaunayStats &stats_;
+  Clock::time_point last_ = Clock::now();
+};
+
+class DelaunayScheduler {
+public:
+  // Checks the points and builds the programs; the compute clock starts here.
+  DelaunayScheduler(Device &device, const std::vector<Point> &points,
+                    const DelaunayOptions &options, DelaunayStats &stats);
+  ~DelaunayScheduler();
+
+  // Phases 1, 4, 5; false when all points are collinear (no triangle).
+  bool triangulate();
+  // Flips every triangle until locally (constrained) Delaunay.
+  void flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase);
+
+  // Downloads the real triangles not flagged in `removed` (per slot), with
+  // the per-slot `label` of each in `labels` when given.
+  void download(DelaunayResult &result, const DeviceArray<cl_int> *removed = nullptr,
+                const DeviceArray<cl_int> *label = nullptr, std::vector<int32_t> *labels = nullptr);
+  void download_collinear(DelaunayResult &result);
+
+  Device &device() { return device_; }
+  DeviceMesh &mesh() { return *mesh_; }
+  PrefixScan &scan() { return *scan_; }
+  Flipping &flipping() { return *flipping_; }
+  PhaseTimer &timer() { return *timer_; }
+  int &stamp() { return stamp_; }
+  DelaunayStats &stats() { return stats_; }
+  int32_t device_point(int32_t input_index) const { return device_id_[input_index]; }
+  const std::vector<int32_t> &original_ids() const { return original_id_; }
+
+private:
+  Device &device_;
+  const std::vector<Point> &points_;
+  DelaunayOptions options_;
+  DelaunayStats &stats_;
+  Clock::time_point start_;
+  std::unique_ptr<PhaseTimer> timer_;
+  std::unique_ptr<DeviceMesh> mesh_;
+  std::unique_ptr<PrefixScan> scan_;
+  std::unique_ptr<Flipping> flipping_;
+  std::vector<int32_t> device_id_;   // input index -> device point
+  std::vector<int32_t> original_id_; // device point -> input index
+  std::vector<int32_t> voronoi_;
+  FlipCounts flips_;
+  int stamp_ = 1;
+};
+
+} // namespace clmesh

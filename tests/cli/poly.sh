@@ -2,11 +2,11 @@
 # Triangle's -p workflow: .poly input (and .node beside it), bad .poly files,
 # the .1.node/.1.ele/.1.poly outputs against Triangle's reference outputs,
 # -c -O -A -B -j, --stats-json "constraints", --svg segments, -C.
-# Usage: poly.sh CLMESH_BINARY SOURCE_DIR
+# Usage: poly.sh CLMESH_BINARY SOURCE_DIR [TEST_DATA_DIR]
 set -euo pipefail
 bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
 source_dir="$(cd "$2" && pwd)"
-examples="$source_dir/../shared/data/triangle-examples"
+examples="${3:-$source_dir/../shared/data}/triangle-examples"
 inputs="$examples/inputs"
 references="$examples/reference-outputs"
 work="$(mktemp -d)"

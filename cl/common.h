@@ -145,6 +145,15 @@ inline uint priority_of(uint x) {
 // holding the reversed edge (thesis §3.3.2: neighbours updated in two steps).
 #define CLM_CHILDREN 3
 
+// Records that slot x was rewritten at `stamp` into the slots c0, c1, c2 (-1: none).
+inline void record_children(__global int *modified_stamp, __global int *children, int x, int stamp,
+                            int c0, int c1, int c2) {
+  modified_stamp[x] = stamp;
+  children[CLM_CHILDREN * x] = c0;
+  children[CLM_CHILDREN * x + 1] = c1;
+  children[CLM_CHILDREN * x + 2] = c2;
+}
+
 // Second step of every topological update: for edge `edge` of triangle t
 // (vertices p -> q), find the true neighbour across it and link both sides.
 inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighbor,
@@ -188,14 +197,8 @@ inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
   const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
   store_triangle(tri_vertex, tri_neighbor, t, a, d, c, encode_link(u, 0), t_opp_b, u_opp_b);
   store_triangle(tri_vertex, tri_neighbor, u, b, c, d, encode_link(t, 0), u_opp_a, t_opp_a);
-  modified_stamp[t] = stamp;
-  modified_stamp[u] = stamp;
-  children[CLM_CHILDREN * t] = t;
-  children[CLM_CHILDREN * t + 1] = u;
-  children[CLM_CHILDREN * t + 2] = -1;
-  children[CLM_CHILDREN * u] = u;
-  children[CLM_CHILDREN * u + 1] = t;
-  children[CLM_CHILDREN * u + 2] = -1;
+  record_children(modified_stamp, children, t, stamp, t, u, -1);
+  record_children(modified_stamp, children, u, stamp, u, t, -1);
 }
 
 // Is u-v a constraint? The constraints are stored per vertex (both

@@ -12,6 +12,20 @@ inline void claim(__global int *removed, __global int *frontier, volatile __glob
     frontier[atomic_inc(count)] = t;
 }
 
+// The real triangle across edge e of t, or -1 when that edge is a constraint,
+// the hull, or leads to a removed triangle: where a flood may go.
+inline int flood_neighbor(__global const int *tri_vertex, __global const int *tri_neighbor,
+                          __global const int *constraint_start,
+                          __global const int *constraint_adjacent, __global const int *removed,
+                          int t, int e) {
+  const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
+  const int u = link_triangle(tri_neighbor[3 * t + e]);
+  if (is_ghost(load_vertices(tri_vertex, u)) || removed[u] ||
+      is_constraint(constraint_start, constraint_adjacent, a, b))
+    return -1;
+  return u;
+}
+
 // Real triangles on the hull whose hull edge is not a constraint.
 __kernel void seed_from_hull(__global const int *tri_vertex, __global const int *tri_neighbor,
                              __global const int *constraint_start,
@@ -54,12 +68,10 @@ __kernel void spread_removal(__global const int *frontier, __global const int *t
     return;
   const int t = frontier[i];
   for (int e = 0; e < 3; ++e) {
-    const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
-    const int u = link_triangle(tri_neighbor[3 * t + e]);
-    if (is_ghost(load_vertices(tri_vertex, u)) ||
-        is_constraint(constraint_start, constraint_adjacent, a, b))
-      continue;
-    claim(removed, next_frontier, next_count, u);
+    const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
+                                 removed, t, e);
+    if (u >= 0)
+      claim(removed, next_frontier, next_count, u);
   }
 }
 
@@ -91,12 +103,9 @@ __kernel void spread_label(__global const int *frontier, __global const int *tri
     return;
   const int t = frontier[i];
   for (int e = 0; e < 3; ++e) {
-    const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
-    const int u = link_triangle(tri_neighbor[3 * t + e]);
-    if (is_ghost(load_vertices(tri_vertex, u)) || removed[u] ||
-        is_constraint(constraint_start, constraint_adjacent, a, b))
-      continue;
-    if (atomic_xchg(&label[u], region) != region)
+    const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
+                                 removed, t, e);
+    if (u >= 0 && atomic_xchg(&label[u], region) != region)
       next_frontier[atomic_inc(next_count)] = u;
   }
 }

@@ -112,10 +112,7 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
                    n0);
     store_triangle(tri_vertex, tri_neighbor, s2, c, a, p, encode_link(t, 1), encode_link(s1, 0),
                    n1);
-    modified_stamp[t] = stamp;
-    children[CLM_CHILDREN * t] = t;
-    children[CLM_CHILDREN * t + 1] = s1;
-    children[CLM_CHILDREN * t + 2] = s2;
+    record_children(modified_stamp, children, t, stamp, t, s1, s2);
     out[0] = t;
     out[1] = s1;
     out[2] = s2;
@@ -136,14 +133,8 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
                    u_opp_a);
     store_triangle(tri_vertex, tri_neighbor, s2, a, d, p, encode_link(u, 1), encode_link(t, 0),
                    u_opp_b);
-    modified_stamp[t] = stamp;
-    modified_stamp[u] = stamp;
-    children[CLM_CHILDREN * t] = t;
-    children[CLM_CHILDREN * t + 1] = s1;
-    children[CLM_CHILDREN * t + 2] = -1;
-    children[CLM_CHILDREN * u] = u;
-    children[CLM_CHILDREN * u + 1] = s2;
-    children[CLM_CHILDREN * u + 2] = -1;
+    record_children(modified_stamp, children, t, stamp, t, s1, -1);
+    record_children(modified_stamp, children, u, stamp, u, s2, -1);
     out[0] = t;
     out[1] = s1;
     out[2] = u;

@@ -21,6 +21,7 @@
 // Cost: O(n log n) (sorting of points and edges), a few seconds for a million triangles.
 #include "clmesh/check.hpp"
 
+#include "check_support.hpp"
 #include "predicates.h"
 
 #include <algorithm>
@@ -32,27 +33,9 @@ namespace clmesh {
 
 namespace {
 
+using namespace check_support;
+
 constexpr std::size_t kMaxProblems = 20;
-
-std::string point_text(const std::vector<Point> &points, int32_t i) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%" PRId32 " (%.17g, %.17g)", i, points[i].x, points[i].y);
-  return buf;
-}
-
-std::string triangle_text(const std::vector<Triangle> &triangles, std::size_t t) {
-  const Triangle &v = triangles[t];
-  return "triangle " + std::to_string(t) + " (" + std::to_string(v[0]) + ", " +
-         std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
-}
-
-bool lex_less(const Point &p, const Point &q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
-
-bool same_point(const Point &p, const Point &q) { return p.x == q.x && p.y == q.y; }
-
-int orient(const std::vector<Point> &pts, int32_t a, int32_t b, int32_t c) {
-  return clm_orient2d(pts[a].x, pts[a].y, pts[b].x, pts[b].y, pts[c].x, pts[c].y);
-}
 
 // Vertices of the convex hull of the given point indices, counter-clockwise, without
 // collinear points (Andrew's monotone chain with the exact orientation).  `ids` must be sorted

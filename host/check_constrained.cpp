@@ -21,6 +21,7 @@
 #include "clmesh/check.hpp"
 #include "clmesh/constrained.hpp"
 
+#include "check_support.hpp"
 #include "predicates.h"
 
 #include <algorithm>
@@ -32,23 +33,7 @@ namespace clmesh {
 
 namespace {
 
-std::string vertex_text(const std::vector<Point> &points, int32_t i) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "%" PRId32 " (%.17g, %.17g)", i, points[i].x, points[i].y);
-  return buf;
-}
-
-std::string triangle_text(const std::vector<Triangle> &triangles, std::size_t t) {
-  const Triangle &v = triangles[t];
-  return "triangle " + std::to_string(t) + " (" + std::to_string(v[0]) + ", " +
-         std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
-}
-
-bool lex_less(const Point &p, const Point &q) { return p.x < q.x || (p.x == q.x && p.y < q.y); }
-
-int orient(const std::vector<Point> &pts, int32_t a, int32_t b, int32_t c) {
-  return clm_orient2d(pts[a].x, pts[a].y, pts[b].x, pts[b].y, pts[c].x, pts[c].y);
-}
+using namespace check_support;
 
 uint64_t edge_key(int32_t a, int32_t b) {
   const uint32_t lo = static_cast<uint32_t>(std::min(a, b)),
@@ -234,7 +219,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
             break;
         }
         if (turns != (closed ? 1 : 0) && bad_fans++ < 5)
-          report.fail("the triangles around vertex " + vertex_text(points, v) + " turn " +
+          report.fail("the triangles around vertex " + point_text(points, v) + " turn " +
                       std::to_string(turns) + " times (" + (closed ? "closed" : "open") +
                       " fan): they overlap");
       }
@@ -288,9 +273,9 @@ CheckReport check_constrained(const std::vector<Point> &points,
       }
       if (whole_hull) {
         if (missing++ < 5)
-          report.fail("segment " + std::to_string(k) + " (" + vertex_text(points, ia) + ", " +
-                      vertex_text(points, ib) + ") is missing: no mesh edge along it from " +
-                      vertex_text(points, c));
+          report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
+                      point_text(points, ib) + ") is missing: no mesh edge along it from " +
+                      point_text(points, c));
         break;
       }
       // The segment leaves the mesh at c: go on at the next point lying on it.
@@ -347,7 +332,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
       if (clm_incircle_sos(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y, pd.x, pd.y) != -1 &&
           bad_delaunay++ < 5)
         report.fail("edge " + std::to_string(p) + "-" + std::to_string(q) +
-                    " is not a segment and not locally Delaunay: point " + vertex_text(points, d) +
+                    " is not a segment and not locally Delaunay: point " + point_text(points, d) +
                     " is inside the circumcircle of " + triangle_text(triangles, t));
     }
   }

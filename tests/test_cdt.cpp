@@ -16,6 +16,7 @@
 #include "clmesh/io.hpp"
 #include "mesh_fixtures.hpp"
 #include "predicates.h"
+#include "test_support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,17 +45,8 @@ namespace {
 
 using Edge = std::pair<int32_t, int32_t>; // (smaller, larger) vertex index
 
-clmesh::Device &device() {
-  static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
-  return *opened;
-}
-
-std::string problems(const clmesh::CheckReport &report) {
-  std::string text;
-  for (const auto &p : report.problems)
-    text += p + "\n";
-  return text;
-}
+using test_support::device;
+using test_support::problems;
 
 Edge edge(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
 

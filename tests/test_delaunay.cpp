@@ -9,6 +9,7 @@
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
 #include "mesh_fixtures.hpp"
+#include "test_support.hpp"
 
 #include <algorithm>
 #include <map>
@@ -26,17 +27,8 @@ using clmesh::Triangle;
 
 namespace {
 
-clmesh::Device &device() {
-  static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
-  return *opened;
-}
-
-std::string problems(const clmesh::CheckReport &report) {
-  std::string text;
-  for (const auto &p : report.problems)
-    text += p + "\n";
-  return text;
-}
+using test_support::device;
+using test_support::problems;
 
 #ifdef CLMESH_HAVE_CGAL
 // CGAL's triangles over input indices, each duplicate group named by its smallest index.

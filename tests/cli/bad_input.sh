@@ -3,17 +3,10 @@
 # naming the file (and line), and no file written.
 # Usage: bad_input.sh CLMESH_BINARY SOURCE_DIR
 set -euo pipefail
-bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-mkdir "$work/data" "$work/log"
+source "$(dirname "$0")/common.bash" "$@"
+mkdir "$work/data"
 cd "$work/data"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 
 printf '4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n4 1 1\n' > good.node
 printf '# header below is broken\nabc 2 0 0\n1 0 0\n2 1 0\n3 0 1\n' > header.node
@@ -23,43 +16,6 @@ printf '2 2 0 0\n1 0 0\n2 1 0\n' > two.node
 printf '5 2 0 0\n1 0 0\n2 1 0\n3 0 1\n' > short.node
 printf '3 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n' > dim3.node
 
-# expect WHAT STATUS WORDS... -- ARGS...: runs clmesh ARGS, wants exit STATUS,
-# a single stderr line starting with 'clmesh: ' and holding every WORD, and
-# the data directory unchanged.
-expect() {
-  local what="$1" want_status="$2"
-  shift 2
-  local words=()
-  while [[ "$1" != "--" ]]; do
-    words+=("$1")
-    shift
-  done
-  shift
-  local before after status=0
-  before="$(ls -A | sort)"
-  "$bin" "$@" > "$work/log/out" 2> "$work/log/err" || status=$?
-  after="$(ls -A | sort)"
-  local err
-  err="$(cat "$work/log/err")"
-  if [[ "$status" -ne "$want_status" ]]; then
-    fail "$what: exit status $status, wanted $want_status (stderr: $err)"
-  fi
-  if [[ "$(wc -l < "$work/log/err")" -ne 1 ]]; then
-    fail "$what: wanted exactly one line on stderr, got: $err"
-  fi
-  if [[ "$err" != "clmesh: "* ]]; then
-    fail "$what: message does not start with 'clmesh: ': $err"
-  fi
-  local word
-  for word in "${words[@]}"; do
-    if [[ "$err" != *"$word"* ]]; then
-      fail "$what: message lacks '$word': $err"
-    fi
-  done
-  if [[ "$before" != "$after" ]]; then
-    fail "$what: files changed in the directory: $(diff <(echo "$before") <(echo "$after") | tr '\n' ' ')"
-  fi
-}
 
 expect "missing file" 1 "missing.node" -- missing.node
 expect "missing file, no extension" 1 "missing.node" -- missing
@@ -79,8 +35,5 @@ expect "bad option value" 2 "--work-group" -- --work-group zero good.node
 expect "two input files" 2 "good.node" -- good.node header.node
 expect "no input file" 2 "input" -- -z
 
-if [[ "$failures" -ne 0 ]]; then
-  echo "bad_input.sh: $failures check(s) failed" >&2
-  exit 1
-fi
+finish bad_input.sh
 echo "bad_input.sh: all checks passed"

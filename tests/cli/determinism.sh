@@ -3,16 +3,9 @@
 # size: .node, .ele and .neigh must be byte-identical.
 # Usage: determinism.sh CLMESH_BINARY SOURCE_DIR
 set -euo pipefail
-bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.bash" "$@"
 cd "$work"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 
 python3 - <<'PY'
 import random
@@ -60,8 +53,5 @@ for input in random lattice; do
   done
 done
 
-if [[ "$failures" -ne 0 ]]; then
-  echo "determinism.sh: $failures check(s) failed" >&2
-  exit 1
-fi
+finish determinism.sh
 echo "determinism.sh: all checks passed"

@@ -3,16 +3,9 @@
 # --stats-json, --svg, --voronoi-image.
 # Usage: outputs.sh CLMESH_BINARY SOURCE_DIR
 set -euo pipefail
-bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/common.bash" "$@"
 cd "$work"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 # First line of a file (its header).
 header() { head -n 1 "$1" | tr -s ' ' | sed 's/ *$//'; }
 # want_header FILE "EXPECTED"
@@ -218,8 +211,5 @@ for word in -z -e -n -N -E -I -j -Q -V -C -h --device --list-devices --grid --wo
 done
 "$bin" --version | grep -q '^clmesh ' || fail "--version"
 
-if [[ "$failures" -ne 0 ]]; then
-  echo "outputs.sh: $failures check(s) failed" >&2
-  exit 1
-fi
+finish outputs.sh
 echo "outputs.sh: all checks passed"

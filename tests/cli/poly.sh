@@ -4,20 +4,12 @@
 # -c -O -A -B -j, --stats-json "constraints", --svg segments, -C.
 # Usage: poly.sh CLMESH_BINARY SOURCE_DIR [TEST_DATA_DIR]
 set -euo pipefail
-bin="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-source_dir="$(cd "$2" && pwd)"
+source "$(dirname "$0")/common.bash" "$@"
 examples="${3:-$source_dir/../shared/data}/triangle-examples"
 inputs="$examples/inputs"
 references="$examples/reference-outputs"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-mkdir "$work/bad" "$work/log"
+mkdir "$work/bad"
 
-failures=0
-fail() {
-  echo "FAIL: $*" >&2
-  failures=$((failures + 1))
-}
 
 # ---------------------------------------------------------------------------
 # Bad inputs: exit status, one 'clmesh: FILE:LINE: ...' line, no file written.
@@ -32,43 +24,6 @@ printf "$tri"'3 0\n1 1 2\n2 2 3\n3 3 1\n0\n1\n1 0.2 0.2\n' > region.poly
 printf '0 2 0 0\n3 0\n1 1 2\n2 2 3\n3 3 1\n0\n' > badnode.poly
 printf '3 2 0 0\n1 0 0\n2 1 0\n3 zero 1\n' > badnode.node
 
-# expect WHAT STATUS WORDS... -- ARGS...: runs clmesh ARGS, wants exit STATUS,
-# a single stderr line starting with 'clmesh: ' and holding every WORD, and
-# the directory unchanged.
-expect() {
-  local what="$1" want_status="$2"
-  shift 2
-  local words=()
-  while [[ "$1" != "--" ]]; do
-    words+=("$1")
-    shift
-  done
-  shift
-  local before after status=0
-  before="$(ls -A | sort)"
-  "$bin" "$@" > "$work/log/out" 2> "$work/log/err" || status=$?
-  after="$(ls -A | sort)"
-  local err
-  err="$(cat "$work/log/err")"
-  if [[ "$status" -ne "$want_status" ]]; then
-    fail "$what: exit status $status, wanted $want_status (stderr: $err)"
-  fi
-  if [[ "$(wc -l < "$work/log/err")" -ne 1 ]]; then
-    fail "$what: wanted exactly one line on stderr, got: $err"
-  fi
-  if [[ "$err" != "clmesh: "* ]]; then
-    fail "$what: message does not start with 'clmesh: ': $err"
-  fi
-  local word
-  for word in "${words[@]}"; do
-    if [[ "$err" != *"$word"* ]]; then
-      fail "$what: message lacks '$word': $err"
-    fi
-  done
-  if [[ "$before" != "$after" ]]; then
-    fail "$what: files changed in the directory: $(diff <(echo "$before") <(echo "$after") | tr '\n' ' ')"
-  fi
-}
 
 expect "endpoint out of range" 1 "endpoint.poly:8:" "endpoint 4 of segment 3" "out of range" \
   -- -p endpoint.poly
@@ -228,8 +183,5 @@ run -pIQ A.poly
 [[ ! -e A.node && ! -e A.1.poly ]] || fail "-pI wrote a .node or .1.poly"
 cmp -s A.poly "$inputs/A.poly" || fail "-pI changed A.poly"
 
-if [[ "$failures" -ne 0 ]]; then
-  echo "poly.sh: $failures check(s) failed" >&2
-  exit 1
-fi
+finish poly.sh
 echo "poly.sh: all checks passed"

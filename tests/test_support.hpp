@@ -1,0 +1,26 @@
+// Helpers shared by the device tests.
+#pragma once
+
+#include "clmesh/check.hpp"
+#include "clmesh/device.hpp"
+
+#include <memory>
+#include <string>
+
+namespace test_support {
+
+// One device for the whole test run ($CLMESH_DEVICE or the first with fp64).
+inline clmesh::Device &device() {
+  static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
+  return *opened;
+}
+
+// A check report's problems, one per line, for failure messages.
+inline std::string problems(const clmesh::CheckReport &report) {
+  std::string text;
+  for (const auto &p : report.problems)
+    text += p + "\n";
+  return text;
+}
+
+} // namespace test_support

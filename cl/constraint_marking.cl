@@ -18,9 +18,11 @@
 
 #define CLM_SEGMENT_PENDING 0
 #define CLM_SEGMENT_PRESENT 1
-#define CLM_SEGMENT_SPLIT 2    // a vertex lies on the segment: split_vertex
-#define CLM_SEGMENT_CROSSING 3 // the segment crosses another one
-#define CLM_SEGMENT_LOST 4     // walk failed (a bug)
+#define CLM_SEGMENT_SPLIT 2 // a vertex lies on the segment: split_vertex
+#define CLM_SEGMENT_CROSSING                                                                       \
+  3                        // crosses constraint edge split_vertex-crossed_vertex
+                           // of triangle crossed_triangle
+#define CLM_SEGMENT_LOST 4 // walk failed (a bug)
 
 #define CLM_NO_CONSTRAINT 0x7fffffff
 
@@ -71,7 +73,8 @@ mark_constraint_triangles(__global const double2 *points, __global const int *tr
                           __global const int *constraint_start,
                           __global const int *constraint_adjacent, __global const int *segment_a,
                           __global const int *segment_b, __global int *segment_state,
-                          __global int *split_vertex, volatile __global int *constraint_mark,
+                          __global int *split_vertex, __global int *crossed_vertex,
+                          __global int *crossed_triangle, volatile __global int *constraint_mark,
                           volatile __global int *counters, const int max_steps, const int m) {
   // counters[0]: segments still pending, [1]: constraint-triangle intersections,
   // [2]: segments to split, crossing another, or lost (read back only then)
@@ -126,6 +129,8 @@ mark_constraint_triangles(__global const double2 *points, __global const int *tr
     if (is_constraint(constraint_start, constraint_adjacent, p, q)) {
       segment_state[s] = CLM_SEGMENT_CROSSING;
       split_vertex[s] = p;
+      crossed_vertex[s] = q;
+      crossed_triangle[s] = t;
       atomic_inc(&counters[2]);
       return;
     }

@@ -468,6 +468,7 @@ std::string stats_json(const clmesh::DelaunayResult &result, const std::string &
     json += count("segments", c.segments);
     json += count("dropped_segments", c.dropped_segments);
     json += count("split_segments", c.split_segments);
+    json += count("crossings", c.crossings);
     json += count("intersections", c.intersections);
     json += count("constraint_flips", c.constraint_flips);
     json += count("outer_iterations", c.outer_iterations);
@@ -528,6 +529,19 @@ Input read_input(const FileNames &names, bool talk) {
                              "input must have at least three vertices, found " +
                                  std::to_string(input.points.points.size()));
   return input;
+}
+
+// Vertices added where segments cross follow the input's, as in Triangle:
+// from here on they are part of the mesh's vertex list.
+void add_vertices(Input &input, const std::vector<clmesh::Point> &added) {
+  clmesh::PointSet &points = input.points;
+  for (const clmesh::Point &p : added) {
+    points.points.push_back(p);
+    points.attributes.insert(points.attributes.end(), points.attribute_count, 0.0);
+    if (points.has_markers)
+      points.markers.push_back(0);
+  }
+  input.pslg.points = points.points;
 }
 
 // The mesh: result.mesh alone without -p.
@@ -637,7 +651,7 @@ void print_statistics(const Input &input, const clmesh::ConstrainedResult &resul
   }
   const std::size_t triangles = mesh.triangles.size();
   std::printf("\nStatistics:\n\n");
-  std::printf("  Input vertices: %zu\n", n);
+  std::printf("  Input vertices: %zu\n", n - result.added_points.size());
   if (input.poly) {
     std::printf("  Input segments: %zu\n", input.pslg.segments.size());
     if (!input.pslg.holes.empty())
@@ -671,7 +685,8 @@ void print_verbose(const Input &input, const clmesh::ConstrainedResult &result,
     std::printf("  Constraints:\n");
     std::printf("    Segments kept: %ld\n", c.segments);
     std::printf("    Duplicate or zero-length segments dropped: %ld\n", c.dropped_segments);
-    std::printf("    Segments split at vertices on them: %ld\n", c.split_segments);
+    std::printf("    Input segments split: %ld\n", c.split_segments);
+    std::printf("    Segment crossings (new vertices): %ld\n", c.crossings);
     std::printf("    Segment-triangle intersections: %ld\n", c.intersections);
     std::printf("    Constraint flips: %ld\n", c.constraint_flips);
     std::printf("    Outer / inner iterations: %ld / %ld\n", c.outer_iterations,
@@ -732,7 +747,7 @@ int run(const Options &options) {
 
   Timings seconds;
   Clock::time_point phase = Clock::now();
-  const Input input = read_input(names, talk);
+  Input input = read_input(names, talk);
   seconds.read = seconds_since(phase);
 
   std::string spec = options.device;
@@ -749,6 +764,7 @@ int run(const Options &options) {
 
   phase = Clock::now();
   const clmesh::ConstrainedResult result = triangulate(*device, input, options);
+  add_vertices(input, result.added_points);
   const clmesh::DelaunayResult &mesh = result.mesh;
   const double compute_wall = seconds_since(phase);
   seconds.compute = mesh.stats.compute_seconds > 0 ? mesh.stats.compute_seconds : compute_wall;

@@ -45,7 +45,9 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                        "endpoint out of range (" + std::to_string(s.a) + ", " +
                            std::to_string(s.b) + " of " + std::to_string(n) + " points)");
   }
-  DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats);
+  const std::size_t crossing_room = 1024 + pslg.segments.size();
+  DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats,
+                              crossing_room);
   device.program("constraint_marking.cl", "setup");
   device.program("exterior_removal.cl", "setup");
   if (!scheduler.triangulate()) {
@@ -64,7 +66,11 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
   segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
   stats.segments = static_cast<long>(segments.size());
   insertion.set_constraints(segments);
-  insertion.run(scheduler.stamp(), stats, scheduler.original_ids());
+  insertion.run(scheduler.stamp(), stats,
+                [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
+                  return scheduler.insert_points(added, near);
+                });
+  result.added_points = insertion.added_points();
   scheduler.timer().charge(ConstraintInsertion::kPhase);
 
   FlipCounts flips;

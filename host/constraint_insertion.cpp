@@ -1,6 +1,7 @@
 #include "constraint_insertion.hpp"
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <utility>
 
@@ -90,13 +91,15 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   segment_b_ = DeviceArray<cl_int>(device_, m);
   segment_state_ = DeviceArray<cl_int>(device_, m);
   split_vertex_ = DeviceArray<cl_int>(device_, m);
+  crossed_vertex_ = DeviceArray<cl_int>(device_, m);
+  crossed_triangle_ = DeviceArray<cl_int>(device_, m);
   segment_a_.upload(device_, a);
   segment_b_.upload(device_, b);
   segment_state_.fill(device_, 0, m);
 }
 
 long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
-                               const std::vector<int32_t> &original_id) {
+                               const PointInserter &insert_points) {
   const std::size_t slots = mesh_.triangle_count, m = segments_.size();
   set_args(record_vertex_triangles_, mesh_.tri_vertex.buffer(), mesh_.vertex_triangle.buffer(),
            static_cast<cl_int>(slots));
@@ -106,8 +109,9 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
            mesh_.constraint_adjacent.buffer(), segment_a_.buffer(), segment_b_.buffer(),
-           segment_state_.buffer(), split_vertex_.buffer(), constraint_mark_.buffer(),
-           counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
+           segment_state_.buffer(), split_vertex_.buffer(), crossed_vertex_.buffer(),
+           crossed_triangle_.buffer(), constraint_mark_.buffer(), counters_.buffer(),
+           static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
   launch(device_, mark_, m, kPhase);
   const auto counters = counters_.download(device_, 3);
   if (first)
@@ -117,15 +121,14 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   // Splits and crossings are rare: only then is the segment state read back.
   const auto state = segment_state_.download(device_, m);
   const auto vertex = split_vertex_.download(device_, m);
+  if (std::find(state.begin(), state.end(), kCrossing) != state.end()) {
+    split_crossings(state, vertex, stats, insert_points);
+    return -1;
+  }
   std::vector<Segment> pieces;
   std::vector<int32_t> origin; // input segment of each piece
   for (std::size_t i = 0; i < m; ++i) {
     const Segment &s = segments_[i];
-    if (state[i] == kCrossing)
-      throw InputError(
-          "segment " + std::to_string(original_id[s.a]) + "-" + std::to_string(original_id[s.b]), 0,
-          "crosses another segment near vertex " + std::to_string(original_id[vertex[i]]) +
-              " (crossing segments are not supported yet)");
     if (state[i] == kSplit) {
       pieces.push_back({s.a, vertex[i], s.marker});
       pieces.push_back({vertex[i], s.b, s.marker});
@@ -144,6 +147,79 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   origin_ = origin;
   set_constraints(pieces);
   return -1;
+}
+
+void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
+                                          const std::vector<cl_int> &vertex,
+                                          ConstrainedStats &stats,
+                                          const PointInserter &insert_points) {
+  const std::size_t m = segments_.size();
+  const auto other = crossed_vertex_.download(device_, m);
+  const auto triangle = crossed_triangle_.download(device_, m);
+  std::map<std::pair<int32_t, int32_t>, std::size_t> piece_of;
+  for (std::size_t i = 0; i < m; ++i)
+    piece_of[std::minmax(segments_[i].a, segments_[i].b)] = i;
+  auto coordinates = [&](int32_t v) {
+    const cl_double2 p = mesh_.points.read(device_, static_cast<std::size_t>(v));
+    return Point{p.s[0], p.s[1]};
+  };
+  // Each crossing splits two segments: s (walking) and the piece p-q it met.
+  std::vector<char> busy(m, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> crossings; // (s, piece)
+  std::vector<Point> where;
+  std::vector<int32_t> near;
+  for (std::size_t s = 0; s < m; ++s) {
+    if (state[s] != kCrossing)
+      continue;
+    const auto found = piece_of.find(std::minmax(vertex[s], other[s]));
+    if (found == piece_of.end())
+      throw InternalError("constraint marking: a crossed constraint edge is no constraint");
+    const std::size_t piece = found->second;
+    if (busy[s] || busy[piece])
+      continue; // split in a later round
+    busy[s] = busy[piece] = 1;
+    const Point a = coordinates(segments_[s].a), b = coordinates(segments_[s].b);
+    const Point p = coordinates(segments_[piece].a), q = coordinates(segments_[piece].b);
+    // a + t (b - a) on line p-q, in extended precision, rounded once.
+    const long double dx = static_cast<long double>(b.x) - a.x,
+                      dy = static_cast<long double>(b.y) - a.y;
+    const long double ex = static_cast<long double>(q.x) - p.x,
+                      ey = static_cast<long double>(q.y) - p.y;
+    const long double t =
+        ((static_cast<long double>(p.x) - a.x) * ey - (static_cast<long double>(p.y) - a.y) * ex) /
+        (dx * ey - dy * ex);
+    where.push_back({static_cast<double>(a.x + t * dx), static_cast<double>(a.y + t * dy)});
+    near.push_back(triangle[s]);
+    crossings.emplace_back(s, piece);
+  }
+  const std::vector<int32_t> added = insert_points(where, near);
+  added_points_.insert(added_points_.end(), where.begin(), where.end());
+  stats.crossings += static_cast<long>(crossings.size());
+  std::vector<Segment> pieces;
+  std::vector<int32_t> origin;
+  std::vector<int32_t> split_at(m, -1);
+  for (std::size_t k = 0; k < crossings.size(); ++k)
+    split_at[crossings[k].first] = split_at[crossings[k].second] = added[k];
+  for (std::size_t i = 0; i < m; ++i) {
+    const Segment &s = segments_[i];
+    if (split_at[i] < 0) {
+      pieces.push_back(s);
+      origin.push_back(origin_[i]);
+      continue;
+    }
+    for (const Segment &piece :
+         {Segment{s.a, split_at[i], s.marker}, Segment{split_at[i], s.b, s.marker}})
+      if (piece.a != piece.b) { // the new vertex may coincide with an endpoint
+        pieces.push_back(piece);
+        origin.push_back(origin_[i]);
+      }
+    if (!split_origin_[origin_[i]]) {
+      split_origin_[origin_[i]] = 1;
+      ++stats.split_segments;
+    }
+  }
+  origin_ = origin;
+  set_constraints(pieces);
 }
 
 std::size_t ConstraintInsertion::collect_marked() {
@@ -184,13 +260,13 @@ long ConstraintInsertion::inner_iteration(std::size_t &active, int stamp) {
 }
 
 void ConstraintInsertion::run(int &stamp, ConstrainedStats &stats,
-                              const std::vector<int32_t> &original_id) {
+                              const PointInserter &insert_points) {
   bool first = true;
   // Each outer iteration either inserts a segment, splits one, or flips; the
   // bound only turns a bug into an error instead of a hang.
   const long max_outer = 64 + 4 * static_cast<long>(segments_.size() + mesh_.triangle_count);
   for (long outer = 0; outer < max_outer; ++outer) {
-    const long pending = mark(stats, first, original_id);
+    const long pending = mark(stats, first, insert_points);
     first = false;
     if (pending < 0)
       continue; // segments were split: mark again

@@ -7,6 +7,7 @@
 #include "clmesh/constrained.hpp"
 
 #include <array>
+#include <functional>
 #include <vector>
 
 namespace clmesh {
@@ -25,17 +26,28 @@ public:
   // zero-length ones) as compressed rows per vertex, for every later phase.
   void set_constraints(const std::vector<Segment> &segments);
 
-  // Inserts every constraint. Segments through a vertex are split there
-  // (segments() then holds the pieces). Throws InputError when two segments
-  // cross away from a vertex; original_id maps device points to input ones.
-  void run(int &stamp, ConstrainedStats &stats, const std::vector<int32_t> &original_id);
+  // Adds points (where segments cross) to the mesh, each walking from a
+  // triangle; returns their device numbers.
+  using PointInserter =
+      std::function<std::vector<int32_t>(const std::vector<Point> &, const std::vector<int32_t> &)>;
+
+  // Inserts every constraint. A segment through a vertex is split there; two
+  // segments that cross are both split at a new vertex at their intersection
+  // (rounded to the nearest double), as Triangle does. segments() then holds
+  // the pieces, added_points() the new vertices.
+  void run(int &stamp, ConstrainedStats &stats, const PointInserter &insert_points);
+
+  const std::vector<Point> &added_points() const { return added_points_; }
 
   const std::vector<Segment> &segments() const { return segments_; }
 
 private:
   // One outer iteration's marking; returns the segments still to insert, or
   // -1 when segments were split at vertices (the marking must be redone).
-  long mark(ConstrainedStats &stats, bool first, const std::vector<int32_t> &original_id);
+  long mark(ConstrainedStats &stats, bool first, const PointInserter &insert_points);
+  // Splits crossing segments at new vertices (one split per segment and call).
+  void split_crossings(const std::vector<cl_int> &state, const std::vector<cl_int> &vertex,
+                       ConstrainedStats &stats, const PointInserter &insert_points);
   // Active list of every marked triangle; returns its length.
   std::size_t collect_marked();
   // One inner iteration over `active` triangles; returns the flips made and
@@ -48,11 +60,12 @@ private:
   cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, plan_, apply_, relink_, remark_,
       keep_marked_, flag_marked_;
   std::vector<Segment> segments_;
-  std::vector<int32_t> origin_;    // input segment each constraint comes from
-  std::vector<char> split_origin_; // input segments already counted as split
-  DeviceArray<cl_int> segment_a_, segment_b_, segment_state_, split_vertex_, counters_,
-      constraint_mark_, active_, next_active_, keep_, offset_, plan_list_, next_, previous_,
-      flipped_, flip_count_;
+  std::vector<int32_t> origin_;     // input segment each constraint comes from
+  std::vector<char> split_origin_;  // input segments already counted as split
+  std::vector<Point> added_points_; // vertices added where segments cross
+  DeviceArray<cl_int> segment_a_, segment_b_, segment_state_, split_vertex_, crossed_vertex_,
+      crossed_triangle_, counters_, constraint_mark_, active_, next_active_, keep_, offset_,
+      plan_list_, next_, previous_, flipped_, flip_count_;
 };
 
 } // namespace clmesh

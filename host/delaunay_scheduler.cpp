@@ -209,8 +209,10 @@ void PhaseTimer::charge(const std::string &name) {
 }
 
 DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &points,
-                                     const DelaunayOptions &options, DelaunayStats &stats)
-    : device_(device), points_(points), options_(options), stats_(stats) {
+                                     const DelaunayOptions &options, DelaunayStats &stats,
+                                     std::size_t extra_points)
+    : device_(device), points_(points), options_(options), extra_points_(extra_points),
+      stats_(stats) {
   if (points.size() < 3)
     throw InputError("input", 0, "fewer than three points");
   if (points.size() > (std::size_t{1} << 28))
@@ -237,7 +239,7 @@ bool DelaunayScheduler::triangulate() {
     return false; // all points collinear: no triangle
 
   timer_ = std::make_unique<PhaseTimer>(device_, stats_);
-  mesh_ = std::make_unique<DeviceMesh>(device_, n);
+  mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
   flipping_ = std::make_unique<Flipping>(device_, *mesh_, *scan_);
   MissingPointInsertion insertion(device_, *mesh_, *scan_);
@@ -265,9 +267,9 @@ bool DelaunayScheduler::triangulate() {
   mesh.triangle_count = fan.vertices.size() / 3;
   mesh.tri_mark.fill(device, 0xffffffffu, mesh.triangle_capacity);
   mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
-  mesh.duplicate_of.fill(device, -1, n);
-  mesh.location.fill(device, 0, n);
-  mesh.constraint_start.fill(device, 0, n + 1);
+  mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
+  mesh.location.fill(device, 0, mesh.point_capacity);
+  mesh.constraint_start.fill(device, 0, mesh.point_capacity + 1);
   std::vector<char> in_mesh(n, 0);
   for (const int32_t v : device_hull)
     in_mesh[v] = 1;
@@ -317,6 +319,44 @@ bool DelaunayScheduler::triangulate() {
   stats_.flip_passes = flips_.passes;
   stats_.exact_predicate_calls = flips_.exact_checks;
   return true;
+}
+
+std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &added,
+                                                      const std::vector<int32_t> &start_triangles) {
+  DeviceMesh &mesh = *mesh_;
+  check_coordinates(added);
+  if (mesh.point_count + added.size() > mesh.point_capacity)
+    throw InputError("input", 0,
+                     "more than " + std::to_string(extra_points_) +
+                         " points to add where segments cross (not supported yet)");
+  const auto first = static_cast<int32_t>(mesh.point_count);
+  std::vector<cl_double2> coordinates;
+  std::vector<cl_int> ids, numbers;
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    coordinates.push_back({{added[i].x, added[i].y}});
+    ids.push_back(first + static_cast<cl_int>(i));
+    original_id_.push_back(first + static_cast<int32_t>(i)); // numbered after the input
+  }
+  mesh.points.upload(device_, coordinates, first);
+  mesh.original_id.upload(device_, ids, first);
+  mesh.location.upload(device_, std::vector<cl_int>(start_triangles.begin(), start_triangles.end()),
+                       first);
+  mesh.point_count += added.size();
+  MissingPointInsertion insertion(device_, mesh, *scan_);
+  insertion.set_points(ids);
+  while (insertion.pending() > 0) {
+    const std::size_t inserted = insertion.run_round(stamp_++);
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (inserted == 0 && insertion.pending() > 0)
+      throw InternalError("point insertion made no progress");
+    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    timer_->charge(Flipping::kPhase);
+  }
+  const auto duplicates = mesh.duplicate_of.download(device_, added.size(), first);
+  std::vector<int32_t> result(added.size());
+  for (std::size_t i = 0; i < added.size(); ++i)
+    result[i] = duplicates[i] >= 0 ? duplicates[i] : ids[i];
+  return result;
 }
 
 void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {

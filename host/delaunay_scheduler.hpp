@@ -37,12 +37,21 @@ private:
 class DelaunayScheduler {
 public:
   // Checks the points and builds the programs; the compute clock starts here.
+  // extra_points: room for points added after the triangulation (insert_points).
   DelaunayScheduler(Device &device, const std::vector<Point> &points,
-                    const DelaunayOptions &options, DelaunayStats &stats);
+                    const DelaunayOptions &options, DelaunayStats &stats,
+                    std::size_t extra_points = 0);
   ~DelaunayScheduler();
 
   // Phases 1, 4, 5; false when all points are collinear (no triangle).
   bool triangulate();
+  // Inserts new points (numbered after every earlier one, in the device and
+  // in the output), each walking from the given triangle, and restores the
+  // (constrained) Delaunay property. Returns their device numbers, or the
+  // number of the point already there for one that coincides with it.
+  std::vector<int32_t> insert_points(const std::vector<Point> &added,
+                                     const std::vector<int32_t> &start_triangles);
+
   // Flips every triangle until locally (constrained) Delaunay.
   void flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase);
 
@@ -66,6 +75,7 @@ private:
   Device &device_;
   const std::vector<Point> &points_;
   DelaunayOptions options_;
+  std::size_t extra_points_;
   DelaunayStats &stats_;
   Clock::time_point start_;
   std::unique_ptr<PhaseTimer> timer_;

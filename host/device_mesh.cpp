@@ -4,15 +4,16 @@
 
 namespace clmesh {
 
-DeviceMesh::DeviceMesh(Device &device, std::size_t point_count)
-    : point_capacity(point_count), triangle_capacity(2 * point_count + 2),
-      list_capacity(std::max(4 * point_count, 2 * point_count + 2) + 16),
-      points(device, point_count), original_id(device, point_count),
+DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t extra_points)
+    : point_capacity(input_points + extra_points), point_count(input_points),
+      triangle_capacity(2 * point_capacity + 2),
+      list_capacity(std::max(4 * point_capacity, triangle_capacity) + 16),
+      points(device, point_capacity), original_id(device, point_capacity),
       tri_vertex(device, 3 * triangle_capacity), tri_neighbor(device, 3 * triangle_capacity),
       tri_mark(device, triangle_capacity), modified_stamp(device, triangle_capacity),
-      children(device, 3 * triangle_capacity), vertex_triangle(device, point_count),
-      duplicate_of(device, point_count), location(device, point_count),
-      location_edge(device, point_count), constraint_start(device, point_count + 1),
+      children(device, 3 * triangle_capacity), vertex_triangle(device, point_capacity),
+      duplicate_of(device, point_capacity), location(device, point_capacity),
+      location_edge(device, point_capacity), constraint_start(device, point_capacity + 1),
       constraint_adjacent(device, 1) {}
 
 } // namespace clmesh

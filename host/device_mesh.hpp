@@ -52,10 +52,13 @@ private:
 // The triangulation and the per-point state that stay resident on the device
 // from upload to download (thesis §2.2 data structure).
 struct DeviceMesh {
-  DeviceMesh(Device &device, std::size_t point_count);
+  // Room for the input points and `extra_points` points added later (the
+  // intersections of crossing segments).
+  DeviceMesh(Device &device, std::size_t point_count, std::size_t extra_points = 0);
 
   std::size_t point_capacity;
-  std::size_t triangle_capacity; // 2n + 2 slots: ghosts included, never grows for a DT
+  std::size_t point_count;       // points in use: the input, then the added ones
+  std::size_t triangle_capacity; // 2 capacity + 2 slots: ghosts included, enough for every point
   std::size_t list_capacity;     // active and scratch lists
 
   DeviceArray<cl_double2> points;      // in spatial (Hilbert) order

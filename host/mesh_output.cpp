@@ -40,7 +40,7 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
            out_vertex.buffer(), out_neighbor.buffer(), out_label.buffer(),
            static_cast<cl_int>(slots));
   launch(device_, write_real_, slots, kPhase);
-  const std::size_t points = mesh_.point_capacity;
+  const std::size_t points = mesh_.point_count;
   const auto point_count = static_cast<cl_int>(points);
   DeviceArray<cl_int> input_duplicate_of(device_, points), representative(device_, points);
   set_args(restore_numbering_, mesh_.duplicate_of.buffer(), mesh_.original_id.buffer(),

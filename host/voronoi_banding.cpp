@@ -31,7 +31,7 @@ std::size_t VoronoiBanding::run(int grid, Point min, double span) {
     throw UsageError("--grid must be between 2 and " + std::to_string(kMaxGrid));
   grid_ = grid;
   const std::size_t pixels = static_cast<std::size_t>(grid) * grid;
-  const std::size_t n = mesh_.point_capacity;
+  const std::size_t n = mesh_.point_count;
   DeviceArray<cl_int> site_of_pixel(device_, pixels), column_site_row(device_, pixels),
       stack_x(device_, pixels), stack_y(device_, pixels), pixel_of(device_, n), missing(device_, n),
       missing_offset(device_, n);

@@ -847,25 +847,61 @@ TEST_CASE("cdt: bad segments are refused with a typed error") {
                     clmesh::InputError);
   }
   SUBCASE("crossing segments") {
-    // The header documents crossing segments as not supported yet (InputError).  Should the
-    // intersection be inserted as a new vertex instead, the mesh must have that vertex.
-    auto refused_or_split = [](const Pslg &pslg) {
-      try {
-        const auto result = clmesh::constrained_delaunay(device(), pslg, whole_hull_options());
-        bool new_vertex = false;
-        for (const Triangle &t : result.mesh.triangles)
-          for (int32_t v : t)
-            new_vertex = new_vertex || v >= static_cast<int32_t>(pslg.points.size());
-        CHECK_MESSAGE(new_vertex, "crossing segments neither refused nor split at a new vertex");
-      } catch (const clmesh::InputError &e) {
-        MESSAGE("refused: " << std::string(e.what()));
-      }
+    // Split at a new vertex where they cross, numbered after the input (Triangle's behaviour).
+    auto crossing_checked = [](const Pslg &pslg, std::size_t crossings) {
+      const auto result = clmesh::constrained_delaunay(device(), pslg, whole_hull_options());
+      CHECK(result.added_points.size() == crossings);
+      CHECK(result.stats.crossings == static_cast<long>(crossings));
+      std::vector<Point> points = pslg.points;
+      points.insert(points.end(), result.added_points.begin(), result.added_points.end());
+      const auto report =
+          clmesh::check_constrained(points, result.mesh.triangles, result.mesh.neighbors,
+                                    result.mesh.duplicate_of, result.segments, true);
+      INFO(problems(report));
+      CHECK(report.ok);
+      return result;
     };
-    refused_or_split({square, {{0, 2, 0}, {1, 3, 0}}, {}, {}});
+    const auto diagonals = crossing_checked({square, {{0, 2, 0}, {1, 3, 0}}, {}, {}}, 1);
+    CHECK(diagonals.added_points[0].x == 0.5);
+    CHECK(diagonals.added_points[0].y == 0.5);
+    CHECK(diagonals.stats.split_segments == 2);
     // A crossing close to an endpoint, by a tiny margin, is still a crossing.
-    refused_or_split({{{0, 0}, {1, 0}, {0.5, 1e-12}, {0.5, -1}, {0.5, 2}, {0.2, 0.7}},
+    crossing_checked({{{0, 0}, {1, 0}, {0.5, 1e-12}, {0.5, -1}, {0.5, 2}, {0.2, 0.7}},
                       {{0, 1, 0}, {2, 3, 0}},
                       {},
-                      {}});
+                      {}},
+                     1);
   }
+}
+
+TEST_CASE("cdt: a grid of crossing segments among random points") {
+  Pslg pslg;
+  pslg.points = fixtures::uniform(3000, 61);
+  std::mt19937_64 rng(62);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  const int lines = 25;
+  for (int k = 0; k < lines; ++k) {
+    const auto a = static_cast<int32_t>(pslg.points.size());
+    const double y = u(rng), x = u(rng);
+    pslg.points.push_back({-0.1, y});
+    pslg.points.push_back({1.1, y + 0.05 * u(rng)});
+    pslg.points.push_back({x, -0.1});
+    pslg.points.push_back({x + 0.05 * u(rng), 1.1});
+    pslg.segments.push_back({a, a + 1, 5});
+    pslg.segments.push_back({a + 2, a + 3, 6});
+  }
+  const auto result = clmesh::constrained_delaunay(device(), pslg, whole_hull_options());
+  // Every horizontal line crosses every vertical one (near-horizontal lines may also cross).
+  CHECK(result.stats.crossings >= lines * lines);
+  CHECK(result.added_points.size() == static_cast<std::size_t>(result.stats.crossings));
+  std::vector<Point> points = pslg.points;
+  points.insert(points.end(), result.added_points.begin(), result.added_points.end());
+  const auto report =
+      clmesh::check_constrained(points, result.mesh.triangles, result.mesh.neighbors,
+                                result.mesh.duplicate_of, result.segments, true);
+  INFO(problems(report));
+  CHECK(report.ok);
+  // Each input segment is a chain through its crossing vertices: n + 1 pieces for n crossings.
+  CHECK(result.segments.size() >=
+        pslg.segments.size() + 2 * static_cast<std::size_t>(lines * lines));
 }

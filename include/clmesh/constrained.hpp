@@ -38,7 +38,8 @@ struct ConstrainedOptions {
 struct ConstrainedStats {
   long segments = 0;         // input segments kept (after dropping duplicates/zero length)
   long dropped_segments = 0; // duplicate or zero-length segments
-  long split_segments = 0;   // segments split at a vertex lying on them
+  long split_segments = 0;   // input segments split (at a vertex on them or a crossing)
+  long crossings = 0;        // segment-segment crossings, each a new vertex
   long intersections = 0;    // constraint-triangle intersections found by the first marking
   long constraint_flips = 0; // flips of the constraint-insertion phase
   long outer_iterations = 0;
@@ -55,14 +56,18 @@ struct ConstrainedResult {
   // a chain where vertices lie on it, with its marker; with -c also the hull
   // edges that are not segments (marker 1).
   std::vector<Segment> segments;
+  // Vertices added where segments cross, numbered after the input points
+  // (the mesh's point n + i is added_points[i]).
+  std::vector<Point> added_points;
   // Regional attribute of each triangle (empty unless regional_attributes).
   std::vector<double> triangle_attributes;
   ConstrainedStats stats;
 };
 
-// Throws InputError for segments with endpoints out of range or segments that
-// cross each other away from a vertex (not supported yet), and the errors of
-// delaunay().
+// Segments that cross are split at a new vertex at their intersection,
+// rounded to the nearest double, as Triangle does (at most 1024 + the number
+// of segments such vertices). Throws InputError for segment endpoints out of
+// range, and the errors of delaunay().
 ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                                        const ConstrainedOptions &options = {});
 

@@ -134,7 +134,7 @@ if [[ -f stats.json ]]; then
   python3 - stats.json <<'PY' || fail "--stats-json with -p: keys or values wrong: $(cat stats.json)"
 import json, sys
 stats = json.load(open(sys.argv[1]))
-keys = ["segments", "dropped_segments", "split_segments", "intersections", "constraint_flips",
+keys = ["segments", "dropped_segments", "split_segments", "crossings", "intersections", "constraint_flips",
         "outer_iterations", "inner_iterations", "delaunay_flips", "eaten_triangles"]
 c = stats["constraints"]
 assert sorted(c) == sorted(keys), c
@@ -182,6 +182,19 @@ run -pIQ A.poly
 [[ -f A.ele ]] || fail "-pI: A.ele not written"
 [[ ! -e A.node && ! -e A.1.poly ]] || fail "-pI wrote a .node or .1.poly"
 cmp -s A.poly "$inputs/A.poly" || fail "-pI changed A.poly"
+
+# Crossing segments: the diagonals of a square meet at a new vertex 5 (0.5, 0.5).
+mkdir -p "$work/cross" && cd "$work/cross"
+printf '4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n2 1\n1 1 3 5\n2 2 4 6\n0\n' > x.poly
+if "$bin" -pcQC x.poly 2> err.txt; then
+  read -r nodes _ < x.1.node
+  read -r triangles _ < x.1.ele
+  [[ "$nodes" == 5 ]] || fail "crossing: $nodes vertices in x.1.node, wanted 5"
+  [[ "$triangles" == 4 ]] || fail "crossing: $triangles triangles in x.1.ele, wanted 4"
+  grep -q '^ *5 *0.5 *0.5 ' x.1.node || fail "crossing: no vertex 5 at (0.5, 0.5): $(cat x.1.node)"
+else
+  fail "crossing: clmesh -pcQC x.poly failed: $(cat err.txt)"
+fi
 
 finish poly.sh
 echo "poly.sh: all checks passed"

@@ -182,9 +182,13 @@ inline bool segment_crosses(__global const double2 *points, __global const int *
 }
 
 // The edges of marked triangle t where its constraint a-b enters (towards a)
-// and leaves (towards b); -1 where t holds that endpoint.
+// and leaves (towards b); -1 where t holds that endpoint. Away from a and b,
+// one vertex k of t is alone on its side of a-b (no vertex lies on a-b: those
+// split the constraint), and t being counter-clockwise, the constraint leaves
+// through the edge opposite k+1 when k is on its left, opposite k+2 otherwise.
 inline void crossing_edges(__global const double2 *points, __global const int *tri_vertex, int t,
                            int a, int b, int *entry, int *exit) {
+  int side[3];
   *entry = -1;
   *exit = -1;
   for (int i = 0; i < 3; ++i) {
@@ -193,20 +197,14 @@ inline void crossing_edges(__global const double2 *points, __global const int *t
       *exit = i;
     else if (v == b)
       *entry = i;
-  }
-  for (int i = 0; i < 3; ++i) {
-    if (i == *entry || i == *exit || tri_vertex[3 * t + i] == a || tri_vertex[3 * t + i] == b)
-      continue;
-    const int p = tri_vertex[3 * t + next3(i)], q = tri_vertex[3 * t + prev3(i)];
-    if (p == a || p == b || q == a || q == b)
-      continue;
-    if (orient_vertices(points, a, b, p) * orient_vertices(points, a, b, q) >= 0)
-      continue; // edge p-q not crossed
-    if (orient_vertices(points, p, q, b) < 0)
-      *exit = i;
     else
-      *entry = i;
+      side[i] = orient_vertices(points, a, b, v);
   }
+  if (*exit >= 0 || *entry >= 0)
+    return;
+  const int k = side[0] == side[1] ? 2 : (side[0] == side[2] ? 1 : 0);
+  *exit = side[k] > 0 ? next3(k) : prev3(k);
+  *entry = side[k] > 0 ? prev3(k) : next3(k);
 }
 
 // Configuration of the pair sharing edge p-q (crossed by a-b), with apexes x

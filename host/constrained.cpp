@@ -62,16 +62,20 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     s.a = scheduler.device_point(s.a);
     s.b = scheduler.device_point(s.b);
   }
-  ConstraintInsertion insertion(device, scheduler.mesh(), scheduler.scan());
-  segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
-  stats.segments = static_cast<long>(segments.size());
-  insertion.set_constraints(segments);
-  insertion.run(scheduler.stamp(), stats,
-                [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
-                  return scheduler.insert_points(added, near);
-                });
-  result.added_points = insertion.added_points();
-  scheduler.timer().charge(ConstraintInsertion::kPhase);
+  std::vector<Segment> constraints; // as they stand in the mesh, device numbering
+  {
+    ConstraintInsertion insertion(device, scheduler.mesh(), scheduler.scan());
+    segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
+    stats.segments = static_cast<long>(segments.size());
+    insertion.set_constraints(segments);
+    insertion.run(scheduler.stamp(), stats,
+                  [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
+                    return scheduler.insert_points(added, near);
+                  });
+    result.added_points = insertion.added_points();
+    constraints = insertion.segments();
+    scheduler.timer().charge(ConstraintInsertion::kPhase);
+  } // its device lists are released here; the constraints stay in the mesh
 
   FlipCounts flips;
   scheduler.flip_all(flips, "constrained_flipping");
@@ -110,7 +114,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     return duplicate_of[input] >= 0 ? duplicate_of[input] : input;
   };
   std::set<std::pair<int32_t, int32_t>> present;
-  for (const Segment &s : insertion.segments()) {
+  for (const Segment &s : constraints) {
     Segment out{input_point(s.a), input_point(s.b), s.marker};
     present.insert(std::minmax(out.a, out.b));
     result.segments.push_back(out);

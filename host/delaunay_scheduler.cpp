@@ -257,6 +257,7 @@ bool DelaunayScheduler::triangulate() {
     coordinates[k] = {{points[original_id[k]].x, points[original_id[k]].y}};
   }
   mesh.points.upload(device, coordinates);
+  std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
   mesh.original_id.upload(device, original_id);
   std::vector<int32_t> device_hull(hull.size());
   for (std::size_t i = 0; i < hull.size(); ++i)
@@ -280,6 +281,7 @@ bool DelaunayScheduler::triangulate() {
       missing.push_back(static_cast<cl_int>(i));
   insertion.set_points(missing);
   stats_.missing_points = static_cast<long>(missing.size());
+  std::vector<cl_int>().swap(missing);
   timer_->charge("upload");
 
   // Phase 1. Phases 2 and 3 (triangulation construction from the digital
@@ -370,6 +372,7 @@ void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {
 
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
                                  const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
+  flipping_.reset(); // its lists are not needed any more: room for the output's
   MeshOutput output(device_, *mesh_, *scan_);
   output.download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
   result.voronoi = std::move(voronoi_);

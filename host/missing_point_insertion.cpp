@@ -20,7 +20,7 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       remaining_(device, mesh.point_capacity), remaining_next_(device, mesh.point_capacity),
       status_(device, mesh.point_capacity), winner_(device, mesh.point_capacity),
       winner_offset_(device, mesh.point_capacity), keep_(device, mesh.point_capacity),
-      keep_offset_(device, mesh.point_capacity), changed_(device, 4 * mesh.point_capacity),
+      keep_offset_(device, mesh.point_capacity), changed_(device, mesh.list_capacity),
       failures_(device, 1) {
   failures_.fill(device_, 0, 1);
 }
@@ -54,7 +54,8 @@ std::size_t MissingPointInsertion::run_round(int stamp) {
 
   const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
   const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
-  if (mesh_.triangle_count + 2 * static_cast<std::size_t>(winners) > mesh_.triangle_capacity)
+  if (mesh_.triangle_count + 2 * static_cast<std::size_t>(winners) > mesh_.triangle_capacity ||
+      4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
     throw InternalError("missing-point insertion: triangle slots exhausted");
   set_args(split_, remaining_.buffer(), winner_.buffer(), winner_offset_.buffer(),
            mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.tri_vertex.buffer(),

@@ -266,7 +266,7 @@ bool DelaunayScheduler::triangulate() {
   mesh.tri_vertex.upload(device, fan.vertices);
   mesh.tri_neighbor.upload(device, fan.neighbors);
   mesh.triangle_count = fan.vertices.size() / 3;
-  mesh.tri_mark.fill(device, 0xffffffffu, mesh.triangle_capacity);
+  mesh.tri_mark.fill(device, -1, mesh.triangle_capacity); // no mark: all bits set
   mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
   mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
   mesh.location.fill(device, 0, mesh.point_capacity);

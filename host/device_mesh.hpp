@@ -65,7 +65,7 @@ struct DeviceMesh {
   DeviceArray<cl_int> original_id;     // input index of each device point
   DeviceArray<cl_int> tri_vertex;      // 3 per triangle
   DeviceArray<cl_int> tri_neighbor;    // 3 per triangle, (triangle << 2) | edge
-  DeviceArray<cl_uint> tri_mark;       // atomic-minimum marks
+  DeviceArray<cl_int> tri_mark;        // atomic-minimum marks (unsigned on the device)
   DeviceArray<cl_int> modified_stamp;  // step that last rewrote the slot
   DeviceArray<cl_int> children;        // 3 per triangle: its replacements
   DeviceArray<cl_int> vertex_triangle; // one incident triangle per vertex

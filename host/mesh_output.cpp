@@ -26,14 +26,17 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
                           std::vector<int32_t> &duplicate_of, const DeviceArray<cl_int> *removed,
                           const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   const std::size_t slots = mesh_.triangle_count;
-  DeviceArray<cl_int> is_real(device_, slots), new_index(device_, slots);
+  // The output is the last use of the mesh: arrays it no longer needs hold
+  // the output's intermediate results, so the peak memory stays low.
+  const DeviceArray<cl_int> &is_real = mesh_.tri_mark, &new_index = mesh_.modified_stamp;
   set_args(flag_real_, mesh_.tri_vertex.buffer(), removed ? removed->buffer() : is_real.buffer(),
            static_cast<cl_int>(removed != nullptr), is_real.buffer(), static_cast<cl_int>(slots));
   launch(device_, flag_real_, slots, kPhase);
   const auto count =
       static_cast<std::size_t>(scan_.exclusive_scan(is_real, new_index, slots, kPhase));
-  DeviceArray<cl_int> out_vertex(device_, 3 * count), out_neighbor(device_, 3 * count),
-      out_label(device_, label ? count : 1), sorted_label(device_, label ? count : 1);
+  const DeviceArray<cl_int> &out_vertex = mesh_.children;
+  DeviceArray<cl_int> out_neighbor(device_, 3 * count), out_label(device_, label ? count : 1),
+      sorted_label(device_, label ? count : 1);
   const auto use_label = static_cast<cl_int>(label != nullptr);
   set_args(write_real_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), is_real.buffer(),
            new_index.buffer(), label ? label->buffer() : is_real.buffer(), use_label,
@@ -42,7 +45,8 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   launch(device_, write_real_, slots, kPhase);
   const std::size_t points = mesh_.point_count;
   const auto point_count = static_cast<cl_int>(points);
-  DeviceArray<cl_int> input_duplicate_of(device_, points), representative(device_, points);
+  DeviceArray<cl_int> input_duplicate_of(device_, points);
+  const DeviceArray<cl_int> &representative = mesh_.location;
   set_args(restore_numbering_, mesh_.duplicate_of.buffer(), mesh_.original_id.buffer(),
            input_duplicate_of.buffer(), point_count);
   launch(device_, restore_numbering_, points, kPhase);
@@ -61,8 +65,9 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   const auto triangle_count = static_cast<cl_int>(count);
   set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), triangle_count);
   launch(device_, rotate_, count, kPhase);
-  DeviceArray<cl_int> bucket_size(device_, points), bucket_start(device_, points),
-      order(device_, count), position(device_, count);
+  const DeviceArray<cl_int> &bucket_size = mesh_.location_edge,
+                            &bucket_start = mesh_.vertex_triangle;
+  DeviceArray<cl_int> order(device_, count), position(device_, count);
   bucket_size.fill(device_, 0, points);
   set_args(count_buckets_, out_vertex.buffer(), bucket_size.buffer(), triangle_count);
   launch(device_, count_buckets_, count, kPhase);
@@ -74,7 +79,8 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   set_args(sort_buckets_, out_vertex.buffer(), bucket_start.buffer(), bucket_size.buffer(),
            order.buffer(), position.buffer(), point_count);
   launch(device_, sort_buckets_, points, kPhase);
-  DeviceArray<cl_int> sorted_vertex(device_, 3 * count), sorted_neighbor(device_, 3 * count);
+  const DeviceArray<cl_int> &sorted_vertex = mesh_.tri_vertex,
+                            &sorted_neighbor = mesh_.tri_neighbor;
   set_args(write_sorted_, order.buffer(), position.buffer(), out_vertex.buffer(),
            out_neighbor.buffer(), out_label.buffer(), use_label, sorted_vertex.buffer(),
            sorted_neighbor.buffer(), sorted_label.buffer(), triangle_count);

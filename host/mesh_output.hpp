@@ -17,6 +17,7 @@ public:
 
   MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
+  // Consumes the mesh (its arrays hold intermediate results): the last step.
   // Real triangles (ghosts dropped) in canonical order (each from its smallest
   // vertex, sorted) with neighbour links, -1 on the hull, the per-slot
   // `label` of each (when given) in `labels`, and

@@ -350,12 +350,36 @@ __kernel void remark_after_flips(__global const int *active, __global const int 
   }
 }
 
-// After remarking: which active triangles stay active.
-__kernel void keep_marked(__global const int *active, __global const int *constraint_mark,
-                          __global int *keep, const int n) {
+// The triangles to classify again in the next inner iteration: only a flip
+// can change a pair's configuration, so those are both triangles of each flip
+// and their neighbours (their next or previous triangle changed), plus the
+// flips that lost a mark. Each enters once (dirty_stamp holds the iteration).
+inline void add_dirty(__global const int *constraint_mark, volatile __global int *dirty_stamp,
+                      __global int *dirty, volatile __global int *dirty_count, int t, int stamp) {
+  if (constraint_mark[t] != CLM_NO_CONSTRAINT && atomic_xchg(&dirty_stamp[t], stamp) != stamp)
+    dirty[atomic_inc(dirty_count)] = t;
+}
+
+__kernel void collect_dirty(__global const int *active, __global const int *plan,
+                            __global const int *next, __global const int *flipped,
+                            __global const int *tri_neighbor, __global const int *constraint_mark,
+                            volatile __global int *dirty_stamp, __global int *dirty,
+                            volatile __global int *dirty_count, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid < n)
-    keep[gid] = constraint_mark[active[gid]] != CLM_NO_CONSTRAINT;
+  if (gid >= n || plan[gid] < 0)
+    return;
+  const int A = active[gid];
+  if (!flipped[gid]) {
+    add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count, A, stamp);
+    return;
+  }
+  const int pair[2] = {A, next[gid]};
+  for (int k = 0; k < 2; ++k) {
+    add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count, pair[k], stamp);
+    for (int e = 0; e < 3; ++e)
+      add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count,
+                link_triangle(tri_neighbor[3 * pair[k] + e]), stamp);
+  }
 }
 
 // Full sweep after the outer loop's marking: every marked slot.

@@ -21,13 +21,16 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, Prefi
       apply_(device.kernel(kFile, "apply_constraint_flips", kPhase)),
       relink_(device.kernel(kFile, "relink_constraint_flips", kPhase)),
       remark_(device.kernel(kFile, "remark_after_flips", kPhase)),
-      keep_marked_(device.kernel(kFile, "keep_marked", kPhase)),
+      collect_dirty_(device.kernel(kFile, "collect_dirty", kPhase)),
       flag_marked_(device.kernel(kFile, "flag_marked", kPhase)), counters_(device, 5),
       constraint_mark_(device, mesh.triangle_capacity), active_(device, mesh.triangle_capacity),
       next_active_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), plan_list_(device, mesh.triangle_capacity),
       next_(device, mesh.triangle_capacity), previous_(device, mesh.triangle_capacity),
-      flipped_(device, mesh.triangle_capacity), flip_count_(device, 1) {}
+      flipped_(device, mesh.triangle_capacity), flip_count_(device, 1),
+      dirty_stamp_(device, mesh.triangle_capacity), dirty_count_(device, 1) {
+  dirty_stamp_.fill(device_, 0, mesh.triangle_capacity);
+}
 
 std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<Segment> &segments) {
   const std::size_t m = segments.size();
@@ -251,10 +254,12 @@ long ConstraintInsertion::inner_iteration(std::size_t &active, int stamp) {
            constraint_mark_.buffer(), mesh_.tri_mark.buffer(), segment_a_.buffer(),
            segment_b_.buffer(), n);
   launch(device_, remark_, active, kPhase);
-  set_args(keep_marked_, active_.buffer(), constraint_mark_.buffer(), keep_.buffer(), n);
-  launch(device_, keep_marked_, active, kPhase);
-  active = static_cast<std::size_t>(
-      scan_.compact(active_, keep_, offset_, next_active_, active, kPhase));
+  dirty_count_.fill(device_, 0, 1);
+  set_args(collect_dirty_, active_.buffer(), plan_list_.buffer(), next_.buffer(), flipped_.buffer(),
+           mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), dirty_stamp_.buffer(),
+           next_active_.buffer(), dirty_count_.buffer(), static_cast<cl_int>(stamp), n);
+  launch(device_, collect_dirty_, active, kPhase);
+  active = static_cast<std::size_t>(dirty_count_.read(device_, 0));
   std::swap(active_, next_active_);
   return flip_count_.read(device_, 0);
 }

@@ -15,7 +15,9 @@ namespace clmesh {
 class ConstraintInsertion {
 public:
   static constexpr const char *kPhase = "constraint_insertion";
-  static constexpr int kInnerIterations = 8; // inner loop passes per outer iteration
+  // Inner loop passes per outer iteration; each classifies only the triangles
+  // around the previous pass's flips, so passes are cheap.
+  static constexpr int kInnerIterations = 8;
 
   ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
@@ -58,14 +60,14 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, plan_, apply_, relink_, remark_,
-      keep_marked_, flag_marked_;
+      collect_dirty_, flag_marked_;
   std::vector<Segment> segments_;
   std::vector<int32_t> origin_;     // input segment each constraint comes from
   std::vector<char> split_origin_;  // input segments already counted as split
   std::vector<Point> added_points_; // vertices added where segments cross
   DeviceArray<cl_int> segment_a_, segment_b_, segment_state_, split_vertex_, crossed_vertex_,
       crossed_triangle_, counters_, constraint_mark_, active_, next_active_, keep_, offset_,
-      plan_list_, next_, previous_, flipped_, flip_count_;
+      plan_list_, next_, previous_, flipped_, flip_count_, dirty_stamp_, dirty_count_;
 };
 
 } // namespace clmesh

@@ -26,7 +26,6 @@
 
 #define CLM_NO_CONSTRAINT 0x7fffffff
 
-#define CLM_PAIR_NONE 0
 #define CLM_PAIR_ZERO 1
 #define CLM_PAIR_SINGLE 2
 #define CLM_PAIR_DOUBLE 3

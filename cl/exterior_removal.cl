@@ -58,23 +58,6 @@ __kernel void seed_from_points(__global const double2 *points, __global const in
   claim(removed, frontier, count, walk.triangle);
 }
 
-__kernel void spread_removal(__global const int *frontier, __global const int *tri_vertex,
-                             __global const int *tri_neighbor, __global const int *constraint_start,
-                             __global const int *constraint_adjacent, __global int *removed,
-                             __global int *next_frontier, volatile __global int *next_count,
-                             const int n) {
-  const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int t = frontier[i];
-  for (int e = 0; e < 3; ++e) {
-    const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
-                                 removed, t, e);
-    if (u >= 0)
-      claim(removed, next_frontier, next_count, u);
-  }
-}
-
 // Regional attributes (-A): region r's seed floods its area, bounded by
 // constraints; regions are run in order, so a later seed in the same area wins.
 __kernel void seed_label(__global const double2 *points, __global const int *tri_vertex,
@@ -92,9 +75,11 @@ __kernel void seed_label(__global const double2 *points, __global const int *tri
   frontier[atomic_inc(count)] = t;
 }
 
-__kernel void spread_label(__global const int *frontier, __global const int *tri_vertex,
+// One wave of a flood: removal (region < 0: claims removed[]) or labelling
+// of region `region` (claims label[]), never across a constraint.
+__kernel void spread_flood(__global const int *frontier, __global const int *tri_vertex,
                            __global const int *tri_neighbor, __global const int *constraint_start,
-                           __global const int *constraint_adjacent, __global const int *removed,
+                           __global const int *constraint_adjacent, volatile __global int *removed,
                            const int region, volatile __global int *label,
                            __global int *next_frontier, volatile __global int *next_count,
                            const int n) {
@@ -104,8 +89,12 @@ __kernel void spread_label(__global const int *frontier, __global const int *tri
   const int t = frontier[i];
   for (int e = 0; e < 3; ++e) {
     const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
-                                 removed, t, e);
-    if (u >= 0 && atomic_xchg(&label[u], region) != region)
+                                 (__global const int *)removed, t, e);
+    if (u < 0)
+      continue;
+    const bool claimed =
+        region < 0 ? atomic_xchg(&removed[u], 1) == 0 : atomic_xchg(&label[u], region) != region;
+    if (claimed)
       next_frontier[atomic_inc(next_count)] = u;
   }
 }

@@ -11,11 +11,11 @@ const char *kFile = "exterior_removal.cl";
 ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
     : device_(device), mesh_(mesh), seed_from_hull_(device.kernel(kFile, "seed_from_hull", kPhase)),
       seed_from_points_(device.kernel(kFile, "seed_from_points", kPhase)),
-      spread_(device.kernel(kFile, "spread_removal", kPhase)),
+      spread_(device.kernel(kFile, "spread_flood", kPhase)),
       seed_label_(device.kernel(kFile, "seed_label", kPhase)),
-      spread_label_(device.kernel(kFile, "spread_label", kPhase)),
-      removed_(device, mesh.triangle_capacity), frontier_(device, mesh.triangle_capacity),
-      next_frontier_(device, mesh.triangle_capacity), count_(device, 1) {
+      removed_(device, mesh.triangle_capacity), label_(device, 1),
+      frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
+      count_(device, 1) {
   removed_.fill(device_, 0, mesh.triangle_capacity);
 }
 
@@ -40,25 +40,19 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
              static_cast<cl_int>(seeds.size()));
     launch(device_, seed_from_points_, seeds.size(), kPhase);
   }
-  return flood(spread_, -1);
+  return flood(-1);
 }
 
-long ExteriorRemoval::flood(cl::Kernel &spread, int region) {
+long ExteriorRemoval::flood(int region) {
   long reached = 0;
   for (int front = count_.read(device_, 0); front > 0;) {
     reached += front;
     count_.fill(device_, 0, 1);
-    if (region < 0)
-      set_args(spread, frontier_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-               mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(),
-               removed_.buffer(), next_frontier_.buffer(), count_.buffer(),
-               static_cast<cl_int>(front));
-    else
-      set_args(spread, frontier_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-               mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(),
-               removed_.buffer(), static_cast<cl_int>(region), label_.buffer(),
-               next_frontier_.buffer(), count_.buffer(), static_cast<cl_int>(front));
-    launch(device_, spread, static_cast<std::size_t>(front), kPhase);
+    set_args(spread_, frontier_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), removed_.buffer(),
+             static_cast<cl_int>(region), label_.buffer(), next_frontier_.buffer(), count_.buffer(),
+             static_cast<cl_int>(front));
+    launch(device_, spread_, static_cast<std::size_t>(front), kPhase);
     std::swap(frontier_, next_frontier_);
     front = count_.read(device_, 0);
   }
@@ -76,7 +70,7 @@ const DeviceArray<cl_int> &ExteriorRemoval::label_regions(const std::vector<Poin
              static_cast<cl_int>(0), static_cast<cl_int>(slots + 8), static_cast<cl_int>(r),
              label_.buffer(), frontier_.buffer(), count_.buffer());
     launch(device_, seed_label_, 1, kPhase);
-    flood(spread_label_, static_cast<int>(r));
+    flood(static_cast<int>(r));
   }
   return label_;
 }

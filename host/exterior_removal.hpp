@@ -28,11 +28,12 @@ public:
 private:
   Device &device_;
   DeviceMesh &mesh_;
-  // Runs waves of `spread` from the current frontier until it is empty.
-  long flood(cl::Kernel &spread, int region);
+  // Runs waves from the current frontier until it is empty: removal when
+  // region < 0, else labelling with `region`. Returns the triangles reached.
+  long flood(int region);
 
-  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, spread_label_;
-  DeviceArray<cl_int> removed_, frontier_, next_frontier_, count_, label_;
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_;
+  DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 
 } // namespace clmesh

@@ -20,13 +20,15 @@
 inline int ghost_edge_must_flip(__global const double2 *points, __global const int *tri_vertex,
                                 __global const int *tri_neighbor,
                                 __global const int *constraint_start,
-                                __global const int *constraint_adjacent, int t, int i,
-                                int *real_edge) {
+                                __global const int *constraint_adjacent, int fixed_boundary, int t,
+                                int i, int *real_edge) {
   const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
             b = tri_vertex[3 * t + prev3(i)];
   const int link = tri_neighbor[3 * t + i];
   const int d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
   *real_edge = 0;
+  if (fixed_boundary && (a == CLM_INFINITE || b == CLM_INFINITE))
+    return CLM_KEEP;     // refinement: the boundary stays as split, convex or not
   if (a == CLM_INFINITE) // ghost-ghost edge at hull vertex b: flip if b is reflex
     return orient_vertices(points, d, b, c) > 0 ? CLM_FLIP : CLM_KEEP;
   if (b == CLM_INFINITE)
@@ -53,9 +55,9 @@ inline void edge_quad(__global const double2 *points, __global const int *tri_ve
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
                               __global const int *constraint_start,
-                              __global const int *constraint_adjacent, __global int *flags,
-                              __global int *exact_list, volatile __global int *exact_count,
-                              const int n) {
+                              __global const int *constraint_adjacent, const int fixed_boundary,
+                              __global int *flags, __global int *exact_list,
+                              volatile __global int *exact_count, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -65,7 +67,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
     for (int i = 0; i < 3; ++i) {
       int real_edge;
       int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, constraint_start,
-                                         constraint_adjacent, t, i, &real_edge);
+                                         constraint_adjacent, fixed_boundary, t, i, &real_edge);
       if (real_edge) {
         double2 q[4];
         edge_quad(points, tri_vertex, tri_neighbor, t, i, q);

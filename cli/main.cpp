@@ -11,7 +11,9 @@
 #include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
+#include "clmesh/refine.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -51,6 +53,10 @@ struct Options {
   bool quiet = false;               // -Q
   int verbose = 0;                  // -V (repeatable)
   bool check = false;               // -C
+  bool quality = false;             // -q[angle]
+  double min_angle = 0;             // degrees (-q alone: 20)
+  double max_area = -1;             // -a[area]
+  long max_steiner = -1;            // -S[N]
   bool help = false;                // -h, --help
   // Long options.
   bool version = false;
@@ -65,7 +71,7 @@ struct Options {
   std::string command_line;
 };
 
-const char *const kSwitches = "-p -c -O -A -B -z -e -n -N -E -I -j -Q -V -C -h";
+const char *const kSwitches = "-p -c -O -A -B -q -a -S -z -e -n -N -E -I -j -Q -V -C -h";
 const char *const kLongOptions = "--device SPEC, --list-devices, --grid N, --work-group N, "
                                  "--stats-json FILE, --voronoi-image FILE.pgm, --svg FILE, "
                                  "--help, --version";
@@ -75,10 +81,8 @@ const char *triangle_only_switch(char letter) {
   switch (letter) {
   case 'r':
     return "refining a previous mesh";
-  case 'q':
-    return "quality mesh generation";
   case 'a':
-    return "area constraints";
+    return "area constraints read from an .area file";
   case 'u':
     return "user-defined triangle constraints";
   case 'D':
@@ -95,8 +99,6 @@ const char *triangle_only_switch(char letter) {
     return "higher-order elements";
   case 'Y':
     return "no Steiner points on the boundary";
-  case 'S':
-    return "a Steiner point limit";
   case 'i':
     return "the incremental algorithm";
   case 'F':
@@ -188,10 +190,55 @@ long parse_count(const std::string &option, const std::string &value, long min, 
   return number;
 }
 
+// The number that follows a switch letter at arg[i + 1...] (Triangle's -q30,
+// -a0.01, -S100), advancing i past it; empty when none follows.
+std::string switch_number(const std::string &arg, std::size_t &i) {
+  std::size_t end = i + 1;
+  while (end < arg.size() &&
+         (std::isdigit(static_cast<unsigned char>(arg[end])) || arg[end] == '.' ||
+          ((arg[end] == 'e' || arg[end] == 'E') && end + 1 < arg.size() &&
+           (std::isdigit(static_cast<unsigned char>(arg[end + 1])) || arg[end + 1] == '-'))))
+    end += (arg[end] == 'e' || arg[end] == 'E') && arg[end + 1] == '-' ? 2 : 1;
+  std::string number = arg.substr(i + 1, end - i - 1);
+  i = end - 1;
+  return number;
+}
+
+double switch_value(const std::string &number, char letter) {
+  char *end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (number.empty() || *end != '\0' || !std::isfinite(value))
+    throw UsageError(std::string("-") + letter + ": '" + number + "' is not a number");
+  return value;
+}
+
 void parse_switches(const std::string &arg, Options &options) {
   for (std::size_t i = 1; i < arg.size(); ++i) {
     char letter = arg[i];
     switch (letter) {
+    case 'q': {
+      options.quality = true;
+      const std::string number = switch_number(arg, i);
+      options.min_angle = number.empty() ? 20 : switch_value(number, 'q');
+      break;
+    }
+    case 'a': {
+      const std::string number = switch_number(arg, i);
+      if (number.empty()) { // per-triangle areas from an .area file
+        if (!options.refused)
+          options.refused = 'a';
+        break;
+      }
+      options.max_area = switch_value(number, 'a');
+      if (options.max_area <= 0)
+        throw UsageError("-a: the maximum area must be positive");
+      break;
+    }
+    case 'S': {
+      const std::string number = switch_number(arg, i);
+      options.max_steiner = number.empty() ? 0 : static_cast<long>(switch_value(number, 'S'));
+      break;
+    }
     case 'p':
       options.poly = true;
       break;
@@ -320,6 +367,13 @@ Options parse(int argc, char **argv) {
     }
     options.command_line += " " + arg;
   }
+  const std::string &given = options.input;
+  const bool given_poly =
+      options.poly || (given.size() > 5 && given.compare(given.size() - 5, 5, ".poly") == 0);
+  if (given_poly && (options.quality || options.max_area > 0))
+    throw UsageError("-q/-a with -p (quality meshing of a PSLG) is not supported yet: clmesh "
+                     "refines the Delaunay triangulation of a point set; clmesh supports " +
+                     std::string(kSwitches));
   if (const char letter = options.refused) {
     std::string message = std::string("switch -") + letter + " (" + triangle_only_switch(letter) +
                           ") is not supported yet";
@@ -438,7 +492,8 @@ struct Timings {
 
 // constraints: the statistics of constrained_delaunay() with -p, else null.
 std::string stats_json(const clmesh::DelaunayResult &result, const std::string &device,
-                       const Timings &seconds, const clmesh::ConstrainedStats *constraints) {
+                       const Timings &seconds, const clmesh::ConstrainedStats *constraints,
+                       const clmesh::RefineStats *refinement) {
   const clmesh::DelaunayStats &s = result.stats;
   std::string json = "{\n  \"device\": " + json_string(device) + ",\n";
   json += "  \"seconds\": {\"read\": " + json_number(seconds.read) +
@@ -475,6 +530,16 @@ std::string stats_json(const clmesh::DelaunayResult &result, const std::string &
     json += count("inner_iterations", c.inner_iterations);
     json += count("delaunay_flips", c.delaunay_flips);
     json += count("eaten_triangles", c.eaten_triangles, true);
+    json += "  },\n";
+  }
+  if (refinement) {
+    const clmesh::RefineStats &r = *refinement;
+    json += "  \"refinement\": {\n";
+    json += count("iterations", r.iterations);
+    json += count("candidates", r.candidates);
+    json += count("steiner_points", r.inserted);
+    json += count("boundary_splits", r.boundary_splits);
+    json += count("remaining_bad_triangles", r.remaining_bad, true);
     json += "  },\n";
   }
   json += "  \"grid\": " + std::to_string(s.grid) + "\n}\n";
@@ -545,13 +610,28 @@ void add_vertices(Input &input, const std::vector<clmesh::Point> &added) {
 }
 
 // The mesh: result.mesh alone without -p.
+// With -q/-a the Steiner points come back as added_points and the refinement
+// statistics in *refinement.
 clmesh::ConstrainedResult triangulate(clmesh::Device &device, const Input &input,
-                                      const Options &options) {
+                                      const Options &options, clmesh::RefineStats *refinement) {
   clmesh::ConstrainedOptions constrained;
   clmesh::DelaunayOptions &mesh_options = constrained.delaunay;
   mesh_options.grid = options.grid;
   mesh_options.work_group = options.work_group;
   mesh_options.want_voronoi_image = !options.voronoi_image.empty();
+  if (!input.poly && (options.quality || options.max_area > 0)) {
+    clmesh::RefineOptions refine;
+    refine.delaunay = mesh_options;
+    refine.min_angle = options.quality ? options.min_angle : 0;
+    refine.max_area = options.max_area;
+    refine.max_steiner = options.max_steiner;
+    clmesh::RefineResult refined = clmesh::refine_delaunay(device, input.points.points, refine);
+    clmesh::ConstrainedResult result;
+    result.mesh = std::move(refined.mesh);
+    result.added_points = std::move(refined.added_points);
+    *refinement = refined.stats;
+    return result;
+  }
   if (!input.poly) {
     clmesh::ConstrainedResult result;
     result.mesh = clmesh::delaunay(device, input.points.points, mesh_options);
@@ -706,7 +786,20 @@ bool check_mesh(const Options &options, const Input &input, const clmesh::Constr
                 bool talk) {
   const clmesh::DelaunayResult &mesh = result.mesh;
   clmesh::CheckReport report;
-  if (!input.poly) {
+  if (!input.poly && !result.added_points.empty()) {
+    // A refined mesh: hull edges split at rounded midpoints may leave the
+    // boundary a hair from convex (as Triangle's do), so the boundary edges are
+    // checked as constraints and every other edge as locally Delaunay.
+    if (talk)
+      std::printf("Checking consistency and Delaunay property of mesh...\n");
+    std::vector<clmesh::Segment> boundary;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i)
+        if (mesh.neighbors[t][i] < 0)
+          boundary.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+    report = clmesh::check_constrained(input.points.points, mesh.triangles, mesh.neighbors,
+                                       mesh.duplicate_of, boundary, false);
+  } else if (!input.poly) {
     if (talk)
       std::printf("Checking consistency and Delaunay property of mesh...\n");
     report = clmesh::check_triangulation(input.points.points, mesh.triangles, mesh.neighbors,
@@ -763,7 +856,14 @@ int run(const Options &options) {
                 clmesh::describe(*device).c_str());
 
   phase = Clock::now();
-  const clmesh::ConstrainedResult result = triangulate(*device, input, options);
+  clmesh::RefineStats refinement;
+  const clmesh::ConstrainedResult result = triangulate(*device, input, options, &refinement);
+  const bool refined = !input.poly && (options.quality || options.max_area > 0);
+  if (refined && refinement.remaining_bad > 0)
+    std::fprintf(stderr,
+                 "Warning:  %ld triangles still miss the quality or area bound (small angles "
+                 "of the input or the Steiner point limit).\n",
+                 refinement.remaining_bad);
   add_vertices(input, result.added_points);
   const clmesh::DelaunayResult &mesh = result.mesh;
   const double compute_wall = seconds_since(phase);
@@ -799,7 +899,8 @@ int run(const Options &options) {
     if (talk)
       std::printf("Writing %s.\n", options.stats_json.c_str());
     batch.write_text(options.stats_json,
-                     stats_json(mesh, device_name, seconds, input.poly ? &result.stats : nullptr));
+                     stats_json(mesh, device_name, seconds, input.poly ? &result.stats : nullptr,
+                                refined ? &refinement : nullptr));
   }
   batch.commit();
 

@@ -333,19 +333,42 @@ std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &
                          " points to add where segments cross (not supported yet)");
   const auto first = static_cast<int32_t>(mesh.point_count);
   std::vector<cl_double2> coordinates;
-  std::vector<cl_int> ids, numbers;
+  std::vector<cl_int> ids;
   for (std::size_t i = 0; i < added.size(); ++i) {
     coordinates.push_back({{added[i].x, added[i].y}});
-    ids.push_back(first + static_cast<cl_int>(i));
-    original_id_.push_back(first + static_cast<int32_t>(i)); // numbered after the input
+    ids.push_back(first + static_cast<cl_int>(i)); // numbered after the input
   }
   mesh.points.upload(device_, coordinates, first);
   mesh.original_id.upload(device_, ids, first);
   mesh.location.upload(device_, std::vector<cl_int>(start_triangles.begin(), start_triangles.end()),
                        first);
-  mesh.point_count += added.size();
+  insert_appended(added.size());
+  const auto duplicates = mesh.duplicate_of.download(device_, added.size(), first);
+  std::vector<int32_t> result(added.size());
+  for (std::size_t i = 0; i < added.size(); ++i)
+    result[i] = duplicates[i] >= 0 ? duplicates[i] : ids[i];
+  return result;
+}
+
+std::size_t DelaunayScheduler::insert_appended(std::size_t count, bool in_place) {
+  DeviceMesh &mesh = *mesh_;
+  const auto first = static_cast<int32_t>(mesh.point_count);
+  std::vector<cl_int> ids(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    ids[i] = first + static_cast<cl_int>(i);
+    original_id_.push_back(ids[i]);
+  }
+  mesh.point_count += count;
   MissingPointInsertion insertion(device_, mesh, *scan_);
   insertion.set_points(ids);
+  if (in_place) {
+    const std::size_t inserted = insertion.run_round(stamp_++, false);
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (insertion.pending() > 0)
+      throw InternalError("points placed in place were not all inserted in one round");
+    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    timer_->charge(Flipping::kPhase);
+  }
   while (insertion.pending() > 0) {
     const std::size_t inserted = insertion.run_round(stamp_++);
     timer_->charge(MissingPointInsertion::kPhase);
@@ -354,11 +377,10 @@ std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &
     flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
     timer_->charge(Flipping::kPhase);
   }
-  const auto duplicates = mesh.duplicate_of.download(device_, added.size(), first);
-  std::vector<int32_t> result(added.size());
-  for (std::size_t i = 0; i < added.size(); ++i)
-    result[i] = duplicates[i] >= 0 ? duplicates[i] : ids[i];
-  return result;
+  stats_.flips = flips_.flips;
+  stats_.flip_passes = flips_.passes;
+  stats_.exact_predicate_calls = flips_.exact_checks;
+  return insertion.duplicates();
 }
 
 void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {

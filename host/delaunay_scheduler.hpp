@@ -52,6 +52,14 @@ public:
   std::vector<int32_t> insert_points(const std::vector<Point> &added,
                                      const std::vector<int32_t> &start_triangles);
 
+  // Inserts the points point_count .. point_count + count - 1, already on the
+  // device with their start triangles in location[], and restores the
+  // Delaunay property. Returns how many coincided with a vertex already there.
+  // in_place: each goes into the triangle (and edge) location[] and
+  // location_edge[] name, without walking, all in one round (they must not
+  // conflict).
+  std::size_t insert_appended(std::size_t count, bool in_place = false);
+
   // Flips every triangle until locally (constrained) Delaunay.
   void flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase);
 

@@ -39,8 +39,8 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     exact_count_.fill(device_, 0, 1);
     set_args(check_fast_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
              mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
-             mesh_.constraint_adjacent.buffer(), flags_.buffer(), exact_list_.buffer(),
-             exact_count_.buffer(), items);
+             mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_),
+             flags_.buffer(), exact_list_.buffer(), exact_count_.buffer(), items);
     launch(device_, check_fast_, n, kPhase);
     const int uncertain = exact_count_.read(device_, 0);
     if (uncertain > 0) {

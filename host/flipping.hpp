@@ -23,10 +23,15 @@ public:
   // pass; it is advanced past the last one used.
   void run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts);
 
+  // During refinement the boundary is fixed: split hull edges stay as they
+  // are (a rounded midpoint may leave it a hair from convex), as in Triangle.
+  void set_fixed_boundary(bool fixed) { fixed_boundary_ = fixed; }
+
 private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
+  bool fixed_boundary_ = false;
   cl::Kernel check_fast_, check_exact_, propose_, apply_, relink_, count_next_, clear_marks_,
       gather_next_;
   DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, count_,

@@ -30,16 +30,20 @@ void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
   pending_ = points.size();
 }
 
-std::size_t MissingPointInsertion::run_round(int stamp) {
+std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto n = static_cast<cl_int>(pending_);
   if (n == 0)
     return 0;
   // Any walk in a Delaunay triangulation visits each triangle at most once.
   const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
-  set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           mesh_.duplicate_of.buffer(), status_.buffer(), max_steps, n);
-  launch(device_, locate_, pending_, kPhase);
+  if (walk) {
+    set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+             mesh_.duplicate_of.buffer(), status_.buffer(), max_steps, n);
+    launch(device_, locate_, pending_, kPhase);
+  } else {
+    status_.fill(device_, 0, pending_); // all pending where they stand
+  }
 
   set_args(mark_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
            status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);

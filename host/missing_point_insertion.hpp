@@ -21,7 +21,10 @@ public:
   // One round: locate, mark, split the winners' triangles and relink.
   // Returns how many points were inserted; their new triangles are listed in
   // changed() (4 entries per insertion, -1 where unused).
-  std::size_t run_round(int stamp);
+  // walk == false: the points keep the triangle and edge already in
+  // location[] and location_edge[] (refinement's hull splits, which must not
+  // be moved off their edge by the rounding of their coordinates).
+  std::size_t run_round(int stamp, bool walk = true);
   const DeviceArray<cl_int> &changed() const { return changed_; }
   std::size_t duplicates() const { return duplicates_; }
 

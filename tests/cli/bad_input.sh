@@ -28,7 +28,9 @@ expect "fewer vertices than the header says" 1 "short.node:5:" -- short.node
 expect "dimension 3" 1 "dim3.node:1:" "dimension" -- dim3.node
 expect "unknown switch" 2 "-x" "-z" -- -zx good.node
 expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
-expect "unsupported Triangle switch" 2 "-q" "not supported" -- -q good.node
+expect "unsupported Triangle switch" 2 "-r" "not supported" -- -r good.node
+expect "quality meshing of a PSLG" 2 "-p" "-q" "not supported" -- -pq good.node
+expect "bad minimum angle" 2 "-q" -- -qx good.node
 expect "missing .poly input" 1 "good.poly" -- good.poly
 expect "missing option value" 2 "--grid" -- good.node --grid
 expect "bad option value" 2 "--work-group" -- --work-group zero good.node

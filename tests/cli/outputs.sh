@@ -211,5 +211,27 @@ for word in -z -e -n -N -E -I -j -Q -V -C -h --device --list-devices --grid --wo
 done
 "$bin" --version | grep -q '^clmesh ' || fail "--version"
 
+# -q30 -a: refinement adds Steiner points after the input's, -C checks it, and
+# the statistics file reports the refinement.
+mkdir -p "$work/quality" && cd "$work/quality"
+python3 -c "
+import random
+random.seed(3)
+print(300, 2, 0, 0)
+for i in range(300):
+    print(i + 1, random.random(), random.random())
+" > q.node
+if "$bin" -q30a0.01CQ --stats-json q.json q.node 2> err.txt; then
+  read -r vertices _ < q.1.node
+  [[ "$vertices" -gt 300 ]] || fail "-q30: $vertices vertices in q.1.node, wanted more than 300"
+  python3 - q.json <<'PY' || fail "-q30: stats 'refinement' wrong: $(cat q.json)"
+import json, sys
+r = json.load(open(sys.argv[1]))["refinement"]
+assert r["steiner_points"] > 0 and r["remaining_bad_triangles"] == 0, r
+PY
+else
+  fail "-q30a0.01CQ failed: $(cat err.txt)"
+fi
+
 finish outputs.sh
 echo "outputs.sh: all checks passed"

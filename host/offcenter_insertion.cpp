@@ -1,0 +1,89 @@
+#include "offcenter_insertion.hpp"
+
+#include <cmath>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "offcenter_insertion.cl";
+}
+
+OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
+                                       double max_area)
+    : device_(device), mesh_(mesh), max_area_(max_area),
+      find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
+      gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
+      locate_(device.kernel(kFile, "locate_candidates", kPhase)),
+      mark_(device.kernel(kFile, "mark_candidate_containers", kPhase)),
+      ties_(device.kernel(kFile, "mark_candidate_ties", kPhase)),
+      filter_(device.kernel(kFile, "insertion_filter", kPhase)),
+      select_(device.kernel(kFile, "select_survivors", kPhase)),
+      clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
+      append_(device.kernel(kFile, "append_survivors", kPhase)),
+      candidate_(device, mesh.triangle_capacity), origin_(device, mesh.triangle_capacity),
+      container_(device, mesh.triangle_capacity), hull_split_(device, mesh.triangle_capacity),
+      survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
+      offset_(device, mesh.triangle_capacity), count_(device, 1),
+      tie_mark_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
+      slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity) {
+  tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
+  const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
+  // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
+  ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
+  // Üngör's off-center distance, as Triangle computes it.
+  offconstant_ =
+      min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
+}
+
+std::size_t OffcenterInsertion::find(PrefixScan &scan) {
+  const std::size_t slots = mesh_.triangle_count;
+  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), ratio_bound_squared_,
+           max_area_, offconstant_, keep_.buffer(), slot_candidate_.buffer(),
+           slot_priority_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, find_bad_, slots, kPhase);
+  bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, slots, kPhase));
+  if (bad_ == 0)
+    return 0;
+  set_args(gather_bad_, keep_.buffer(), offset_.buffer(), slot_candidate_.buffer(),
+           slot_priority_.buffer(), candidate_.buffer(), origin_.buffer(), priority_.buffer(),
+           static_cast<cl_int>(slots));
+  launch(device_, gather_bad_, slots, kPhase);
+  const auto n = static_cast<cl_int>(bad_);
+  set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           candidate_.buffer(), container_.buffer(), hull_split_.buffer(), origin_.buffer(),
+           static_cast<cl_int>(slots + 8), n);
+  launch(device_, locate_, bad_, kPhase);
+  set_args(mark_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+           priority_.buffer(), mesh_.tri_mark.buffer(), n);
+  launch(device_, mark_, bad_, kPhase);
+  set_args(ties_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+           priority_.buffer(), mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
+  launch(device_, ties_, bad_, kPhase);
+  set_args(filter_, container_.buffer(), hull_split_.buffer(), priority_.buffer(),
+           mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
+           survive_.buffer(), n);
+  launch(device_, filter_, bad_, kPhase);
+  set_args(clear_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
+  launch(device_, clear_, bad_, kPhase);
+  return bad_;
+}
+
+std::size_t OffcenterInsertion::append(bool hull_splits, std::size_t room, PrefixScan &scan) {
+  if (bad_ == 0)
+    return 0;
+  const auto n = static_cast<cl_int>(bad_);
+  set_args(select_, survive_.buffer(), static_cast<cl_int>(hull_splits ? 2 : 1), keep_.buffer(), n);
+  launch(device_, select_, bad_, kPhase);
+  const auto count = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  if (count == 0 || count > room)
+    return 0;
+  set_args(append_, candidate_.buffer(), container_.buffer(), hull_split_.buffer(), keep_.buffer(),
+           offset_.buffer(), mesh_.points.buffer(), mesh_.location.buffer(),
+           mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
+           static_cast<cl_int>(mesh_.point_count), n);
+  launch(device_, append_, bad_, kPhase);
+  return count;
+}
+
+} // namespace clmesh

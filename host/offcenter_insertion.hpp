@@ -1,0 +1,41 @@
+// clmesh — GPU-QM step 1: bad triangles, off-centers, boundary midpoints and
+// the insertion filter (thesis §3.3.2, §3.4.1). Kernels: cl/offcenter_insertion.cl.
+#pragma once
+
+#include "prefix_scan.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <vector>
+
+namespace clmesh {
+
+class OffcenterInsertion {
+public:
+  static constexpr const char *kPhase = "offcenter_insertion";
+
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area);
+
+  // Finds the bad triangles, locates their candidates (hull midpoints where
+  // they fall outside or encroach the hull) and runs the insertion filter.
+  // Returns the number of bad triangles.
+  std::size_t find(PrefixScan &scan);
+
+  // Appends the survivors of one kind (hull splits, or points inside) to the
+  // mesh's points as point_count, point_count + 1, ... (they stay on the
+  // device), not inserted yet; none when more than `room`. Returns how many.
+  std::size_t append(bool hull_splits, std::size_t room, PrefixScan &scan);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  double ratio_bound_squared_, max_area_, offconstant_;
+  cl::Kernel find_bad_, gather_bad_, locate_, mark_, ties_, filter_, select_, clear_, append_;
+  std::size_t bad_ = 0;
+  DeviceArray<cl_double2> candidate_;
+  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, count_, tie_mark_;
+  DeviceArray<cl_double2> slot_candidate_;
+  DeviceArray<cl_uint> slot_priority_, priority_;
+};
+
+} // namespace clmesh

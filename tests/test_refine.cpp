@@ -1,0 +1,142 @@
+// GPU-QM: refinement of a point set's Delaunay triangulation to a minimum
+// angle and a maximum area, checked exactly on every output.
+#include <doctest/doctest.h>
+
+#include "clmesh/check.hpp"
+#include "clmesh/constrained.hpp"
+#include "clmesh/errors.hpp"
+#include "clmesh/refine.hpp"
+#include "mesh_fixtures.hpp"
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+using clmesh::Point;
+using test_support::device;
+using test_support::problems;
+
+namespace {
+
+double smallest_angle_degrees(const std::vector<Point> &p, const clmesh::Triangle &t) {
+  double smallest = 180;
+  for (int i = 0; i < 3; ++i) {
+    const Point &a = p[t[i]], &b = p[t[(i + 1) % 3]], &c = p[t[(i + 2) % 3]];
+    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
+    smallest = std::min(smallest,
+                        std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+  }
+  return smallest;
+}
+
+double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
+  const Point &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+}
+
+// Refines, then checks: a valid triangulation whose boundary edges (hull
+// edges, split at rounded midpoints) bound it and whose other edges are all
+// locally Delaunay; every input point used; the bounds met everywhere.
+clmesh::RefineResult refine_checked(const std::vector<Point> &input, double angle,
+                                    double max_area = -1) {
+  clmesh::RefineOptions options;
+  options.min_angle = angle;
+  options.max_area = max_area;
+  clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
+  std::vector<Point> points = input;
+  points.insert(points.end(), result.added_points.begin(), result.added_points.end());
+  const auto &mesh = result.mesh;
+  REQUIRE(mesh.duplicate_of.size() == points.size());
+  std::vector<clmesh::Segment> boundary;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      if (mesh.neighbors[t][i] < 0)
+        boundary.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+  const auto report = clmesh::check_constrained(points, mesh.triangles, mesh.neighbors,
+                                                mesh.duplicate_of, boundary, false);
+  INFO(problems(report));
+  CHECK(report.ok);
+  std::vector<char> used(points.size(), 0);
+  for (const auto &t : mesh.triangles)
+    for (int32_t v : t)
+      used[v] = 1;
+  long unused = 0;
+  for (std::size_t i = 0; i < input.size(); ++i)
+    unused += !used[i] && mesh.duplicate_of[i] < 0;
+  CHECK(unused == 0);
+  CHECK(result.stats.remaining_bad == 0);
+  double worst_angle = 180, largest = 0;
+  for (const auto &t : mesh.triangles) {
+    worst_angle = std::min(worst_angle, smallest_angle_degrees(points, t));
+    largest = std::max(largest, area(points, t));
+  }
+  MESSAGE(input.size() << " points, -q" << angle << ": " << result.added_points.size()
+                       << " Steiner points, smallest angle " << worst_angle);
+  CHECK(worst_angle >= angle - 1e-6);
+  if (max_area > 0)
+    CHECK(largest <= max_area * (1 + 1e-9));
+  return result;
+}
+
+} // namespace
+
+TEST_CASE("refine: minimum angles on the thesis distributions") {
+  for (const double angle : {20.0, 25.0, 30.0}) {
+    INFO("angle " << angle);
+    refine_checked(fixtures::uniform(4000, 71), angle);
+    refine_checked(fixtures::gaussian(4000, 72), angle);
+    refine_checked(fixtures::disk(4000, 73), angle);
+  }
+  refine_checked(fixtures::circle(1000, 74), 30);
+  refine_checked(fixtures::lattice(40), 30); // cocircular: already 45 degrees
+}
+
+TEST_CASE("refine: maximum area, alone and with an angle") {
+  refine_checked(fixtures::uniform(500, 75), 0, 1e-3);
+  refine_checked(fixtures::uniform(500, 76), 28, 2e-4);
+}
+
+TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
+  // A thin wedge: the hull angle at the apex is about 3 degrees.
+  std::vector<Point> points = {{0, 0}, {10, 0.25}, {10, -0.25}};
+  for (int i = 1; i < 40; ++i)
+    points.push_back({i * 0.25, 0});
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  const auto result = clmesh::refine_delaunay(device(), points, options);
+  std::vector<Point> all = points;
+  all.insert(all.end(), result.added_points.begin(), result.added_points.end());
+  CHECK(!result.mesh.triangles.empty());
+  MESSAGE(result.stats.remaining_bad << " bad triangles remain after " << result.stats.iterations
+                                     << " iterations");
+  for (const auto &t : result.mesh.triangles)
+    CHECK(area(all, t) > 0);
+}
+
+TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  options.max_steiner = 50;
+  const auto result = clmesh::refine_delaunay(device(), fixtures::uniform(2000, 77), options);
+  CHECK(result.added_points.size() <= 50u);
+  CHECK(result.stats.remaining_bad > 0);
+}
+
+TEST_CASE("refine: the same mesh whatever the work-group size") {
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  options.delaunay.work_group = 1;
+  const auto points = fixtures::gaussian(3000, 78);
+  const auto first = clmesh::refine_delaunay(device(), points, options);
+  options.delaunay.work_group = 128;
+  const auto second = clmesh::refine_delaunay(device(), points, options);
+  CHECK(first.mesh.triangles == second.mesh.triangles);
+  CHECK(first.added_points.size() == second.added_points.size());
+}
+
+TEST_CASE("refine: bad options are refused") {
+  clmesh::RefineOptions options;
+  options.min_angle = 60;
+  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), fixtures::uniform(10, 79), options),
+                  clmesh::UsageError);
+}

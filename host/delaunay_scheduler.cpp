@@ -383,6 +383,13 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count, bool in_place)
   return insertion.duplicates();
 }
 
+void DelaunayScheduler::grow(std::size_t extra_points) {
+  mesh_->grow(device_, extra_points);
+  const bool fixed = flipping_->fixed_boundary();
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, *scan_);
+  flipping_->set_fixed_boundary(fixed);
+}
+
 void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {
   std::vector<cl_int> every_triangle(mesh_->triangle_count);
   std::iota(every_triangle.begin(), every_triangle.end(), 0);

@@ -60,6 +60,10 @@ public:
   // conflict).
   std::size_t insert_appended(std::size_t count, bool in_place = false);
 
+  // Makes room for `extra_points` more points; the phase objects that size
+  // their lists by the mesh are rebuilt.
+  void grow(std::size_t extra_points);
+
   // Flips every triangle until locally (constrained) Delaunay.
   void flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase);
 

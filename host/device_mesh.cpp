@@ -17,4 +17,25 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
       location(device, point_capacity), location_edge(device, point_capacity),
       constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1) {}
 
+void DeviceMesh::grow(Device &device, std::size_t extra_points) {
+  const std::size_t points_now = point_capacity + extra_points;
+  const std::size_t triangles_now = 2 * points_now + 2;
+  const cl_int constraints_end = constraint_start.read(device, point_capacity);
+  points = points.grown(device, points_now, cl_double2{{0, 0}});
+  original_id = original_id.grown(device, points_now, 0);
+  tri_vertex = tri_vertex.grown(device, 3 * triangles_now, 0);
+  tri_neighbor = tri_neighbor.grown(device, 3 * triangles_now, 0);
+  tri_mark = tri_mark.grown(device, triangles_now, -1); // no mark
+  modified_stamp = modified_stamp.grown(device, triangles_now, 0);
+  children = children.grown(device, 3 * triangles_now, -1);
+  vertex_triangle = vertex_triangle.grown(device, points_now, 0);
+  duplicate_of = duplicate_of.grown(device, points_now, -1);
+  location = location.grown(device, points_now, 0);
+  location_edge = location_edge.grown(device, points_now, -1);
+  constraint_start = constraint_start.grown(device, points_now + 1, constraints_end);
+  point_capacity = points_now;
+  triangle_capacity = triangles_now;
+  list_capacity = 4 * triangle_capacity / 3 + 16;
+}
+
 } // namespace clmesh

@@ -38,6 +38,19 @@ public:
     return data;
   }
   T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }
+
+  // A larger array holding this one's contents, the rest set to `fill`.
+  DeviceArray grown(Device &device, std::size_t size, T fill) const {
+    DeviceArray bigger(device, size);
+    guarded("allocation", "growing a device array", [&] {
+      if (size_)
+        device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, size_ * sizeof(T));
+      if (size > size_)
+        device.queue().enqueueFillBuffer(bigger.buffer_, fill, size_ * sizeof(T),
+                                         (size - size_) * sizeof(T));
+    });
+    return bigger;
+  }
   void fill(Device &device, T value, std::size_t count) const {
     if (count)
       guarded("setup", "filling a device array",
@@ -78,6 +91,10 @@ struct DeviceMesh {
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
 
   std::size_t triangle_count = 0; // slots in use (all live: DT never deletes)
+
+  // Makes room for `extra_points` more points (and their triangles), keeping
+  // every array's contents (thesis §3.6.1: arrays expand when slots run out).
+  void grow(Device &device, std::size_t extra_points);
 };
 
 } // namespace clmesh

@@ -26,6 +26,7 @@ public:
   // During refinement the boundary is fixed: split hull edges stay as they
   // are (a rounded midpoint may leave it a hair from convex), as in Triangle.
   void set_fixed_boundary(bool fixed) { fixed_boundary_ = fixed; }
+  bool fixed_boundary() const { return fixed_boundary_; }
 
 private:
   Device &device_;

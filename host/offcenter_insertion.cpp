@@ -69,13 +69,16 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan) {
   return bad_;
 }
 
-std::size_t OffcenterInsertion::append(bool hull_splits, std::size_t room, PrefixScan &scan) {
+std::size_t OffcenterInsertion::append(bool hull_splits, std::size_t room, PrefixScan &scan,
+                                       std::size_t *wanted) {
+  *wanted = 0;
   if (bad_ == 0)
     return 0;
   const auto n = static_cast<cl_int>(bad_);
   set_args(select_, survive_.buffer(), static_cast<cl_int>(hull_splits ? 2 : 1), keep_.buffer(), n);
   launch(device_, select_, bad_, kPhase);
   const auto count = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  *wanted = count;
   if (count == 0 || count > room)
     return 0;
   set_args(append_, candidate_.buffer(), container_.buffer(), hull_split_.buffer(), keep_.buffer(),

@@ -23,8 +23,9 @@ public:
 
   // Appends the survivors of one kind (hull splits, or points inside) to the
   // mesh's points as point_count, point_count + 1, ... (they stay on the
-  // device), not inserted yet; none when more than `room`. Returns how many.
-  std::size_t append(bool hull_splits, std::size_t room, PrefixScan &scan);
+  // device), not inserted yet; none when more than `room`. Returns how many
+  // were appended; *wanted: how many survived.
+  std::size_t append(bool hull_splits, std::size_t room, PrefixScan &scan, std::size_t *wanted);
 
 private:
   Device &device_;

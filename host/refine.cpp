@@ -8,29 +8,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 
 namespace clmesh {
 
 namespace {
 
-// Room for Steiner points: enough for the usual refinement of a point set,
-// plus the triangles an area bound asks for, at most about 10 million
-// (beyond, refinement stops and reports the triangles still bad).
-std::size_t steiner_room(const std::vector<Point> &points, const RefineOptions &options) {
-  std::size_t room = 4 * points.size() + 4096;
-  if (options.max_area > 0) {
-    double min_x = points[0].x, max_x = min_x, min_y = points[0].y, max_y = min_y;
-    for (const Point &p : points) {
-      min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
-      min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
-    }
-    const double box = (max_x - min_x) * (max_y - min_y);
-    room += static_cast<std::size_t>(std::min(1e7, 2 * box / options.max_area));
-  }
-  if (options.max_steiner >= 0)
-    room = std::min(room, static_cast<std::size_t>(options.max_steiner));
-  return room;
-}
+// First room for Steiner points; the arrays grow by at least n when it runs
+// out (thesis §3.6.1).
+std::size_t first_room(std::size_t n) { return n + 4096; }
 
 } // namespace
 
@@ -39,42 +26,66 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   if (options.min_angle < 0 || options.min_angle > 45)
     throw UsageError("the minimum angle (-q) must be between 0 and 45 degrees");
   RefineResult result;
-  const std::size_t room = steiner_room(points, options);
-  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, room);
+  const std::size_t n = points.size();
+  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, first_room(n));
   device.program("offcenter_insertion.cl", "setup");
   if (!scheduler.triangulate()) {
     scheduler.download_collinear(result.mesh);
     return result;
   }
-  DeviceMesh &mesh = scheduler.mesh();
-  const std::size_t n = points.size();
-  OffcenterInsertion offcenter(device, mesh, options.min_angle, options.max_area);
+  auto offcenter = std::make_unique<OffcenterInsertion>(device, scheduler.mesh(), options.min_angle,
+                                                        options.max_area);
   RefineStats &stats = result.stats;
   scheduler.flipping().set_fixed_boundary(true);
+  const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
+                                                     : std::numeric_limits<std::size_t>::max();
+  // Room for the next survivors: within the -S limit, growing the arrays when
+  // the limit allows more than they hold. False when the limit is reached.
+  auto make_room = [&](std::size_t wanted) {
+    const DeviceMesh &mesh = scheduler.mesh();
+    if (mesh.point_count - n + wanted > limit)
+      return false;
+    if (mesh.point_count + wanted > mesh.point_capacity) {
+      scheduler.grow(std::max(wanted, n));
+      offcenter = std::make_unique<OffcenterInsertion>(device, scheduler.mesh(), options.min_angle,
+                                                       options.max_area);
+    }
+    return true;
+  };
   // Termination is guaranteed for angles up to about 30 degrees away from
   // small hull angles; the bound on iterations turns anything else into
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
   for (long iteration = 0;; ++iteration) {
-    const std::size_t bad = offcenter.find(scheduler.scan());
+    const std::size_t bad = offcenter->find(scheduler.scan());
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     stats.remaining_bad = static_cast<long>(bad);
     if (bad == 0 || iteration == max_iterations)
       break;
+    // Room for every candidate first (growing invalidates the candidates:
+    // they are found again).
+    if (scheduler.mesh().point_count + bad > scheduler.mesh().point_capacity &&
+        scheduler.mesh().point_count - n + bad <= limit) {
+      make_room(bad);
+      continue;
+    }
     ++stats.iterations;
     stats.candidates += static_cast<long>(bad);
+    const DeviceMesh &mesh = scheduler.mesh();
+    const std::size_t room = std::min(mesh.point_capacity - mesh.point_count,
+                                      limit - std::min(limit, mesh.point_count - n));
     // Hull splits first, each on its edge, then the points inside.
-    const std::size_t splits =
-        offcenter.append(true, mesh.point_capacity - mesh.point_count, scheduler.scan());
+    std::size_t wanted = 0;
+    const std::size_t splits = offcenter->append(true, room, scheduler.scan(), &wanted);
     if (splits > 0)
       scheduler.insert_appended(splits, true);
     stats.boundary_splits += static_cast<long>(splits);
-    const std::size_t inside =
-        offcenter.append(false, mesh.point_capacity - mesh.point_count, scheduler.scan());
+    const std::size_t inside = offcenter->append(false, room - splits, scheduler.scan(), &wanted);
     const std::size_t coinciding = inside > 0 ? scheduler.insert_appended(inside) : 0;
     if (splits + inside - coinciding == 0)
-      break; // nothing new: no room left, or every candidate fell on a vertex
+      break; // nothing new: the -S limit, or every candidate fell on a vertex
   }
+  const DeviceMesh &mesh = scheduler.mesh();
   stats.inserted = static_cast<long>(mesh.point_count - n);
   std::vector<cl_double2> added = mesh.points.download(device, mesh.point_count - n, n);
   for (const cl_double2 &p : added)

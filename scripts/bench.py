@@ -44,9 +44,25 @@ Two kinds of segments (--variants):
          segments cross.  Each is about 1/11 of the square long: some 30 (100k
          points) to 90 (1M) point spacings, crossing that many triangles or more.
 
+With --quality the same point sets (sizes default to 100000 in this mode,
+10000 with --quick) are turned into quality meshes, once per minimum angle in
+--angles (default 20,30 degrees):
+
+  clmesh    build/clmesh -Q -qANGLE --stats-json F.json INPUT.node
+            time = seconds.compute; vertices = input points + the
+            refinement's steiner_points; also its remaining_bad_triangles
+  Triangle  triangle.triangulate({'vertices': pts}, 'qANGLE'), timing only
+            that call; vertices = len(result['vertices'])
+  (no CGAL in this mode)
+
+The vertex ratio is clmesh's vertex count / Triangle's for the same angle
+bound (above 1: clmesh inserted more Steiner points).  --repeat works as above.
+
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
            [--dists uniform,grid] [--repeat K] [--markdown OUT.md]
        python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
+       python3 scripts/bench.py --quality [--quick] [--sizes 100000] [--angles 20,30]
+           [--dists ...]
 """
 import argparse
 import glob
@@ -87,8 +103,9 @@ def read_node(path):
     return np.ascontiguousarray(body[:n * cols].reshape(n, cols)[:, 1:3])
 
 pts = read_node(sys.argv[1])
+switches = sys.argv[2] if len(sys.argv) > 2 else ''  # e.g. 'q30' for --quality
 t0 = time.perf_counter()
-out = triangle.triangulate({'vertices': pts}, '')
+out = triangle.triangulate({'vertices': pts}, switches)
 t1 = time.perf_counter()
 print(json.dumps({'seconds': t1 - t0, 'triangles': int(len(out['triangles'])),
                   'vertices': int(len(out['vertices']))}))
@@ -264,8 +281,14 @@ def run_clmesh(exe, node, timeout, switches=()):
         raise ToolFailure("stats JSON has no seconds.compute")
     phases = [(p.get("name", "?"), float(p.get("seconds", 0.0))) for p in stats.get("phases", [])]
     counts = stats.get("counts", {})
+    refinement = stats.get("refinement") or {}
+    vertices = None
+    if counts.get("input_points") is not None and refinement.get("steiner_points") is not None:
+        vertices = int(counts["input_points"]) + int(refinement["steiner_points"])
     return {"seconds": seconds, "peak_mb": peak, "phases": phases,
-            "triangles": counts.get("triangles"), "device": stats.get("device")}
+            "triangles": counts.get("triangles"), "device": stats.get("device"),
+            "vertices": vertices, "remaining_bad": refinement.get("remaining_bad_triangles"),
+            "iterations": refinement.get("iterations")}
 
 
 def ensure_triangle_package():
@@ -279,12 +302,14 @@ def ensure_triangle_package():
     return subprocess.run(probe, capture_output=True).returncode == 0
 
 
-def run_triangle(available, node, timeout, child=TRIANGLE_CHILD):
+def run_triangle(available, node, timeout, child=TRIANGLE_CHILD, switches=""):
     if not available:
         raise ToolFailure("the Python package 'triangle' is not available")
-    stdout, peak = run_measured([sys.executable, "-c", child, node], timeout)
+    cmd = [sys.executable, "-c", child, node] + ([switches] if switches else [])
+    stdout, peak = run_measured(cmd, timeout)
     r = last_json_line(stdout)
-    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles")}
+    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles"),
+            "vertices": r.get("vertices")}
 
 
 def run_cgal(exe, node, timeout, mode="dt"):
@@ -367,6 +392,18 @@ def fmt_phases(r):
     return ", ".join(f"{name}:{sec:.3f}" for name, sec in r["phases"]) or "-"
 
 
+def fmt_count(r, key):
+    if not r:
+        return "fail"
+    return "-" if r.get(key) is None else str(r[key])
+
+
+def fmt_vertex_ratio(a, b):
+    if not a or not b or not a.get("vertices") or not b.get("vertices"):
+        return "fail"
+    return f"{a['vertices'] / b['vertices']:.3f}"
+
+
 def machine_line(device):
     cpu = platform.processor() or platform.machine()
     try:
@@ -385,8 +422,9 @@ def machine_line(device):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description="clmesh vs Triangle vs CGAL on the thesis distributions")
-    ap.add_argument("--sizes", default="100000,1000000",
-                    help="comma-separated point counts (default 100000,1000000)")
+    ap.add_argument("--sizes", default=None,
+                    help="comma-separated point counts (default 100000,1000000; "
+                         "100000 with --quality)")
     ap.add_argument("--dists", default=",".join(DISTS),
                     help=f"comma-separated subset of {','.join(DISTS)}")
     ap.add_argument("--quick", action="store_true", help="10000 points only")
@@ -401,9 +439,21 @@ def main(argv=None):
                     help="constrained Delaunay of generated PSLGs (N points, N/10 segments)")
     ap.add_argument("--variants", default="short,long",
                     help="with --cdt: comma-separated subset of short,long")
+    ap.add_argument("--quality", action="store_true",
+                    help="quality meshes of the distributions: clmesh -qANGLE vs Triangle "
+                         "'qANGLE' (time, output vertices, clmesh's remaining bad triangles; "
+                         "no CGAL)")
+    ap.add_argument("--angles", default="20,30",
+                    help="with --quality: comma-separated minimum angles in degrees (default 20,30)")
     a = ap.parse_args(argv)
+    if a.cdt and a.quality:
+        ap.error("--cdt and --quality cannot be combined")
+    if a.sizes is None:
+        a.sizes = "100000" if a.quality else "100000,1000000"
     if a.cdt:
         return main_cdt(a, ap)
+    if a.quality:
+        return main_quality(a, ap)
 
     sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
     dists = [d for d in a.dists.replace(" ", "").split(",") if d]
@@ -531,6 +581,81 @@ def main_cdt(a, ap):
              "chains in horizontal strips, segments about 1/11 of the square long); times "
              "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
              "clmesh is faster)."]
+    notes += [f"Warning: {w}" for w in warnings]
+    notes += [f"Failed: {f}" for f in failures]
+    text = "\n".join(lines + notes) + "\n"
+    print(text, end="")
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(text)
+    return 0
+
+
+def main_quality(a, ap):
+    sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
+    dists = [d for d in a.dists.replace(" ", "").split(",") if d]
+    for d in dists:
+        if d not in DISTS:
+            ap.error(f"unknown distribution {d!r} (choose from {', '.join(DISTS)})")
+    angles = [s for s in a.angles.replace(" ", "").split(",") if s]
+    for angle in angles:
+        try:
+            if not 0 < float(angle) < 60:
+                raise ValueError
+        except ValueError:
+            ap.error(f"bad angle {angle!r} (degrees, between 0 and 60)")
+    if a.repeat < 1:
+        ap.error("--repeat must be >= 1")
+    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
+    bench_dir = os.path.join(a.build_dir, "bench")
+    os.makedirs(bench_dir, exist_ok=True)
+    have_triangle = ensure_triangle_package()
+
+    rows, failures, warnings = [], [], []
+    device = None
+    for dist in dists:
+        for n in sizes:
+            node = input_file(bench_dir, dist, n, a.seed)
+            for angle in angles:
+                results = {}
+                for name, fn, args in (
+                        ("clmesh", run_clmesh, (clmesh, node, a.timeout, (f"-q{angle}",))),
+                        ("Triangle", run_triangle, (have_triangle, node, a.timeout,
+                                                    TRIANGLE_CHILD, f"q{angle}"))):
+                    log(f"bench.py: quality {dist} n={n} q{angle}: {name} ...")
+                    t0 = time.time()
+                    try:
+                        results[name] = best_of(a.repeat, fn, *args)
+                        log(f"bench.py:   {results[name]['seconds']:.3f} s, "
+                            f"{results[name].get('vertices')} vertices "
+                            f"(wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
+                    except ToolFailure as e:
+                        results[name] = None
+                        failures.append(f"quality {dist} n={n} q{angle}: {name}: {e}")
+                        log(f"bench.py:   fail: {e}")
+                cl, tr = results["clmesh"], results["Triangle"]
+                if cl and cl.get("device"):
+                    device = cl["device"]
+                if cl and cl.get("remaining_bad"):
+                    warnings.append(f"quality {dist} n={n} q{angle}: clmesh left "
+                                    f"{cl['remaining_bad']} bad triangle(s)")
+                rows.append([dist, str(n), angle, fmt_s(cl), fmt_s(tr), fmt_ratio(cl, tr),
+                             fmt_count(cl, "vertices"), fmt_count(tr, "vertices"),
+                             fmt_vertex_ratio(cl, tr), fmt_count(cl, "remaining_bad"),
+                             fmt_phases(cl)])
+
+    header = ["dist", "n", "angle", "clmesh compute s", "Triangle s", "clmesh/Triangle",
+              "clmesh vertices", "Triangle vertices", "vertex ratio (clmesh/Triangle)",
+              "clmesh remaining bad triangles", "clmesh phases (s)"]
+    lines = ["| " + " | ".join(header) + " |",
+             "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    notes = ["", machine_line(device),
+             f"Quality meshes with minimum angle ANGLE degrees (clmesh -qANGLE, Triangle "
+             f"'qANGLE'); best of {a.repeat} run(s), seed {a.seed}; times exclude file reading "
+             "and writing; clmesh/Triangle is the time ratio (below 1: clmesh is faster); "
+             "clmesh vertices = input points + Steiner points, Triangle vertices = "
+             "len(result['vertices'])."]
     notes += [f"Warning: {w}" for w in warnings]
     notes += [f"Failed: {f}" for f in failures]
     text = "\n".join(lines + notes) + "\n"

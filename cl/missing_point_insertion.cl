@@ -113,6 +113,7 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
     store_triangle(tri_vertex, tri_neighbor, s2, c, a, p, encode_link(t, 1), encode_link(s1, 0),
                    n1);
     record_children(modified_stamp, children, t, stamp, t, s1, s2);
+    modified_stamp[s1] = modified_stamp[s2] = stamp; // new slots: changed too
     out[0] = t;
     out[1] = s1;
     out[2] = s2;
@@ -135,6 +136,7 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
                    u_opp_b);
     record_children(modified_stamp, children, t, stamp, t, s1, -1);
     record_children(modified_stamp, children, u, stamp, u, s2, -1);
+    modified_stamp[s1] = modified_stamp[s2] = stamp; // new slots: changed too
     out[0] = t;
     out[1] = s1;
     out[2] = u;

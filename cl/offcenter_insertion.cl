@@ -16,15 +16,21 @@
 #include "common.h"
 
 // Per slot t: is_bad[t], and the candidate and priority of a bad triangle.
+// Only triangles changed since the last search (modified_stamp >= since), or
+// bad then, are examined again (thesis §3.3.2): the others are still good.
 __kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
-                                 const double ratio_bound_squared, const double max_area,
-                                 const double offconstant, __global int *is_bad,
-                                 __global double2 *slot_candidate, __global uint *slot_priority,
-                                 const int n) {
+                                 __global const int *modified_stamp, const int since,
+                                 __global int *was_bad, const double ratio_bound_squared,
+                                 const double max_area, const double offconstant,
+                                 __global int *is_bad, __global double2 *slot_candidate,
+                                 __global uint *slot_priority, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   is_bad[t] = 0;
+  if (modified_stamp[t] < since && !was_bad[t])
+    return;
+  was_bad[t] = 0;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri))
     return;
@@ -62,6 +68,7 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   if (!isfinite(steiner.x) || !isfinite(steiner.y))
     return; // a degenerate computation: leave the triangle alone
   is_bad[t] = 1;
+  was_bad[t] = 1;
   slot_candidate[t] = steiner;
   slot_priority[t] = as_uint((float)length_squared[shortest]);
 }

@@ -24,9 +24,11 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       container_(device, mesh.triangle_capacity), hull_split_(device, mesh.triangle_capacity),
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), count_(device, 1),
-      tie_mark_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
+      tie_mark_(device, mesh.triangle_capacity), was_bad_(device, mesh.triangle_capacity),
+      slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
+  was_bad_.fill(device_, 0, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
   ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
@@ -35,11 +37,13 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan) {
+std::size_t OffcenterInsertion::find(PrefixScan &scan, int stamp) {
   const std::size_t slots = mesh_.triangle_count;
-  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), ratio_bound_squared_,
-           max_area_, offconstant_, keep_.buffer(), slot_candidate_.buffer(),
+  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.modified_stamp.buffer(), static_cast<cl_int>(since_), was_bad_.buffer(),
+           ratio_bound_squared_, max_area_, offconstant_, keep_.buffer(), slot_candidate_.buffer(),
            slot_priority_.buffer(), static_cast<cl_int>(slots));
+  since_ = stamp;
   launch(device_, find_bad_, slots, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, slots, kPhase));
   if (bad_ == 0)

@@ -19,7 +19,9 @@ public:
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
   // Returns the number of bad triangles.
-  std::size_t find(PrefixScan &scan);
+  // stamp: the scheduler's current step stamp; the next search re-examines
+  // only the triangles rewritten from it on (and the bad ones).
+  std::size_t find(PrefixScan &scan, int stamp);
 
   // Appends the survivors of one kind (hull splits, or points inside) to the
   // mesh's points as point_count, point_count + 1, ... (they stay on the
@@ -33,8 +35,10 @@ private:
   double ratio_bound_squared_, max_area_, offconstant_;
   cl::Kernel find_bad_, gather_bad_, locate_, mark_, ties_, filter_, select_, clear_, append_;
   std::size_t bad_ = 0;
+  int since_ = 0; // the first search examines every triangle
   DeviceArray<cl_double2> candidate_;
-  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, count_, tie_mark_;
+  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, count_, tie_mark_,
+      was_bad_;
   DeviceArray<cl_double2> slot_candidate_;
   DeviceArray<cl_uint> slot_priority_, priority_;
 };

@@ -57,7 +57,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
   for (long iteration = 0;; ++iteration) {
-    const std::size_t bad = offcenter->find(scheduler.scan());
+    const std::size_t bad = offcenter->find(scheduler.scan(), scheduler.stamp());
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     stats.remaining_bad = static_cast<long>(bad);
     if (bad == 0 || iteration == max_iterations)

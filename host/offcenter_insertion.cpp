@@ -23,9 +23,8 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       candidate_(device, mesh.triangle_capacity), origin_(device, mesh.triangle_capacity),
       container_(device, mesh.triangle_capacity), hull_split_(device, mesh.triangle_capacity),
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
-      offset_(device, mesh.triangle_capacity), count_(device, 1),
-      tie_mark_(device, mesh.triangle_capacity), was_bad_(device, mesh.triangle_capacity),
-      slot_candidate_(device, mesh.triangle_capacity),
+      offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
+      was_bad_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
   was_bad_.fill(device_, 0, mesh.triangle_capacity);

@@ -37,7 +37,7 @@ private:
   std::size_t bad_ = 0;
   int since_ = 0; // the first search examines every triangle
   DeviceArray<cl_double2> candidate_;
-  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, count_, tie_mark_,
+  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, tie_mark_,
       was_bad_;
   DeviceArray<cl_double2> slot_candidate_;
   DeviceArray<cl_uint> slot_priority_, priority_;

@@ -13,6 +13,7 @@
 #include "clmesh/io.hpp"
 #include "clmesh/refine.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -751,6 +752,71 @@ void print_statistics(const Input &input, const clmesh::ConstrainedResult &resul
   std::printf("\n");
 }
 
+// -V: the mesh quality statistics Triangle prints, so meshes compare side by
+// side (aspect ratio: longest edge over shortest altitude).
+void print_quality(const std::vector<clmesh::Point> &p,
+                   const std::vector<clmesh::Triangle> &triangles) {
+  if (triangles.empty())
+    return;
+  const double ratio_bins[] = {1.5, 2, 2.5, 3, 4, 6, 10, 15, 25, 50, 100, 300, 1000, 10000, 100000};
+  const int ratio_count = sizeof ratio_bins / sizeof ratio_bins[0] + 1;
+  long ratio_histogram[16] = {0}, angle_histogram[18] = {0};
+  double smallest_area = HUGE_VAL, largest_area = 0, shortest = HUGE_VAL, longest = 0;
+  double lowest_altitude = HUGE_VAL, worst_ratio = 0, smallest_angle = 180, largest_angle = 0;
+  for (const clmesh::Triangle &t : triangles) {
+    double length[3];
+    for (int i = 0; i < 3; ++i) {
+      const clmesh::Point &a = p[t[(i + 1) % 3]], &b = p[t[(i + 2) % 3]];
+      length[i] = std::hypot(b.x - a.x, b.y - a.y);
+    }
+    const clmesh::Point &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+    const double area = 0.5 * std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    const double edge_max = std::max({length[0], length[1], length[2]});
+    const double edge_min = std::min({length[0], length[1], length[2]});
+    const double altitude = 2 * area / edge_max;
+    const double ratio = altitude > 0 ? edge_max / altitude : HUGE_VAL;
+    smallest_area = std::min(smallest_area, area), largest_area = std::max(largest_area, area);
+    shortest = std::min(shortest, edge_min), longest = std::max(longest, edge_max);
+    lowest_altitude = std::min(lowest_altitude, altitude),
+    worst_ratio = std::max(worst_ratio, ratio);
+    int bin = 0;
+    while (bin < ratio_count - 1 && ratio >= ratio_bins[bin])
+      ++bin;
+    ++ratio_histogram[bin];
+    for (int i = 0; i < 3; ++i) { // angle at vertex i, opposite edge i
+      const double u = length[(i + 1) % 3], v = length[(i + 2) % 3], w = length[i];
+      const double cosine = std::clamp((u * u + v * v - w * w) / (2 * u * v), -1.0, 1.0);
+      const double angle = std::acos(cosine) * 180 / 3.14159265358979323846;
+      smallest_angle = std::min(smallest_angle, angle),
+      largest_angle = std::max(largest_angle, angle);
+      ++angle_histogram[std::min(17, static_cast<int>(angle / 10))];
+    }
+  }
+  std::printf("\nMesh quality statistics:\n\n");
+  std::printf("  Smallest area: %16.5g   |  Largest area: %16.5g\n", smallest_area, largest_area);
+  std::printf("  Shortest edge: %16.5g   |  Longest edge: %16.5g\n", shortest, longest);
+  std::printf("  Shortest altitude: %12.5g   |  Largest aspect ratio: %8.5g\n\n", lowest_altitude,
+              worst_ratio);
+  std::printf("  Triangle aspect ratio histogram:\n");
+  for (int row = 0; row < 8; ++row) {
+    const int left = row, right = row + 8;
+    char upper[16] = "";
+    if (right < ratio_count - 1)
+      std::snprintf(upper, sizeof upper, "%g", ratio_bins[right]);
+    std::printf("  %6.6g - %-6.6g    :  %8ld    | %6.6g - %-6s     :  %8ld\n",
+                left == 0 ? 1.1547 : ratio_bins[left - 1], ratio_bins[left], ratio_histogram[left],
+                ratio_bins[right - 1], upper, ratio_histogram[right]);
+  }
+  std::printf("  (Aspect ratio is longest edge divided by shortest altitude)\n\n");
+  std::printf("  Smallest angle: %15.5g   |  Largest angle: %15.5g\n\n", smallest_angle,
+              largest_angle);
+  std::printf("  Angle histogram:\n");
+  for (int row = 0; row < 9; ++row)
+    std::printf("    %3d - %3d degrees:  %8ld    |    %3d - %3d degrees:  %8ld\n", row * 10,
+                row * 10 + 10, angle_histogram[row], row * 10 + 90, row * 10 + 100,
+                angle_histogram[row + 9]);
+}
+
 void print_verbose(const Input &input, const clmesh::ConstrainedResult &result,
                    const std::string &device_name, const Timings &seconds, double device_seconds) {
   const clmesh::DelaunayStats &s = result.mesh.stats;
@@ -759,7 +825,7 @@ void print_verbose(const Input &input, const clmesh::ConstrainedResult &result,
     duplicates += d != -1;
   std::printf("  Device: %s\n", device_name.c_str());
   std::printf("  Duplicate vertices: %zu\n", duplicates);
-  std::printf("  Vertices missed by the digital Voronoi phase: %ld\n", s.missing_points);
+  std::printf("  Vertices placed by missing-point insertion: %ld\n", s.missing_points);
   std::printf("  Voronoi grid: %d x %d\n", s.grid, s.grid);
   std::printf("  Insertion rounds: %ld\n", s.insertion_rounds);
   std::printf("  Flip passes: %ld\n", s.flip_passes);
@@ -915,6 +981,8 @@ int run(const Options &options) {
     print_statistics(input, result);
     if (options.verbose > 0)
       print_verbose(input, result, device_name, seconds, device_seconds);
+    if (options.verbose > 0)
+      print_quality(input.points.points, result.mesh.triangles);
   }
   if (options.check && !check_mesh(options, input, result, talk))
     return 1;

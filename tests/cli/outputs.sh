@@ -232,6 +232,10 @@ PY
 else
   fail "-q30a0.01CQ failed: $(cat err.txt)"
 fi
+# -V prints Triangle's quality statistics: no angle of a -q30 mesh below 30.
+smallest=$("$bin" -q30VNE q.node | sed -n 's/^  Smallest angle: *\([0-9.eE+-]*\).*/\1/p')
+python3 -c "import sys; sys.exit(0 if float('${smallest:-0}') >= 30 else 1)" ||
+  fail "-q30V: smallest angle '$smallest' in the quality statistics"
 
 finish outputs.sh
 echo "outputs.sh: all checks passed"

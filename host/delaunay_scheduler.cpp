@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 namespace clmesh {
@@ -19,11 +20,14 @@ void check_coordinates(const std::vector<Point> &points) {
     for (const double value : {points[i].x, points[i].y}) {
       const double magnitude = std::fabs(value);
       if (!std::isfinite(value) || magnitude > kMaxCoordinate ||
-          (value != 0 && magnitude < kMinCoordinate))
+          (value != 0 && magnitude < kMinCoordinate)) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.17g", value);
         throw InputError("point " + std::to_string(i), 0,
-                         "coordinate " + std::to_string(value) +
+                         std::string("coordinate ") + text +
                              " is outside what exact arithmetic carries (non-zero magnitudes "
                              "from 1e-50 to 1e50)");
+      }
     }
 }
 

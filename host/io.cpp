@@ -1,6 +1,7 @@
 // clmesh — Triangle's file formats, SVG and PGM pictures (see clmesh/io.hpp).
 #include "clmesh/io.hpp"
 
+#include "clmesh/delaunay.hpp"
 #include "clmesh/errors.hpp"
 
 #include <algorithm>
@@ -200,6 +201,12 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
       if (!std::isfinite(xy[k]))
         reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
                     std::to_string(id) + " is not finite");
+      const double magnitude = std::fabs(xy[k]);
+      if (magnitude > kMaxCoordinate || (xy[k] != 0 && magnitude < kMinCoordinate))
+        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+                    std::to_string(id) +
+                    " is outside what exact arithmetic carries (non-zero magnitudes from 1e-50 "
+                    "to 1e50)");
     }
     set.points.push_back(Point{xy[0], xy[1]});
     for (long a = 0; a < attributes; ++a) {

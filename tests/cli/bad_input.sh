@@ -15,6 +15,7 @@ printf '4 2 0 0\n1 0 0\n2 1 0\n\n3 nan 1\n4 1 1\n' > nan.node
 printf '2 2 0 0\n1 0 0\n2 1 0\n' > two.node
 printf '5 2 0 0\n1 0 0\n2 1 0\n3 0 1\n' > short.node
 printf '3 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n' > dim3.node
+printf '4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n4 1e300 1\n' > huge.node
 
 
 expect "missing file" 1 "missing.node" -- missing.node
@@ -26,6 +27,7 @@ expect "nan coordinate" 1 "nan.node:5:" "nan" -- -z nan.node
 expect "fewer than three points" 1 "two.node" "three" -- two.node
 expect "fewer vertices than the header says" 1 "short.node:5:" -- short.node
 expect "dimension 3" 1 "dim3.node:1:" "dimension" -- dim3.node
+expect "coordinate beyond exact arithmetic" 1 "huge.node:5:" "exact arithmetic" -- huge.node
 expect "unknown switch" 2 "-x" "-z" -- -zx good.node
 expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
 expect "unsupported Triangle switch" 2 "-r" "not supported" -- -r good.node

@@ -499,21 +499,11 @@ def main(argv=None):
 
     header = ["dist", "n", "clmesh compute s", "Triangle s", "CGAL s", "clmesh/Triangle",
               "clmesh/CGAL", "clmesh peak MB", "Triangle peak MB", "clmesh phases (s)"]
-    lines = ["| " + " | ".join(header) + " |",
-             "|" + "|".join("---" for _ in header) + "|"]
-    lines += ["| " + " | ".join(r) + " |" for r in rows]
-    notes = ["", machine_line(device),
-             f"Best of {a.repeat} run(s), seed {a.seed}; times exclude file reading and writing; "
-             "ratios are clmesh time / other time (below 1: clmesh is faster); "
-             "peak MB is each process's maximum resident set size (Triangle's includes Python and numpy)."]
-    notes += [f"Warning: {w}" for w in warnings]
-    notes += [f"Failed: {f}" for f in failures]
-    text = "\n".join(lines + notes) + "\n"
-    print(text, end="")
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(text)
-    return 0
+    return report(a, header, rows,
+                  [f"Best of {a.repeat} run(s), seed {a.seed}; times exclude file reading and writing; "
+                   "ratios are clmesh time / other time (below 1: clmesh is faster); "
+                   "peak MB is each process's maximum resident set size (Triangle's includes Python and numpy)."],
+                  device, warnings, failures)
 
 
 def main_cdt(a, ap):
@@ -571,24 +561,14 @@ def main_cdt(a, ap):
     header = ["segments", "n", "m", "clmesh compute s", "Triangle -pc s", "CGAL CDT s",
               "clmesh/Triangle", "clmesh/CGAL", "clmesh peak MB", "Triangle peak MB",
               "CGAL peak MB", "clmesh phases (s)"]
-    lines = ["| " + " | ".join(header) + " |",
-             "|" + "|".join("---" for _ in header) + "|"]
-    lines += ["| " + " | ".join(r) + " |" for r in rows]
-    notes = ["", machine_line(device),
-             f"Constrained Delaunay triangulation of the whole convex hull (-pc); best of "
-             f"{a.repeat} run(s), seed {a.seed}; n uniform points, m segments ('short': random "
-             "edges of the Delaunay triangulation of a quarter of the points; 'long': x-monotone "
-             "chains in horizontal strips, segments about 1/11 of the square long); times "
-             "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
-             "clmesh is faster)."]
-    notes += [f"Warning: {w}" for w in warnings]
-    notes += [f"Failed: {f}" for f in failures]
-    text = "\n".join(lines + notes) + "\n"
-    print(text, end="")
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(text)
-    return 0
+    return report(a, header, rows,
+                  [f"Constrained Delaunay triangulation of the whole convex hull (-pc); best of "
+                   f"{a.repeat} run(s), seed {a.seed}; n uniform points, m segments ('short': random "
+                   "edges of the Delaunay triangulation of a quarter of the points; 'long': x-monotone "
+                   "chains in horizontal strips, segments about 1/11 of the square long); times "
+                   "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
+                   "clmesh is faster)."],
+                  device, warnings, failures)
 
 
 def main_quality(a, ap):
@@ -647,15 +627,21 @@ def main_quality(a, ap):
     header = ["dist", "n", "angle", "clmesh compute s", "Triangle s", "clmesh/Triangle",
               "clmesh vertices", "Triangle vertices", "vertex ratio (clmesh/Triangle)",
               "clmesh remaining bad triangles", "clmesh phases (s)"]
+    return report(a, header, rows,
+                  [f"Quality meshes with minimum angle ANGLE degrees (clmesh -qANGLE, Triangle "
+                   f"'qANGLE'); best of {a.repeat} run(s), seed {a.seed}; times exclude file reading "
+                   "and writing; clmesh/Triangle is the time ratio (below 1: clmesh is faster); "
+                   "clmesh vertices = input points + Steiner points, Triangle vertices = "
+                   "len(result['vertices'])."],
+                  device, warnings, failures)
+
+
+def report(a, header, rows, description, device, warnings, failures):
+    """Prints (and with --markdown saves) a markdown table with its notes."""
     lines = ["| " + " | ".join(header) + " |",
              "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(r) + " |" for r in rows]
-    notes = ["", machine_line(device),
-             f"Quality meshes with minimum angle ANGLE degrees (clmesh -qANGLE, Triangle "
-             f"'qANGLE'); best of {a.repeat} run(s), seed {a.seed}; times exclude file reading "
-             "and writing; clmesh/Triangle is the time ratio (below 1: clmesh is faster); "
-             "clmesh vertices = input points + Steiner points, Triangle vertices = "
-             "len(result['vertices'])."]
+    notes = ["", machine_line(device)] + description
     notes += [f"Warning: {w}" for w in warnings]
     notes += [f"Failed: {f}" for f in failures]
     text = "\n".join(lines + notes) + "\n"

@@ -15,17 +15,23 @@
 #define CLM_DUPLICATE 1
 #define CLM_LOST 2
 
-// Walks from location[p] to the triangle holding p. Results: location[p],
-// location_edge[p] (-1: interior or ghost region, i: on edge i), status.
+// Walks from location[p] to the triangle holding p; a point whose triangle was
+// not rewritten since the last walk (stamp `since`) stays where it is.
+// Results: location[p], location_edge[p] (-1: interior or ghost region, i: on
+// edge i), status.
 __kernel void locate_points(__global const double2 *points, __global const int *tri_vertex,
-                            __global const int *tri_neighbor, __global const int *remaining,
-                            __global int *location, __global int *location_edge,
-                            __global int *duplicate_of, __global int *status, const int max_steps,
-                            const int n) {
+                            __global const int *tri_neighbor, __global const int *modified_stamp,
+                            const int since, __global const int *remaining, __global int *location,
+                            __global int *location_edge, __global int *duplicate_of,
+                            __global int *status, const int max_steps, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
   const int p = remaining[gid];
+  if (modified_stamp[location[p]] < since) {
+    status[gid] = CLM_PENDING; // its triangle has not changed since it was located there
+    return;
+  }
   const WalkResult walk =
       walk_to_point(points, tri_vertex, tri_neighbor, location[p], points[p], max_steps);
   location[p] = walk.triangle;

@@ -38,9 +38,11 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
   if (walk) {
     set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.modified_stamp.buffer(), static_cast<cl_int>(located_since_),
              remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
              mesh_.duplicate_of.buffer(), status_.buffer(), max_steps, n);
     launch(device_, locate_, pending_, kPhase);
+    located_since_ = stamp; // this round's changes and later ones move points
   } else {
     status_.fill(device_, 0, pending_); // all pending where they stand
   }

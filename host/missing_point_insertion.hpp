@@ -36,6 +36,7 @@ private:
   DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_, winner_offset_, keep_,
       keep_offset_, changed_, failures_;
   std::size_t pending_ = 0;
+  int located_since_ = 0; // stamp of the last walk: older triangles keep their points
   std::size_t duplicates_ = 0;
 };
 

@@ -59,13 +59,6 @@ std::vector<int32_t> strict_hull(const std::vector<Point> &pts, const std::vecto
   return hull;
 }
 
-// One side of a triangle: the directed edge from -> to opposite triangles[tri][slot].
-struct EdgeRecord {
-  uint64_t key; // (min vertex << 32) | max vertex
-  int32_t tri;
-  int32_t slot;
-};
-
 } // namespace
 
 void CheckReport::fail(const std::string &problem) {
@@ -157,22 +150,7 @@ CheckReport check_triangulation(const std::vector<Point> &points,
   if (!have_neighbors)
     report.fail("neighbors has " + std::to_string(neighbors.size()) + " entries for " +
                 std::to_string(nt) + " triangles");
-  std::vector<EdgeRecord> edges;
-  edges.reserve(3 * static_cast<std::size_t>(valid_count));
-  for (int32_t t = 0; t < nt; ++t) {
-    if (!valid[t])
-      continue;
-    for (int32_t i = 0; i < 3; ++i) {
-      const uint32_t a = static_cast<uint32_t>(triangles[t][(i + 1) % 3]);
-      const uint32_t b = static_cast<uint32_t>(triangles[t][(i + 2) % 3]);
-      const uint64_t key = (uint64_t{std::min(a, b)} << 32) | std::max(a, b);
-      edges.push_back({key, t, i});
-    }
-  }
-  std::sort(edges.begin(), edges.end(), [](const EdgeRecord &p, const EdgeRecord &q) {
-    return p.key < q.key ||
-           (p.key == q.key && (p.tri < q.tri || (p.tri == q.tri && p.slot < q.slot)));
-  });
+  const std::vector<EdgeRecord> edges = sorted_sides(triangles, valid);
   auto from_of = [&](const EdgeRecord &e) { return triangles[e.tri][(e.slot + 1) % 3]; };
   auto to_of = [&](const EdgeRecord &e) { return triangles[e.tri][(e.slot + 2) % 3]; };
   // partner[3t + i]: the triangle across side i of t from the edge pairing (-1: boundary),

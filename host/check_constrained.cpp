@@ -35,12 +35,6 @@ namespace {
 
 using namespace check_support;
 
-uint64_t edge_key(int32_t a, int32_t b) {
-  const uint32_t lo = static_cast<uint32_t>(std::min(a, b)),
-                 hi = static_cast<uint32_t>(std::max(a, b));
-  return (uint64_t{lo} << 32) | hi;
-}
-
 int sgn(double u, double w) { return (u > w) - (u < w); }
 
 // For w collinear with segment a-b: is w strictly beyond c (towards b) and not beyond b?  Along
@@ -49,12 +43,6 @@ bool between_on_segment(const Point &c, const Point &w, const Point &b) {
   const bool forward = lex_less(c, b);
   return forward ? (lex_less(c, w) && !lex_less(b, w)) : (lex_less(w, c) && !lex_less(w, b));
 }
-
-struct EdgeRecord {
-  uint64_t key;
-  int32_t tri;
-  int32_t slot;
-};
 
 } // namespace
 
@@ -110,16 +98,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
   }
 
   // --- Edge pairing and neighbour links -----------------------------------------------------
-  std::vector<EdgeRecord> edges;
-  edges.reserve(3 * triangles.size());
-  for (int32_t t = 0; t < nt; ++t)
-    if (valid[t])
-      for (int32_t i = 0; i < 3; ++i)
-        edges.push_back({edge_key(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]), t, i});
-  std::sort(edges.begin(), edges.end(), [](const EdgeRecord &p, const EdgeRecord &q) {
-    return p.key < q.key ||
-           (p.key == q.key && (p.tri < q.tri || (p.tri == q.tri && p.slot < q.slot)));
-  });
+  const std::vector<EdgeRecord> edges = sorted_sides(triangles, valid);
   auto from_of = [&](const EdgeRecord &e) { return triangles[e.tri][(e.slot + 1) % 3]; };
   auto to_of = [&](const EdgeRecord &e) { return triangles[e.tri][(e.slot + 2) % 3]; };
   // partner[3t + i]: triangle across side i of t (-1: boundary, -2: unusable side).

@@ -15,6 +15,17 @@ fail() {
   failures=$((failures + 1))
 }
 
+# run ARGS...: runs clmesh ARGS in the current folder (stdout.txt, stderr.txt)
+# and records a failure when it exits non-zero.
+run() {
+  local status=0
+  "$bin" "$@" > stdout.txt 2> stderr.txt || status=$?
+  if [[ "$status" -ne 0 ]]; then
+    fail "clmesh $* exited with $status: $(cat stderr.txt)"
+  fi
+  return 0
+}
+
 # finish NAME: exits 1 when any check failed.
 finish() {
   if [[ "$failures" -ne 0 ]]; then

@@ -25,14 +25,6 @@ fresh() {
   cp "$work/small.node" "$case_dir/"
   cd "$case_dir"
 }
-run() {
-  local status=0
-  "$bin" "$@" > stdout.txt 2> stderr.txt || status=$?
-  if [[ "$status" -ne 0 ]]; then
-    fail "clmesh $* exited with $status: $(cat stderr.txt)"
-  fi
-  return 0
-}
 # Smallest vertex index in the triangles of an .ele file.
 min_vertex() { awk 'NR > 1 && $1 !~ /^#/ { for (i = 2; i <= 4; i++) if (m == "" || $i < m) m = $i } END { print m }' "$1"; }
 

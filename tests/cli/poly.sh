@@ -43,14 +43,6 @@ expect "-r stays refused" 2 "-r" "not supported" -- -r endpoint.poly
 # ---------------------------------------------------------------------------
 # Meshing Triangle's examples.
 # ---------------------------------------------------------------------------
-run() {
-  local status=0
-  "$bin" "$@" > stdout.txt 2> stderr.txt || status=$?
-  if [[ "$status" -ne 0 ]]; then
-    fail "clmesh $* exited with $status: $(cat stderr.txt)"
-  fi
-  return 0
-}
 fresh() {
   mkdir -p "$work/$1"
   cd "$work/$1"

@@ -16,6 +16,9 @@
 
 #define CLM_INFINITE (-1)
 #define CLM_NO_MARK 0xffffffffu
+// The vertices of an empty slot (a triangle deleted by a 3-1 flip, thesis
+// §3.6.1), waiting in the free list.
+#define CLM_DEAD (-2)
 
 typedef struct {
   int v[3];
@@ -45,6 +48,17 @@ inline void store_triangle(__global int *tri_vertex, __global int *tri_neighbor,
   tri_neighbor[3 * t + 1] = nb;
   tri_neighbor[3 * t + 2] = nc;
 }
+
+// Slot k of a batch of new slots: the free list's entries free_first ..
+// free_first + free_count - 1 first, then the slots from first_new on (thesis
+// §3.6.1: empty slots are reused before the arrays grow). The free list is
+// sorted, so the result is deterministic.
+inline int allocate_slot(__global const int *free_list, int free_first, int free_count,
+                         int first_new, int k) {
+  return k < free_count ? free_list[free_first + k] : first_new + (k - free_count);
+}
+
+inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
 
 inline bool is_ghost(VertexTriple tri) {
   return tri.v[0] == CLM_INFINITE || tri.v[1] == CLM_INFINITE || tri.v[2] == CLM_INFINITE;

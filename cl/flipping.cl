@@ -63,7 +63,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
     return;
   const int t = active[gid];
   int bits = 0;
-  if (t >= 0)
+  if (t >= 0 && !is_dead(load_vertices(tri_vertex, t)))
     for (int i = 0; i < 3; ++i) {
       int real_edge;
       int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, constraint_start,

@@ -90,8 +90,9 @@ __kernel void clear_container_marks(__global const int *remaining, __global cons
     tri_mark[link_triangle(tri_neighbor[3 * t + edge])] = CLM_NO_MARK;
 }
 
-// Splits the winners' triangles. Each winner takes two new slots at
-// first_slot + 2 * winner_offset; every child has the new point at index 2,
+// Splits the winners' triangles. Each winner takes new slots 2 * winner_offset
+// and 2 * winner_offset + 1 of the batch (free slots first, see
+// allocate_slot); every child has the new point at index 2,
 // so its edge 2 is the only one facing outwards. Children are listed in
 // changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
 __kernel void split_triangles(__global const int *remaining, __global const int *winner,
@@ -99,14 +100,17 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
                               __global const int *location_edge, __global int *tri_vertex,
                               __global int *tri_neighbor, __global int *modified_stamp,
                               __global int *children, __global int *vertex_triangle,
-                              __global int *changed, const int stamp, const int first_slot,
+                              __global int *changed, const int stamp, __global const int *free_list,
+                              const int free_first, const int free_count, const int first_slot,
                               const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || !winner[gid])
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
-  const int slot = first_slot + 2 * winner_offset[gid];
-  const int s1 = slot, s2 = slot + 1;
+  const int s1 =
+      allocate_slot(free_list, free_first, free_count, first_slot, 2 * winner_offset[gid]);
+  const int s2 =
+      allocate_slot(free_list, free_first, free_count, first_slot, 2 * winner_offset[gid] + 1);
   __global int *out = changed + 4 * winner_offset[gid];
   const VertexTriple tri = load_vertices(tri_vertex, t);
   const int n0 = tri_neighbor[3 * t], n1 = tri_neighbor[3 * t + 1], n2 = tri_neighbor[3 * t + 2];

@@ -6,14 +6,15 @@
 // candidate is Üngör's off-center: the circumcenter, moved along the shortest
 // edge's bisector to no farther than offconstant times that edge from its
 // midpoint (as Triangle computes it). A candidate outside the hull, or inside
-// the diametral circle of a hull edge of its container, becomes the midpoint of
-// that hull edge (the convex hull is the boundary). Priority: the shorter the
-// shortest edge, the worse the triangle; containers are marked with atomic
-// minimum of it, and a candidate survives the insertion filter when it owns
-// its container's mark and no neighbouring container has a better one.
-// Quality decisions use floating point, as Triangle's do; the insertion that
-// follows uses the exact predicates.
+// the diametral lens of a hull edge of its container (Triangle's test: the
+// candidate sees the edge at an angle of at least 180 - 2 x the minimum angle),
+// becomes the midpoint of that hull edge (the convex hull is the boundary). Priority: the shorter
+// the shortest edge, the worse the triangle; containers are marked with atomic minimum of it, and a
+// candidate survives the insertion filter when it owns its container's mark and no neighbouring
+// container has a better one. Quality decisions use floating point, as Triangle's do; the insertion
+// that follows uses the exact predicates.
 #include "common.h"
+#include "refinement.h"
 
 // Per slot t: is_bad[t], and the candidate and priority of a bad triangle.
 // Only triangles changed since the last search (modified_stamp >= since), or
@@ -32,7 +33,7 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
     return;
   was_bad[t] = 0;
   const VertexTriple tri = load_vertices(tri_vertex, t);
-  if (is_ghost(tri))
+  if (is_ghost(tri) || is_dead(tri))
     return;
   double2 p[3];
   double length_squared[3];
@@ -89,14 +90,16 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 }
 
 // Locates candidate k walking from its bad triangle. A candidate that ends in a
-// ghost triangle, or inside the diametral circle of a hull edge of its
-// container, becomes that hull edge's midpoint: hull_split[k] is then the
-// edge of container[k] it splits (inserted on that edge whatever the rounding
-// of the midpoint, as Triangle splits a segment), else -1.
+// ghost triangle, or inside the diametral lens of a hull edge of its
+// container, becomes that hull edge's midpoint, inserted on that edge whatever
+// the rounding of the midpoint (as Triangle splits a segment). split_edge[k]:
+// the edge of container[k] the candidate lies on (the hull edge of a
+// midpoint), or -1 inside; container[k] = -1 when it falls on a vertex.
 __kernel void locate_candidates(__global const double2 *points, __global const int *tri_vertex,
                                 __global const int *tri_neighbor, __global double2 *candidate,
-                                __global int *container, __global int *hull_split,
-                                __global const int *origin, const int max_steps, const int n) {
+                                __global int *container, __global int *split_edge,
+                                __global const int *origin, const double lens, const int max_steps,
+                                const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
@@ -111,7 +114,7 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
     t = link_triangle(link); // the real triangle on that hull edge
     hull_edge = link_edge(link);
   } else {
-    // A hull edge of the container or of a neighbour whose diametral circle
+    // A hull edge of the container or of a neighbour whose diametral lens
     // holds c is encroached: it is split instead.
     for (int r = -1; r < 3 && hull_edge < 0; ++r) {
       const int s = r < 0 ? t : link_triangle(tri_neighbor[3 * t + r]);
@@ -124,7 +127,9 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
         const double2 pa = points[tri_vertex[3 * s + next3(i)]],
                       pb = points[tri_vertex[3 * s + prev3(i)]];
         const double2 da = c - pa, db = c - pb;
-        if (da.x * db.x + da.y * db.y < 0) { // inside the diametral circle
+        const double dot = da.x * db.x + da.y * db.y;
+        if (dot < 0 &&
+            dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y)) {
           hull_edge = i;
           t = s;
         }
@@ -136,19 +141,21 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
                   pb = points[tri_vertex[3 * t + prev3(hull_edge)]];
     candidate[k] = 0.5 * (pa + pb);
   }
-  container[k] = walk.outcome == CLM_WALK_AT_VERTEX && hull_edge < 0 ? -1 : t;
-  hull_split[k] = hull_edge;
+  const bool located = walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0;
+  container[k] = located ? t : -1;
+  split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;
 }
 
-// The ghost across the hull edge a candidate splits, or -1.
-inline int split_ghost(__global const int *tri_neighbor, __global const int *container,
-                       __global const int *hull_split, int k) {
-  return hull_split[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + hull_split[k]]);
+// The second triangle a candidate on an edge splits (a ghost for a hull
+// midpoint), or -1.
+inline int split_partner(__global const int *tri_neighbor, __global const int *container,
+                         __global const int *split_edge, int k) {
+  return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
 }
 
-// Marks each candidate's container (and the ghost of a hull split) with its priority.
+// Marks each candidate's container (and its partner) with its priority.
 __kernel void mark_candidate_containers(__global const int *container,
-                                        __global const int *hull_split,
+                                        __global const int *split_edge,
                                         __global const int *tri_neighbor,
                                         __global const uint *priority,
                                         volatile __global uint *tri_mark, const int n) {
@@ -156,15 +163,17 @@ __kernel void mark_candidate_containers(__global const int *container,
   if (k >= n || container[k] < 0)
     return;
   atomic_min(&tri_mark[container[k]], priority[k]);
-  const int ghost = split_ghost(tri_neighbor, container, hull_split, k);
-  if (ghost >= 0)
-    atomic_min(&tri_mark[ghost], priority[k]);
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  if (partner >= 0)
+    atomic_min(&tri_mark[partner], priority[k]);
 }
 
 // The insertion filter: survive[k] = 1 when candidate k owns its container's
-// mark and no neighbouring container is marked with a better priority.
-// Among candidates of equal priority, the smallest index keeps the container.
-__kernel void mark_candidate_ties(__global const int *container, __global const int *hull_split,
+// mark (and its partner's) and no neighbouring container is marked with a
+// better priority. Among candidates of equal priority, the smallest index
+// keeps the container. The survivors' triangles are then pairwise distinct,
+// so they are all inserted in one round, in place.
+__kernel void mark_candidate_ties(__global const int *container, __global const int *split_edge,
                                   __global const int *tri_neighbor, __global const uint *priority,
                                   __global const uint *tri_mark, volatile __global int *tie_mark,
                                   const int n) {
@@ -173,13 +182,12 @@ __kernel void mark_candidate_ties(__global const int *container, __global const 
     return;
   if (tri_mark[container[k]] == priority[k])
     atomic_min(&tie_mark[container[k]], k);
-  const int ghost = split_ghost(tri_neighbor, container, hull_split, k);
-  if (ghost >= 0 && tri_mark[ghost] == priority[k])
-    atomic_min(&tie_mark[ghost], k);
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  if (partner >= 0 && tri_mark[partner] == priority[k])
+    atomic_min(&tie_mark[partner], k);
 }
 
-// survive[k]: 0 lost, 1 survives inside the mesh, 2 survives as a hull split.
-__kernel void insertion_filter(__global const int *container, __global const int *hull_split,
+__kernel void insertion_filter(__global const int *container, __global const int *split_edge,
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,
                                __global int *survive, const int n) {
@@ -197,21 +205,13 @@ __kernel void insertion_filter(__global const int *container, __global const int
       wins = w == t || tri_mark[w] >= priority[k];
     }
   }
-  const int ghost = wins ? split_ghost(tri_neighbor, container, hull_split, k) : -1;
-  if (ghost >= 0)
-    wins = tri_mark[ghost] == priority[k] && tie_mark[ghost] == k;
-  survive[k] = !wins ? 0 : (ghost < 0 ? 1 : 2);
+  const int partner = wins ? split_partner(tri_neighbor, container, split_edge, k) : -1;
+  if (partner >= 0)
+    wins = tri_mark[partner] == priority[k] && tie_mark[partner] == k;
+  survive[k] = wins;
 }
 
-// The survivors of one kind (1: inside, 2: hull splits) as keep flags.
-__kernel void select_survivors(__global const int *survive, const int kind, __global int *keep,
-                               const int n) {
-  const int k = get_global_id(0);
-  if (k < n)
-    keep[k] = survive[k] == kind;
-}
-
-__kernel void clear_candidate_marks(__global const int *container, __global const int *hull_split,
+__kernel void clear_candidate_marks(__global const int *container, __global const int *split_edge,
                                     __global const int *tri_neighbor, __global uint *tri_mark,
                                     __global int *tie_mark, const int n) {
   const int k = get_global_id(0);
@@ -219,27 +219,54 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
     return;
   tri_mark[container[k]] = CLM_NO_MARK;
   tie_mark[container[k]] = 0x7fffffff;
-  const int ghost = split_ghost(tri_neighbor, container, hull_split, k);
-  if (ghost >= 0) {
-    tri_mark[ghost] = CLM_NO_MARK;
-    tie_mark[ghost] = 0x7fffffff;
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  if (partner >= 0) {
+    tri_mark[partner] = CLM_NO_MARK;
+    tie_mark[partner] = 0x7fffffff;
   }
 }
 
-// The survivors become points first, first + 1, ... of the mesh (in candidate
-// order, by prefix sum), each to walk from its container.
-// location_edge: the hull edge of a hull split (the point is put on it), -1 otherwise.
+// The survivors become points of the mesh (slots by prefix sum over the
+// candidates, free slots first, see allocate_slot), listed in new_points,
+// each to be inserted in its container, on split_edge when it lies on an
+// edge. Each gets its state, priority and insertion radius (thesis §3.5: the
+// distance to the nearest vertex of its bad triangle; half the hull edge for
+// a midpoint).
 __kernel void append_survivors(__global const double2 *candidate, __global const int *container,
-                               __global const int *hull_split, __global const int *keep,
-                               __global const int *offset, __global double2 *points,
+                               __global const int *split_edge, __global const int *origin,
+                               __global const uint *priority, __global const int *survive,
+                               __global const int *offset, __global const int *tri_vertex,
+                               __global const int *tri_neighbor, __global double2 *points,
                                __global int *location, __global int *location_edge,
-                               __global int *original_id, const int first, const int n) {
+                               __global int *original_id, __global int *point_state,
+                               __global double *insertion_radius2, __global uint *point_priority,
+                               __global const int *free_points, const int free_first,
+                               const int free_count, const int first_new, __global int *new_points,
+                               const int n) {
   const int k = get_global_id(0);
-  if (k >= n || !keep[k])
+  if (k >= n || !survive[k])
     return;
-  const int p = first + offset[k];
-  points[p] = candidate[k];
+  const int p = allocate_slot(free_points, free_first, free_count, first_new, offset[k]);
+  const double2 c = candidate[k];
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  const bool midpoint = partner >= 0 && is_ghost(load_vertices(tri_vertex, partner));
+  double radius2;
+  if (midpoint) {
+    const double2 e = points[tri_vertex[3 * container[k] + next3(split_edge[k])]] - c;
+    radius2 = e.x * e.x + e.y * e.y;
+  } else {
+    radius2 = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+      const double2 e = points[tri_vertex[3 * origin[k] + i]] - c;
+      radius2 = fmin(radius2, e.x * e.x + e.y * e.y);
+    }
+  }
+  points[p] = c;
   location[p] = container[k];
-  location_edge[p] = hull_split[k];
-  original_id[p] = p; // Steiner points follow the input points
+  location_edge[p] = split_edge[k];
+  original_id[p] = p; // numbered again at the end (number_steiner_points)
+  point_state[p] = midpoint ? CLM_POINT_NEW_MIDPOINT : CLM_POINT_NEW;
+  insertion_radius2[p] = radius2;
+  point_priority[p] = midpoint ? 0u : priority[k];
+  new_points[offset[k]] = p;
 }

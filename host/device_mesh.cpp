@@ -33,9 +33,31 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   location = location.grown(device, points_now, 0);
   location_edge = location_edge.grown(device, points_now, -1);
   constraint_start = constraint_start.grown(device, points_now + 1, constraints_end);
+  if (point_state.size() > 0) {
+    point_state = point_state.grown(device, points_now, 0);
+    insertion_radius2 = insertion_radius2.grown(device, points_now, 0.0);
+    point_priority = point_priority.grown(device, points_now, 0u);
+  }
+  // Past the end of the old ranges there is room again: the free lists start over.
+  free_triangles = FreeList{};
+  free_points = FreeList{};
   point_capacity = points_now;
   triangle_capacity = triangles_now;
   list_capacity = 4 * triangle_capacity / 3 + 16;
+}
+
+std::size_t DeviceMesh::FreeList::take(std::size_t wanted) {
+  const std::size_t reused = std::min(wanted, count);
+  first += reused;
+  count -= reused;
+  return wanted - reused;
+}
+
+void DeviceMesh::enable_refinement(Device &device) {
+  point_state = DeviceArray<cl_int>(device, point_capacity);
+  insertion_radius2 = DeviceArray<cl_double>(device, point_capacity);
+  point_priority = DeviceArray<cl_uint>(device, point_capacity);
+  point_state.fill(device, 0, point_capacity); // every point so far is an input point
 }
 
 } // namespace clmesh

@@ -90,7 +90,27 @@ struct DeviceMesh {
   DeviceArray<cl_int> constraint_start;    // point_capacity + 1
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
 
-  std::size_t triangle_count = 0; // slots in use (all live: DT never deletes)
+  std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
+
+  // Empty slots (thesis §3.6.1), in slot order: free_triangles[free_first ..
+  // free_first + free_count), likewise for points. Refinement deletes
+  // triangles and points and collects them here when the room past
+  // triangle_count / point_count runs short.
+  struct FreeList {
+    DeviceArray<cl_int> slots;
+    std::size_t first = 0, count = 0;
+    // Takes `wanted` slots: the free ones first. Returns how many new slots
+    // (past the end of the used range) the batch needs.
+    std::size_t take(std::size_t wanted);
+  };
+  FreeList free_triangles, free_points;
+
+  // Refinement only (allocated by enable_refinement): per point its state
+  // (cl/refinement.h), insertion radius squared and priority (thesis §3.3, §3.5).
+  DeviceArray<cl_int> point_state;
+  DeviceArray<cl_double> insertion_radius2;
+  DeviceArray<cl_uint> point_priority;
+  void enable_refinement(Device &device);
 
   // Makes room for `extra_points` more points (and their triangles), keeping
   // every array's contents (thesis §3.6.1: arrays expand when slots run out).

@@ -26,6 +26,25 @@ Flipping::Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan)
   flip_count_.fill(device_, 0, 1);
 }
 
+void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
+                     const DeviceArray<cl_int> &flags, FlipCounts &counts) {
+  const auto items = static_cast<cl_int>(n);
+  exact_count_.fill(device_, 0, 1);
+  set_args(check_fast_, active.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
+           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_), flags.buffer(),
+           exact_list_.buffer(), exact_count_.buffer(), items);
+  launch(device_, check_fast_, n, kPhase);
+  const int uncertain = exact_count_.read(device_, 0);
+  if (uncertain > 0) {
+    counts.exact_checks += uncertain;
+    set_args(check_exact_, exact_list_.buffer(), active.buffer(), mesh_.points.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags.buffer(),
+             static_cast<cl_int>(uncertain));
+    launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
+  }
+}
+
 void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
                    FlipCounts &counts) {
   if (n == 0)
@@ -36,20 +55,7 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
   while (n > 0) {
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
-    exact_count_.fill(device_, 0, 1);
-    set_args(check_fast_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
-             mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_),
-             flags_.buffer(), exact_list_.buffer(), exact_count_.buffer(), items);
-    launch(device_, check_fast_, n, kPhase);
-    const int uncertain = exact_count_.read(device_, 0);
-    if (uncertain > 0) {
-      counts.exact_checks += uncertain;
-      set_args(check_exact_, exact_list_.buffer(), active_.buffer(), mesh_.points.buffer(),
-               mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags_.buffer(),
-               static_cast<cl_int>(uncertain));
-      launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
-    }
+    check(active_, n, flags_, counts);
     set_args(propose_, active_.buffer(), flags_.buffer(), mesh_.tri_neighbor.buffer(),
              mesh_.tri_mark.buffer(), proposal_.buffer(), items);
     launch(device_, propose_, n, kPhase);

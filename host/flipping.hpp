@@ -23,6 +23,12 @@ public:
   // pass; it is advanced past the last one used.
   void run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts);
 
+  // The first step of a pass, shared with flip-flop: flags[k] bit i set when
+  // edge i of triangle active[k] is not locally Delaunay (the filter, then
+  // the exact predicate on the uncertain ones). flags holds n entries.
+  void check(const DeviceArray<cl_int> &active, std::size_t n, const DeviceArray<cl_int> &flags,
+             FlipCounts &counts);
+
   // During refinement the boundary is fixed: split hull edges stay as they
   // are (a rounded midpoint may leave it a hair from convex), as in Triangle.
   void set_fixed_boundary(bool fixed) { fixed_boundary_ = fixed; }

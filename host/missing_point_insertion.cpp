@@ -30,6 +30,15 @@ void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
   pending_ = points.size();
 }
 
+void MissingPointInsertion::set_points(const DeviceArray<cl_int> &points, std::size_t count) {
+  if (count > 0)
+    guarded(kPhase, "copying the point list", [&] {
+      device_.queue().enqueueCopyBuffer(points.buffer(), remaining_.buffer(), 0, 0,
+                                        count * sizeof(cl_int));
+    });
+  pending_ = count;
+}
+
 std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto n = static_cast<cl_int>(pending_);
   if (n == 0)
@@ -60,16 +69,21 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
 
   const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
   const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
-  if (mesh_.triangle_count + 2 * static_cast<std::size_t>(winners) > mesh_.triangle_capacity ||
+  DeviceMesh::FreeList &free = mesh_.free_triangles;
+  const auto free_first = static_cast<cl_int>(free.first),
+             free_count = static_cast<cl_int>(free.count);
+  const std::size_t new_slots = free.take(2 * static_cast<std::size_t>(winners));
+  if (mesh_.triangle_count + new_slots > mesh_.triangle_capacity ||
       4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
     throw InternalError("missing-point insertion: triangle slots exhausted");
+  const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
   set_args(split_, remaining_.buffer(), winner_.buffer(), winner_offset_.buffer(),
            mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
-           mesh_.vertex_triangle.buffer(), changed_.buffer(), static_cast<cl_int>(stamp),
-           first_slot, n);
+           mesh_.vertex_triangle.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
+           free_first, free_count, first_slot, n);
   launch(device_, split_, pending_, kPhase);
-  mesh_.triangle_count += 2 * static_cast<std::size_t>(winners);
+  mesh_.triangle_count += new_slots;
   set_args(relink_, changed_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.modified_stamp.buffer(), mesh_.children.buffer(), static_cast<cl_int>(stamp),
            static_cast<cl_int>(4 * winners));

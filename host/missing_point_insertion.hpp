@@ -16,6 +16,8 @@ public:
 
   // Points still to insert, each starting its walk from location[point].
   void set_points(const std::vector<cl_int> &points);
+  // The same from a list on the device (its first `count` entries).
+  void set_points(const DeviceArray<cl_int> &points, std::size_t count);
   std::size_t pending() const { return pending_; }
 
   // One round: locate, mark, split the winners' triangles and relink.

@@ -17,11 +17,10 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       mark_(device.kernel(kFile, "mark_candidate_containers", kPhase)),
       ties_(device.kernel(kFile, "mark_candidate_ties", kPhase)),
       filter_(device.kernel(kFile, "insertion_filter", kPhase)),
-      select_(device.kernel(kFile, "select_survivors", kPhase)),
       clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
       append_(device.kernel(kFile, "append_survivors", kPhase)),
       candidate_(device, mesh.triangle_capacity), origin_(device, mesh.triangle_capacity),
-      container_(device, mesh.triangle_capacity), hull_split_(device, mesh.triangle_capacity),
+      container_(device, mesh.triangle_capacity), split_edge_(device, mesh.triangle_capacity),
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
       was_bad_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
@@ -31,6 +30,9 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
   ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
+  // Triangle's diametral lens: a hull edge is encroached by a point that sees
+  // it at an angle whose cosine is at most -cos(2 angle).
+  lens_ = std::cos(2 * angle) * std::cos(2 * angle);
   // Üngör's off-center distance, as Triangle computes it.
   offconstant_ =
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
@@ -53,42 +55,49 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, int stamp) {
   launch(device_, gather_bad_, slots, kPhase);
   const auto n = static_cast<cl_int>(bad_);
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           candidate_.buffer(), container_.buffer(), hull_split_.buffer(), origin_.buffer(),
+           candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin_.buffer(), lens_,
            static_cast<cl_int>(slots + 8), n);
   launch(device_, locate_, bad_, kPhase);
-  set_args(mark_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+  set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, bad_, kPhase);
-  set_args(ties_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+  set_args(ties_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, ties_, bad_, kPhase);
-  set_args(filter_, container_.buffer(), hull_split_.buffer(), priority_.buffer(),
+  set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
            survive_.buffer(), n);
   launch(device_, filter_, bad_, kPhase);
-  set_args(clear_, container_.buffer(), hull_split_.buffer(), mesh_.tri_neighbor.buffer(),
+  set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, clear_, bad_, kPhase);
   return bad_;
 }
 
-std::size_t OffcenterInsertion::append(bool hull_splits, std::size_t room, PrefixScan &scan,
-                                       std::size_t *wanted) {
+std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
+                                       const DeviceArray<cl_int> &new_points, std::size_t *wanted) {
   *wanted = 0;
   if (bad_ == 0)
     return 0;
   const auto n = static_cast<cl_int>(bad_);
-  set_args(select_, survive_.buffer(), static_cast<cl_int>(hull_splits ? 2 : 1), keep_.buffer(), n);
-  launch(device_, select_, bad_, kPhase);
-  const auto count = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  const auto count = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, bad_, kPhase));
   *wanted = count;
   if (count == 0 || count > room)
     return 0;
-  set_args(append_, candidate_.buffer(), container_.buffer(), hull_split_.buffer(), keep_.buffer(),
-           offset_.buffer(), mesh_.points.buffer(), mesh_.location.buffer(),
-           mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
-           static_cast<cl_int>(mesh_.point_count), n);
+  DeviceMesh::FreeList &free = mesh_.free_points;
+  const auto free_first = static_cast<cl_int>(free.first),
+             free_count = static_cast<cl_int>(free.count);
+  const std::size_t new_slots = free.take(count);
+  const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
+  set_args(append_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
+           origin_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
+           mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.points.buffer(),
+           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
+           mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
+           mesh_.point_priority.buffer(), free_list, free_first, free_count,
+           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), n);
   launch(device_, append_, bad_, kPhase);
+  mesh_.point_count += new_slots;
   return count;
 }
 

@@ -23,21 +23,24 @@ public:
   // only the triangles rewritten from it on (and the bad ones).
   std::size_t find(PrefixScan &scan, int stamp);
 
-  // Appends the survivors of one kind (hull splits, or points inside) to the
-  // mesh's points as point_count, point_count + 1, ... (they stay on the
-  // device), not inserted yet; none when more than `room`. Returns how many
-  // were appended; *wanted: how many survived.
-  std::size_t append(bool hull_splits, std::size_t room, PrefixScan &scan, std::size_t *wanted);
+  // Appends the survivors to the mesh's points (free slots first, then from
+  // point_count on; they stay on the device) and lists them in new_points,
+  // not inserted yet; none when more than `room`. Returns how many were
+  // appended; *wanted: how many survived.
+  std::size_t append(std::size_t room, PrefixScan &scan, const DeviceArray<cl_int> &new_points,
+                     std::size_t *wanted);
+
+  double lens() const { return lens_; }
 
 private:
   Device &device_;
   DeviceMesh &mesh_;
-  double ratio_bound_squared_, max_area_, offconstant_;
-  cl::Kernel find_bad_, gather_bad_, locate_, mark_, ties_, filter_, select_, clear_, append_;
+  double ratio_bound_squared_, max_area_, offconstant_, lens_;
+  cl::Kernel find_bad_, gather_bad_, locate_, mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0;
   int since_ = 0; // the first search examines every triangle
   DeviceArray<cl_double2> candidate_;
-  DeviceArray<cl_int> origin_, container_, hull_split_, survive_, keep_, offset_, tie_mark_,
+  DeviceArray<cl_int> origin_, container_, split_edge_, survive_, keep_, offset_, tie_mark_,
       was_bad_;
   DeviceArray<cl_double2> slot_candidate_;
   DeviceArray<cl_uint> slot_priority_, priority_;

@@ -1,13 +1,16 @@
-// clmesh — GPU-QM entry point (thesis chapter 3): GPU-DT, then rounds of
-// off-center insertion (bad triangles, insertion filter, point insertion and
-// Delaunay flipping) until no triangle is bad.
+// clmesh — GPU-QM and GPU-QM-V entry point (thesis chapter 3): GPU-DT, then
+// iterations of three steps until no triangle is bad: (1) off-centers of the
+// bad triangles and the insertion filter, (2) their insertion, in place, in
+// one round of 1-3 and 2-4 (1-2 on the hull) flips, (3) flip-flop: Delaunay
+// flips together with the deletion of redundant points.
 #include "clmesh/refine.hpp"
 
 #include "delaunay_scheduler.hpp"
+#include "flipflop_deletion.hpp"
+#include "missing_point_insertion.hpp"
 #include "offcenter_insertion.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -19,6 +22,21 @@ namespace {
 // out (thesis §3.6.1).
 std::size_t first_room(std::size_t n) { return n + 4096; }
 
+// The phase objects of the three steps, sized by the mesh: built again when
+// the mesh grows.
+struct RefinementSteps {
+  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
+      : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle, options.max_area),
+        insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scheduler.flipping(),
+                 options.algorithm == RefineAlgorithm::qmv, offcenter.lens()),
+        new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
+  OffcenterInsertion offcenter;
+  MissingPointInsertion insertion;
+  FlipflopDeletion flipflop;
+  DeviceArray<cl_int> new_points; // the points inserted in this iteration
+};
+
 } // namespace
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
@@ -29,68 +47,88 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   const std::size_t n = points.size();
   DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, first_room(n));
   device.program("offcenter_insertion.cl", "setup");
+  device.program("flipflop_deletion.cl", "setup");
   if (!scheduler.triangulate()) {
     scheduler.download_collinear(result.mesh);
     return result;
   }
-  auto offcenter = std::make_unique<OffcenterInsertion>(device, scheduler.mesh(), options.min_angle,
-                                                        options.max_area);
-  RefineStats &stats = result.stats;
+  DeviceMesh &mesh = scheduler.mesh();
+  mesh.enable_refinement(device);
   scheduler.flipping().set_fixed_boundary(true);
+  auto steps = std::make_unique<RefinementSteps>(scheduler, options);
+  RefineStats &stats = result.stats;
+  FlipflopCounts flips;
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
                                                      : std::numeric_limits<std::size_t>::max();
-  // Room for the next survivors: within the -S limit, growing the arrays when
-  // the limit allows more than they hold. False when the limit is reached.
-  auto make_room = [&](std::size_t wanted) {
-    const DeviceMesh &mesh = scheduler.mesh();
-    if (mesh.point_count - n + wanted > limit)
-      return false;
-    if (mesh.point_count + wanted > mesh.point_capacity) {
-      scheduler.grow(std::max(wanted, n));
-      offcenter = std::make_unique<OffcenterInsertion>(device, scheduler.mesh(), options.min_angle,
-                                                       options.max_area);
-    }
-    return true;
+  std::size_t steiner = 0; // Steiner points in the mesh now
+  bool deleted_since_collection = false;
+  // Point and triangle slots for `wanted` more points: the free ones, then the
+  // ones past the used ranges.
+  auto room = [&mesh] {
+    return std::min(mesh.point_capacity - mesh.point_count + mesh.free_points.count,
+                    (mesh.triangle_capacity - mesh.triangle_count + mesh.free_triangles.count) / 2);
   };
   // Termination is guaranteed for angles up to about 30 degrees away from
   // small hull angles; the bound on iterations turns anything else into
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
   for (long iteration = 0;; ++iteration) {
-    const std::size_t bad = offcenter->find(scheduler.scan(), scheduler.stamp());
+    const std::size_t bad = steps->offcenter.find(scheduler.scan(), scheduler.stamp());
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     stats.remaining_bad = static_cast<long>(bad);
-    if (bad == 0 || iteration == max_iterations)
+    if (bad == 0 || iteration == max_iterations || steiner >= limit)
       break;
-    // Room for every candidate first (growing invalidates the candidates:
-    // they are found again).
-    if (scheduler.mesh().point_count + bad > scheduler.mesh().point_capacity &&
-        scheduler.mesh().point_count - n + bad <= limit) {
-      make_room(bad);
+    // Room for every candidate first: the empty slots when they run short,
+    // then larger arrays (growing invalidates the candidates: found again).
+    if (room() < bad && deleted_since_collection) {
+      steps->flipflop.collect_free_slots();
+      deleted_since_collection = false;
+    }
+    if (room() < bad && steiner + bad <= limit) {
+      scheduler.grow(std::max(bad, n));
+      steps = std::make_unique<RefinementSteps>(scheduler, options);
       continue;
     }
     ++stats.iterations;
     stats.candidates += static_cast<long>(bad);
-    const DeviceMesh &mesh = scheduler.mesh();
-    const std::size_t room = std::min(mesh.point_capacity - mesh.point_count,
-                                      limit - std::min(limit, mesh.point_count - n));
-    // Hull splits first, each on its edge, then the points inside.
     std::size_t wanted = 0;
-    const std::size_t splits = offcenter->append(true, room, scheduler.scan(), &wanted);
-    if (splits > 0)
-      scheduler.insert_appended(splits, true);
-    stats.boundary_splits += static_cast<long>(splits);
-    const std::size_t inside = offcenter->append(false, room - splits, scheduler.scan(), &wanted);
-    const std::size_t coinciding = inside > 0 ? scheduler.insert_appended(inside) : 0;
-    if (splits + inside - coinciding == 0)
-      break; // nothing new: the -S limit, or every candidate fell on a vertex
+    const std::size_t added = steps->offcenter.append(std::min(room(), limit - steiner),
+                                                      scheduler.scan(), steps->new_points, &wanted);
+    scheduler.timer().charge(OffcenterInsertion::kPhase);
+    if (added == 0)
+      break; // the -S limit, or every candidate fell on a vertex
+    MissingPointInsertion &insertion = steps->insertion;
+    insertion.set_points(steps->new_points, added);
+    const std::size_t inserted = insertion.run_round(scheduler.stamp()++, false);
+    if (insertion.pending() > 0)
+      throw InternalError("Steiner points placed in place were not all inserted in one round");
+    scheduler.timer().charge(MissingPointInsertion::kPhase);
+    const long deleted_before = flips.deleted;
+    steps->flipflop.run(insertion.changed(), 4 * inserted, steps->new_points, added,
+                        scheduler.stamp(), flips);
+    scheduler.timer().charge(FlipflopDeletion::kPhase);
+    const auto deleted = static_cast<std::size_t>(flips.deleted - deleted_before);
+    deleted_since_collection = deleted_since_collection || deleted > 0;
+    stats.insertions += static_cast<long>(added);
+    steiner += added - deleted;
   }
-  const DeviceMesh &mesh = scheduler.mesh();
-  stats.inserted = static_cast<long>(mesh.point_count - n);
-  std::vector<cl_double2> added = mesh.points.download(device, mesh.point_count - n, n);
-  for (const cl_double2 &p : added)
-    result.added_points.push_back({p.s[0], p.s[1]});
+  stats.deleted = flips.deleted;
+  stats.kept_redundant = flips.kept_redundant;
+  stats.boundary_splits = flips.midpoints;
+  stats.delaunay_flips = flips.delaunay_flips;
+  stats.non_delaunay_flips = flips.non_delaunay_flips;
+  DelaunayStats &mesh_stats = result.mesh.stats;
+  mesh_stats.flips += flips.delaunay_flips + flips.non_delaunay_flips;
+  mesh_stats.flip_passes += flips.passes;
+  mesh_stats.exact_predicate_calls += flips.exact_checks;
+
+  // Surviving Steiner points follow the input points, in slot order.
+  result.added_points = steps->flipflop.steiner_points(n);
+  const std::size_t survivors = result.added_points.size();
+  stats.inserted = static_cast<long>(survivors);
+  steps.reset();
   scheduler.download(result.mesh);
+  result.mesh.duplicate_of.resize(n + survivors);
   return result;
 }
 

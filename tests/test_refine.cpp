@@ -37,11 +37,13 @@ double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
 // Refines, then checks: a valid triangulation whose boundary edges (hull
 // edges, split at rounded midpoints) bound it and whose other edges are all
 // locally Delaunay; every input point used; the bounds met everywhere.
-clmesh::RefineResult refine_checked(const std::vector<Point> &input, double angle,
-                                    double max_area = -1) {
+clmesh::RefineResult
+refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
+               clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv) {
   clmesh::RefineOptions options;
   options.min_angle = angle;
   options.max_area = max_area;
+  options.algorithm = algorithm;
   clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
   std::vector<Point> points = input;
   points.insert(points.end(), result.added_points.begin(), result.added_points.end());
@@ -65,6 +67,9 @@ clmesh::RefineResult refine_checked(const std::vector<Point> &input, double angl
     unused += !used[i] && mesh.duplicate_of[i] < 0;
   CHECK(unused == 0);
   CHECK(result.stats.remaining_bad == 0);
+  // Every insertion is in the mesh, or was deleted as redundant.
+  CHECK(result.stats.inserted == result.stats.insertions - result.stats.deleted);
+  CHECK(static_cast<long>(result.added_points.size()) == result.stats.inserted);
   double worst_angle = 180, largest = 0;
   for (const auto &t : mesh.triangles) {
     worst_angle = std::min(worst_angle, smallest_angle_degrees(points, t));
@@ -80,15 +85,34 @@ clmesh::RefineResult refine_checked(const std::vector<Point> &input, double angl
 
 } // namespace
 
-TEST_CASE("refine: minimum angles on the thesis distributions") {
-  for (const double angle : {20.0, 25.0, 30.0}) {
-    INFO("angle " << angle);
-    refine_checked(fixtures::uniform(4000, 71), angle);
-    refine_checked(fixtures::gaussian(4000, 72), angle);
-    refine_checked(fixtures::disk(4000, 73), angle);
+TEST_CASE("refine: minimum angles on the thesis distributions, GPU-QM-V and GPU-QM") {
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    INFO((algorithm == clmesh::RefineAlgorithm::qm ? "GPU-QM" : "GPU-QM-V"));
+    for (const double angle : {20.0, 25.0, 30.0}) {
+      INFO("angle " << angle);
+      refine_checked(fixtures::uniform(4000, 71), angle, -1, algorithm);
+      refine_checked(fixtures::gaussian(4000, 72), angle, -1, algorithm);
+      refine_checked(fixtures::disk(4000, 73), angle, -1, algorithm);
+    }
+    refine_checked(fixtures::circle(1000, 74), 30, -1, algorithm);
+    refine_checked(fixtures::lattice(40), 30, -1, algorithm); // cocircular: already 45 degrees
+    // A lattice cut by an area bound: Steiner points on lattice edges and
+    // cocircular with their neighbours, stars where no flop is possible.
+    refine_checked(fixtures::lattice(12), 30, 0.05, algorithm);
   }
-  refine_checked(fixtures::circle(1000, 74), 30);
-  refine_checked(fixtures::lattice(40), 30); // cocircular: already 45 degrees
+}
+
+TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than GPU-QM-V") {
+  const auto points = fixtures::uniform(6000, 80);
+  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv);
+  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm);
+  MESSAGE("GPU-QM-V: " << qmv.stats.insertions << " insertions, " << qmv.stats.deleted
+                       << " deleted; GPU-QM: " << qm.stats.insertions << " insertions, "
+                       << qm.stats.deleted << " deleted");
+  CHECK(qmv.stats.deleted > 0);
+  CHECK(qm.stats.deleted > qmv.stats.deleted);
+  CHECK(qm.stats.non_delaunay_flips > qmv.stats.non_delaunay_flips);
+  CHECK(qmv.stats.delaunay_flips > 0);
 }
 
 TEST_CASE("refine: maximum area, alone and with an angle") {
@@ -103,14 +127,17 @@ TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
     points.push_back({i * 0.25, 0});
   clmesh::RefineOptions options;
   options.min_angle = 30;
-  const auto result = clmesh::refine_delaunay(device(), points, options);
-  std::vector<Point> all = points;
-  all.insert(all.end(), result.added_points.begin(), result.added_points.end());
-  CHECK(!result.mesh.triangles.empty());
-  MESSAGE(result.stats.remaining_bad << " bad triangles remain after " << result.stats.iterations
-                                     << " iterations");
-  for (const auto &t : result.mesh.triangles)
-    CHECK(area(all, t) > 0);
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    options.algorithm = algorithm;
+    const auto result = clmesh::refine_delaunay(device(), points, options);
+    std::vector<Point> all = points;
+    all.insert(all.end(), result.added_points.begin(), result.added_points.end());
+    CHECK(!result.mesh.triangles.empty());
+    MESSAGE(result.stats.remaining_bad << " bad triangles remain after " << result.stats.iterations
+                                       << " iterations");
+    for (const auto &t : result.mesh.triangles)
+      CHECK(area(all, t) > 0);
+  }
 }
 
 TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
@@ -125,13 +152,20 @@ TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
 TEST_CASE("refine: the same mesh whatever the work-group size") {
   clmesh::RefineOptions options;
   options.min_angle = 30;
-  options.delaunay.work_group = 1;
   const auto points = fixtures::gaussian(3000, 78);
-  const auto first = clmesh::refine_delaunay(device(), points, options);
-  options.delaunay.work_group = 128;
-  const auto second = clmesh::refine_delaunay(device(), points, options);
-  CHECK(first.mesh.triangles == second.mesh.triangles);
-  CHECK(first.added_points.size() == second.added_points.size());
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    options.algorithm = algorithm;
+    options.delaunay.work_group = 1;
+    const auto first = clmesh::refine_delaunay(device(), points, options);
+    options.delaunay.work_group = 128;
+    const auto second = clmesh::refine_delaunay(device(), points, options);
+    CHECK(first.mesh.triangles == second.mesh.triangles);
+    REQUIRE(first.added_points.size() == second.added_points.size());
+    for (std::size_t i = 0; i < first.added_points.size(); ++i)
+      CHECK((first.added_points[i].x == second.added_points[i].x &&
+             first.added_points[i].y == second.added_points[i].y));
+    CHECK(first.stats.deleted == second.stats.deleted);
+  }
 }
 
 TEST_CASE("refine: bad options are refused") {

@@ -10,19 +10,31 @@
 
 namespace clmesh {
 
+// The thesis's two algorithms differ in step 3, when two Steiner points of an
+// iteration would be connected: GPU-QM deletes the one of lower priority
+// always, GPU-QM-V only when they are less than orthogonal (thesis §3.5):
+// fewer points inserted twice, slightly more points in the end.
+enum class RefineAlgorithm { qm, qmv };
+
 struct RefineOptions {
   DelaunayOptions delaunay;
   double min_angle = 20; // degrees; 0: no angle bound (-q alone means 20)
   double max_area = -1;  // -a; <= 0: none
   long max_steiner = -1; // -S; < 0: no limit
+  RefineAlgorithm algorithm = RefineAlgorithm::qmv;
 };
 
 struct RefineStats {
   long iterations = 0;
-  long candidates = 0;      // bad triangles' candidates, over all iterations
-  long inserted = 0;        // Steiner points in the mesh
-  long boundary_splits = 0; // of them, midpoints of hull edges
-  long remaining_bad = 0;   // bad triangles left (small hull angles, -S reached)
+  long candidates = 0;         // bad triangles' candidates, over all iterations
+  long insertions = 0;         // candidates inserted (step 2), over all iterations
+  long deleted = 0;            // of them, deleted again as redundant (step 3)
+  long kept_redundant = 0;     // redundant points kept: no flip could delete them
+  long inserted = 0;           // Steiner points in the final mesh
+  long boundary_splits = 0;    // insertions that split a hull edge at its midpoint
+  long delaunay_flips = 0;     // step 3's flips of non-locally-Delaunay edges
+  long non_delaunay_flips = 0; // step 3's flops and 3-1 flips deleting points
+  long remaining_bad = 0;      // bad triangles left (small hull angles, -S reached)
 };
 
 struct RefineResult {
@@ -32,8 +44,7 @@ struct RefineResult {
   RefineStats stats;
 };
 
-// Not yet: deletion of redundant Steiner points by flip-flop (thesis §3.3.2
-// step 3) and the QM-V variant; refinement of PSLGs (-pq).
+// Not yet: refinement of PSLGs (-pq).
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
                              const RefineOptions &options);
 

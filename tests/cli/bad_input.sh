@@ -33,6 +33,7 @@ expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
 expect "unsupported Triangle switch" 2 "-r" "not supported" -- -r good.node
 expect "quality meshing of a PSLG" 2 "-p" "-q" "not supported" -- -pq good.node
 expect "bad minimum angle" 2 "-q" -- -qx good.node
+expect "unknown refinement algorithm" 2 "--refine" "qm" "qmv" -- -q --refine fast good.node
 expect "missing .poly input" 1 "good.poly" -- good.poly
 expect "missing option value" 2 "--grid" -- good.node --grid
 expect "bad option value" 2 "--work-group" -- --work-group zero good.node

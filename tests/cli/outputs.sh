@@ -220,9 +220,18 @@ if "$bin" -q30a0.01CQ --stats-json q.json q.node 2> err.txt; then
 import json, sys
 r = json.load(open(sys.argv[1]))["refinement"]
 assert r["steiner_points"] > 0 and r["remaining_bad_triangles"] == 0, r
+assert r["steiner_points"] == r["insertions"] - r["deleted_redundant"], r
+for key in ("candidates", "delaunay_flips", "non_delaunay_flips", "boundary_splits"):
+    assert key in r, key
 PY
 else
   fail "-q30a0.01CQ failed: $(cat err.txt)"
+fi
+# --refine qm: the thesis's GPU-QM, checked too, named in the output's header.
+if "$bin" -q30CQ --refine qm q.node 2> err.txt; then
+  grep -q -- "--refine qm" q.1.ele || fail "--refine qm: not in the header of q.1.ele"
+else
+  fail "-q30CQ --refine qm failed: $(cat err.txt)"
 fi
 # -V prints Triangle's quality statistics: no angle of a -q30 mesh below 30.
 smallest=$("$bin" -q30VNE q.node | sed -n 's/^  Smallest angle: *\([0-9.eE+-]*\).*/\1/p')

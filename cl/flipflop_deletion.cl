@@ -1,0 +1,610 @@
+// clmesh — GPU-QM step 3: flip-flop (thesis §3.3.2, Algorithms 3.1 and 3.2;
+// §3.5 for the orthogonal test of GPU-QM-V).
+//
+// After the Steiner points of an iteration are inserted, Delaunay flips and
+// the deletion of redundant points run together over an active list of
+// triangles. A pass (1) reuses the flipping phase's filter and exact kernels
+// to find the non-locally-Delaunay edges, (2) lets each active triangle
+// propose one operation (Algorithm 3.1): a non-Delaunay flip ("flop") that
+// lowers the degree of a redundant vertex, a 3-1 flip that deletes a
+// redundant vertex of degree 3 (or a 4-2 flip one of degree 4 lying on the
+// segment between two of its neighbours, where no flop is possible), or a
+// Delaunay flip; a Delaunay flip that would
+// connect two points new in this iteration marks the one of lower priority
+// redundant instead (GPU-QM: always; GPU-QM-V: only when the two are less than
+// orthogonal). Non-Delaunay operations take precedence: their keys are smaller.
+// (3) Operations owning the atomic-minimum marks of all their triangles are
+// applied, (4) neighbours are relinked in a second step, (5) the touched and
+// the still-unhappy triangles form the next active list, to which the stars
+// of the redundant points are added (Algorithm 3.2), without duplicates.
+#include "common.h"
+#include "refinement.h"
+
+#define CLM_OP_NONE 0
+#define CLM_OP_DELAUNAY 1 // 2-2 flip of a non-locally-Delaunay edge
+#define CLM_OP_FLOP 2     // 2-2 flip that removes an edge of a redundant point
+#define CLM_OP_REMOVE 3   // 3-1 (or 4-2) flip that deletes a redundant point
+#define CLM_OP_MARKED 4   // marked a point redundant: stays active, nothing flipped
+
+#define CLM_DELAUNAY_KEYS 0x80000000u // Delaunay flips after every non-Delaunay one
+#define CLM_APPLIED 0xfffffffeu       // a 3-1 flip taken by one of its proposers
+
+#define CLM_NO_POINT 0x7fffffff
+
+inline int index_in(__global const int *tri_vertex, int t, int p) {
+  return tri_vertex[3 * t] == p
+             ? 0
+             : (tri_vertex[3 * t + 1] == p ? 1 : (tri_vertex[3 * t + 2] == p ? 2 : -1));
+}
+
+// The triangle after t counter-clockwise around its vertex p (at index k).
+inline int next_around(__global const int *tri_neighbor, int t, int k) {
+  return link_triangle(tri_neighbor[3 * t + next3(k)]);
+}
+
+// The triangles around p, counter-clockwise, in star[0 .. 3] when there are
+// three or four, all real (star[3] = -1 for three). Returns the
+// count, or 0 for a larger star or one touching the hull.
+inline int small_star(__global const int *tri_vertex, __global const int *tri_neighbor, int t,
+                      int p, int *star) {
+  star[3] = -1;
+  int s = t, degree = 0;
+  for (int step = 0; step < 4 && degree == 0; ++step) {
+    const int k = index_in(tri_vertex, s, p);
+    if (k < 0 || is_ghost(load_vertices(tri_vertex, s)))
+      return 0;
+    star[step] = s;
+    s = next_around(tri_neighbor, s, k);
+    if (s == t)
+      degree = step + 1;
+  }
+  if (degree < 3)
+    return 0;
+  // From the smallest slot on, whichever triangle found it: every proposer
+  // of the removal lists the same star, so its result does not depend on
+  // which of them applies it.
+  while (star[0] != min(min(star[0], star[1]), degree == 4 ? min(star[2], star[3]) : star[2])) {
+    const int first = star[0];
+    for (int k = 0; k + 1 < degree; ++k)
+      star[k] = star[k + 1];
+    star[degree - 1] = first;
+  }
+  return degree;
+}
+
+// The neighbour of p that follows it in star triangle s: x_k for star[k].
+inline int star_vertex(__global const int *tri_vertex, int s, int p) {
+  return tri_vertex[3 * s + next3(index_in(tri_vertex, s, p))];
+}
+
+// Can p, with the small star found above, be deleted in one flip? Always with
+// three triangles; with four only when p lies on a diagonal x0-x2 or x1-x3 of
+// its star (then no flop can lower its degree): *diagonal = 0 or 1.
+inline bool removable(__global const double2 *points, __global const int *tri_vertex, int p,
+                      const int *star, int degree, int *diagonal) {
+  *diagonal = 0;
+  if (degree == 3)
+    return true;
+  if (degree != 4)
+    return false;
+  int x[4];
+  for (int k = 0; k < 4; ++k)
+    x[k] = star_vertex(tri_vertex, star[k], p);
+  if (orient_vertices(points, x[0], x[2], p) == 0)
+    return true;
+  *diagonal = 1;
+  return orient_vertices(points, x[1], x[3], p) == 0;
+}
+
+inline int smallest_slot(const int *star) {
+  int m = min(star[0], min(star[1], star[2]));
+  return star[3] >= 0 ? min(m, star[3]) : m;
+}
+
+// The slots a removal leaves: the smallest one (3-1), or the two smallest (4-2).
+inline void removal_slots(const int *star, int *first, int *second) {
+  *first = smallest_slot(star);
+  *second = -1;
+  if (star[3] < 0)
+    return;
+  for (int k = 0; k < 4; ++k)
+    if (star[k] != *first && (*second < 0 || star[k] < *second))
+      *second = star[k];
+}
+
+inline void load_star(__global const int *star, int gid, int *s) {
+  for (int k = 0; k < 4; ++k)
+    s[k] = star[4 * gid + k];
+}
+
+// Would connecting c and d join two points new in this iteration that cannot
+// both stay? Two midpoints always stay (each splits its own hull edge).
+inline bool dependent_pair(__global const double2 *points, __global const int *point_state,
+                           __global const double *insertion_radius2, const int orthogonal_test,
+                           int c, int d) {
+  if (c < 0 || d < 0)
+    return false;
+  const int sc = point_state[c], sd = point_state[d];
+  if (!is_new_point(sc) || !is_new_point(sd))
+    return false;
+  if (sc == CLM_POINT_NEW_MIDPOINT && sd == CLM_POINT_NEW_MIDPOINT)
+    return false;
+  if (!orthogonal_test)
+    return true; // GPU-QM: any two connected new points are dependent
+  // GPU-QM-V (Claim 3.5.1): less than orthogonal, |c - d|^2 < q^2 + r^2.
+  const double2 e = points[c] - points[d];
+  return e.x * e.x + e.y * e.y < insertion_radius2[c] + insertion_radius2[d];
+}
+
+// The one of a dependent pair to delete: never a midpoint; otherwise the one
+// of lower priority (larger value: a longer shortest edge), then the larger index.
+inline int redundant_one(__global const int *point_state, __global const uint *point_priority,
+                         int c, int d) {
+  if (point_state[c] == CLM_POINT_NEW_MIDPOINT)
+    return d;
+  if (point_state[d] == CLM_POINT_NEW_MIDPOINT)
+    return c;
+  const uint pc = point_priority[c], pd = point_priority[d];
+  if (pc != pd)
+    return pc > pd ? c : d;
+  return max(c, d);
+}
+
+// Algorithm 3.1 for one active triangle: operation[gid], the 2-2 flip's edge
+// in proposal[gid] (encode_link(neighbour, edge)) or, for a 3-1 flip, the
+// deleted point in proposal[gid] and its triangles in star[4 gid ..].
+// flags[gid]: bit i = edge i is not locally Delaunay (flipping.cl's checks).
+__kernel void flipflop_propose(__global const int *active, __global const int *flags,
+                               __global const double2 *points, __global const int *tri_vertex,
+                               __global const int *tri_neighbor, __global const int *point_state,
+                               __global const double *insertion_radius2,
+                               __global const uint *point_priority, const int orthogonal_test,
+                               __global int *redundant_mark, __global int *redundant_anchor,
+                               volatile __global int *marked_count,
+                               volatile __global uint *tri_mark, __global int *operation,
+                               __global int *proposal, __global int *star, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  operation[gid] = CLM_OP_NONE;
+  const int t = active[gid];
+  if (t < 0)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_dead(tri) || is_ghost(tri))
+    return;
+  int own = CLM_NO_POINT; // the smallest redundant vertex of t
+  for (int i = 0; i < 3; ++i)
+    if (point_state[tri.v[i]] == CLM_POINT_REDUNDANT)
+      own = min(own, tri.v[i]);
+  for (int i = 0; i < 3; ++i) {
+    const int link = tri_neighbor[3 * t + i];
+    const int u = link_triangle(link);
+    const int c = tri.v[i], a = tri.v[next3(i)], b = tri.v[prev3(i)];
+    const int d = tri_vertex[3 * u + link_edge(link)];
+    int smallest = own;
+    if (d >= 0 && point_state[d] == CLM_POINT_REDUNDANT)
+      smallest = min(smallest, d);
+    bool flop = false;
+    if (smallest != CLM_NO_POINT) {
+      // A redundant point in this pair: no Delaunay flip here until it is
+      // gone; only the smallest one is worked on, when it is on edge a-b.
+      if (smallest != a && smallest != b)
+        continue;
+      int s[4], diagonal;
+      const int degree = small_star(tri_vertex, tri_neighbor, t, smallest, s);
+      if (removable(points, tri_vertex, smallest, s, degree, &diagonal)) {
+        const uint key = 4u * (uint)smallest_slot(s) + 3u;
+        for (int k = 0; k < 4; ++k) {
+          if (s[k] >= 0)
+            atomic_min(&tri_mark[s[k]], key);
+          star[4 * gid + k] = s[k];
+        }
+        operation[gid] = CLM_OP_REMOVE;
+        proposal[gid] = smallest;
+        return;
+      }
+      // A flop must leave both new triangles counter-clockwise.
+      if (d < 0 || is_ghost(load_vertices(tri_vertex, u)) ||
+          orient_vertices(points, a, d, c) <= 0 || orient_vertices(points, b, c, d) <= 0)
+        continue;
+      flop = true;
+    } else if (!(flags[gid] & (1 << i))) {
+      continue;
+    }
+    if (dependent_pair(points, point_state, insertion_radius2, orthogonal_test, c, d)) {
+      const int r = redundant_one(point_state, point_priority, c, d);
+      redundant_mark[r] = 1;
+      redundant_anchor[r] = r == c ? t : u; // a triangle of its star
+      atomic_inc(marked_count);
+      operation[gid] = CLM_OP_MARKED;
+      return;
+    }
+    const uint key = (flop ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
+    atomic_min(&tri_mark[t], key);
+    atomic_min(&tri_mark[u], key);
+    operation[gid] = flop ? CLM_OP_FLOP : CLM_OP_DELAUNAY;
+    proposal[gid] = encode_link(u, i);
+    return;
+  }
+}
+
+// Deletes p from its star (a small star, see small_star and removable). 3-1:
+// (p,x0,x1) (p,x1,x2) (p,x2,x0) become (x0,x1,x2). 4-2 with p on x0-x2:
+// (p,x0,x1) .. (p,x3,x0) become (x0,x1,x2) and (x2,x3,x0) (x1-x3: the same,
+// turned by one). The results take the smallest slots (removal_slots), the
+// other slots are emptied; every slot records the results as its children,
+// for relink_edge.
+inline void remove_point(__global const double2 *points, __global int *tri_vertex,
+                         __global int *tri_neighbor, __global int *modified_stamp,
+                         __global int *children, const int *star, int p, int stamp) {
+  const int degree = star[3] >= 0 ? 4 : 3;
+  int diagonal;
+  removable(points, tri_vertex, p, star, degree, &diagonal);
+  int x[4], outer[4];
+  for (int k = 0; k < degree; ++k) {
+    const int s = star[(k + diagonal) % degree], i = index_in(tri_vertex, s, p);
+    x[k] = tri_vertex[3 * s + next3(i)];
+    outer[k] = tri_neighbor[3 * s + i]; // across x_k - x_k+1
+  }
+  int first, second;
+  removal_slots(star, &first, &second);
+  for (int k = 0; k < degree; ++k) {
+    if (star[k] != first && star[k] != second)
+      store_triangle(tri_vertex, tri_neighbor, star[k], CLM_DEAD, CLM_DEAD, CLM_DEAD, -1, -1, -1);
+    record_children(modified_stamp, children, star[k], stamp, first, second, -1);
+  }
+  if (degree == 3) {
+    store_triangle(tri_vertex, tri_neighbor, first, x[0], x[1], x[2], outer[1], outer[2], outer[0]);
+    return;
+  }
+  store_triangle(tri_vertex, tri_neighbor, first, x[0], x[1], x[2], outer[1],
+                 encode_link(second, 1), outer[0]);
+  store_triangle(tri_vertex, tri_neighbor, second, x[2], x[3], x[0], outer[3],
+                 encode_link(first, 1), outer[2]);
+}
+
+// Applies the operations that own every mark they wrote. applied[gid]: the
+// (first) slot that holds the result, or -1. flip_counts: Delaunay flips,
+// flops, removals.
+__kernel void flipflop_apply(__global const int *active, __global const int *operation,
+                             __global const int *proposal, __global const int *star,
+                             volatile __global uint *tri_mark, __global const double2 *points,
+                             __global int *tri_vertex, __global int *tri_neighbor,
+                             __global int *modified_stamp, __global int *children,
+                             __global int *point_state, __global int *applied,
+                             volatile __global int *flip_counts, const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int op = operation[gid], t = active[gid];
+  applied[gid] = -1;
+  if (op == CLM_OP_REMOVE) {
+    int s[4];
+    load_star(star, gid, s);
+    const int smallest = smallest_slot(s);
+    const uint key = 4u * (uint)smallest + 3u;
+    bool owned = true;
+    for (int k = 0; k < 4; ++k)
+      owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
+    // Up to four proposers share this flip: the first to take the mark applies it.
+    if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
+      const int p = proposal[gid];
+      remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
+      applied[gid] = smallest;
+      point_state[p] = CLM_POINT_DELETED;
+      atomic_inc(&flip_counts[2]);
+    }
+  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+    const int u = link_triangle(proposal[gid]), i = link_edge(proposal[gid]);
+    const uint key = (op == CLM_OP_FLOP ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
+    if (tri_mark[t] == key && tri_mark[u] == key) {
+      flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
+      applied[gid] = t;
+      atomic_inc(&flip_counts[op == CLM_OP_DELAUNAY ? 0 : 1]);
+    }
+  }
+}
+
+// Second step: the outward edges of every applied operation.
+__kernel void flipflop_relink(__global const int *operation, __global const int *proposal,
+                              __global const int *star, __global const int *applied,
+                              __global const int *tri_vertex, __global int *tri_neighbor,
+                              __global const int *modified_stamp, __global const int *children,
+                              const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || applied[gid] < 0)
+    return;
+  const int t = applied[gid];
+  if (operation[gid] == CLM_OP_REMOVE) {
+    int s[4], first, second;
+    load_star(star, gid, s);
+    removal_slots(s, &first, &second);
+    for (int e = 0; e < 3; ++e)
+      if (second < 0 || e != 1) // edge 1 of a 4-2 flip's triangles is their shared one
+        relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, first, e);
+    if (second >= 0) {
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, second, 0);
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, second, 2);
+    }
+    return;
+  }
+  const int u = link_triangle(proposal[gid]);
+  for (int e = 1; e < 3; ++e) {
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
+  }
+}
+
+// Entries passed to the next list: the triangles an operation produced, or
+// the proposer itself when its operation was not applied and its triangle
+// was not rewritten by another's.
+__kernel void flipflop_count_next(__global const int *active, __global const int *operation,
+                                  __global const int *star, __global const int *applied,
+                                  __global const int *modified_stamp, __global int *count,
+                                  const int stamp, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int op = operation[gid];
+  int next = 0;
+  if (applied[gid] >= 0)
+    next = op == CLM_OP_REMOVE && star[4 * gid + 3] < 0 ? 1 : 2;
+  else if (op != CLM_OP_NONE && modified_stamp[active[gid]] != stamp)
+    next = 1;
+  count[gid] = next;
+}
+
+__kernel void flipflop_gather_next(__global const int *active, __global const int *proposal,
+                                   __global const int *operation, __global const int *star,
+                                   __global const int *applied, __global const int *count,
+                                   __global const int *offset, __global int *next_active,
+                                   const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n || count[gid] == 0)
+    return;
+  const int o = offset[gid];
+  if (applied[gid] < 0) {
+    next_active[o] = active[gid];
+    return;
+  }
+  if (operation[gid] == CLM_OP_REMOVE) {
+    int s[4], first, second;
+    load_star(star, gid, s);
+    removal_slots(s, &first, &second);
+    next_active[o] = first;
+    if (second >= 0)
+      next_active[o + 1] = second;
+    return;
+  }
+  next_active[o] = applied[gid];
+  next_active[o + 1] = link_triangle(proposal[gid]);
+}
+
+// Clears this pass's marks (after every kernel that reads them).
+__kernel void flipflop_clear_marks(__global const int *active, __global const int *operation,
+                                   __global const int *proposal, __global const int *star,
+                                   __global uint *tri_mark, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int op = operation[gid];
+  if (op == CLM_OP_REMOVE) {
+    for (int k = 0; k < 4; ++k)
+      if (star[4 * gid + k] >= 0)
+        tri_mark[star[4 * gid + k]] = CLM_NO_MARK;
+  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+    tri_mark[active[gid]] = CLM_NO_MARK;
+    tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
+  }
+}
+
+// Over the tracked points (this iteration's, then old ones the boundary
+// routine marked): the ones marked in this pass become redundant; every redundant point finds a
+// triangle of its star again (its anchor may have been rewritten in this pass: then one of the
+// slot's children holds it) and counts its star in star_size[k] (0 for the others).
+__kernel void track_redundant_points(__global const int *tracked, __global int *point_state,
+                                     __global int *redundant_mark, __global int *redundant_anchor,
+                                     __global const int *tri_vertex,
+                                     __global const int *tri_neighbor,
+                                     __global const int *modified_stamp,
+                                     __global const int *children, __global int *star_size,
+                                     volatile __global int *failures, const int stamp,
+                                     const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  star_size[k] = 0;
+  const int p = tracked[k];
+  if (redundant_mark[p]) {
+    redundant_mark[p] = 0;
+    point_state[p] = CLM_POINT_REDUNDANT;
+  }
+  if (point_state[p] != CLM_POINT_REDUNDANT)
+    return;
+  int t = redundant_anchor[p];
+  if (index_in(tri_vertex, t, p) < 0 && modified_stamp[t] == stamp) {
+    const int x = t;
+    for (int c = 0; c < CLM_CHILDREN; ++c) {
+      const int y = children[CLM_CHILDREN * x + c];
+      if (y >= 0 && index_in(tri_vertex, y, p) >= 0)
+        t = y;
+    }
+  }
+  if (index_in(tri_vertex, t, p) < 0) {
+    atomic_inc(failures);
+    return;
+  }
+  redundant_anchor[p] = t;
+  int size = 0, s = t;
+  do {
+    ++size;
+    s = next_around(tri_neighbor, s, index_in(tri_vertex, s, p));
+  } while (s != t && size < 4096);
+  star_size[k] = size;
+}
+
+// Appends the star of every redundant point to the next active list at
+// out[base + offset[k] ..] (Algorithm 3.2, lines 6-10).
+__kernel void emit_redundant_stars(__global const int *tracked,
+                                   __global const int *redundant_anchor,
+                                   __global const int *tri_vertex, __global const int *tri_neighbor,
+                                   __global const int *star_size, __global const int *offset,
+                                   __global int *out, const int base, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n || star_size[k] == 0)
+    return;
+  const int p = tracked[k];
+  int s = redundant_anchor[p];
+  for (int j = 0; j < star_size[k]; ++j) {
+    out[base + offset[k] + j] = s;
+    s = next_around(tri_neighbor, s, index_in(tri_vertex, s, p));
+  }
+}
+
+// Duplicates in a list: each triangle keeps its first position (atomic
+// minimum in tri_mark, cleared afterwards), so the kept set does not depend
+// on scheduling.
+__kernel void mark_first_position(__global const int *list, volatile __global uint *tri_mark,
+                                  const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    atomic_min(&tri_mark[list[gid]], (uint)gid);
+}
+
+__kernel void keep_first_position(__global const int *list, __global const uint *tri_mark,
+                                  __global int *keep, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    keep[gid] = tri_mark[list[gid]] == (uint)gid;
+}
+
+__kernel void clear_position_marks(__global const int *list, __global uint *tri_mark, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    tri_mark[list[gid]] = CLM_NO_MARK;
+}
+
+// End of an iteration: its points become points of earlier iterations.
+// midpoints[0] counts the surviving hull midpoints.
+__kernel void finish_iteration(__global const int *new_points, __global int *point_state,
+                               volatile __global int *midpoints, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int p = new_points[k], state = point_state[p];
+  if (state == CLM_POINT_NEW_MIDPOINT) {
+    atomic_inc(midpoints);
+    point_state[p] = CLM_POINT_MIDPOINT;
+  } else if (state == CLM_POINT_NEW) {
+    point_state[p] = CLM_POINT_STEINER;
+  }
+}
+
+// Is q inside the diametral lens of a-b (Triangle's encroachment test, see
+// offcenter_insertion.cl)?
+inline bool in_lens(__global const double2 *points, int a, int b, int q, double lens) {
+  const double2 da = points[a] - points[q], db = points[b] - points[q];
+  const double dot = da.x * db.x + da.y * db.y;
+  return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
+}
+
+// The boundary routine of thesis §3.4.1, before step 3: for each hull
+// midpoint v of this iteration, on the former hull edge a-b with apex c, the
+// off-centers among c and c's neighbours that encroach a-b are marked
+// redundant (Triangle would not have inserted them: it splits the edge
+// instead). Old ones join the tracked list after the new points, at
+// tracked[tracked_count[0]++] (an order that no result depends on).
+__kernel void
+mark_encroaching_points(__global const int *new_points, __global const double2 *points,
+                        __global const int *tri_vertex, __global const int *tri_neighbor,
+                        __global const int *vertex_triangle, __global const int *point_state,
+                        const double lens, volatile __global int *redundant_mark,
+                        __global int *redundant_anchor, __global int *tracked,
+                        volatile __global int *tracked_count, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int v = new_points[k];
+  if (point_state[v] != CLM_POINT_NEW_MIDPOINT)
+    return;
+  // Just after its 1-2 split, v has two real triangles (v,a,c) and (v,c,b).
+  const int t = vertex_triangle[v], i = index_in(tri_vertex, t, v);
+  const int x = tri_vertex[3 * t + next3(i)], y = tri_vertex[3 * t + prev3(i)];
+  const int across_vx = link_triangle(tri_neighbor[3 * t + prev3(i)]);
+  const int across_yv = link_triangle(tri_neighbor[3 * t + next3(i)]);
+  const bool x_on_hull = is_ghost(load_vertices(tri_vertex, across_vx));
+  const int a = x_on_hull ? x : y, c = x_on_hull ? y : x, other = x_on_hull ? across_yv : across_vx;
+  const int j = index_in(tri_vertex, other, v);
+  int b = tri_vertex[3 * other + next3(j)];
+  if (b == c)
+    b = tri_vertex[3 * other + prev3(j)];
+  if (a < 0 || b < 0 || c < 0)
+    return;
+  // c, then its neighbours around it.
+  int s = t, q = c;
+  for (int step = 0; step < 64; ++step) {
+    if (q >= 0) {
+      const int state = point_state[q];
+      if ((state == CLM_POINT_STEINER || state == CLM_POINT_NEW) &&
+          in_lens(points, a, b, q, lens) && atomic_cmpxchg(&redundant_mark[q], 0, 1) == 0) {
+        redundant_anchor[q] = s;
+        if (state == CLM_POINT_STEINER)
+          tracked[atomic_inc(tracked_count)] = q;
+      }
+    }
+    const int kc = index_in(tri_vertex, s, c);
+    s = next_around(tri_neighbor, s, kc);
+    if (s == t)
+      break;
+    q = star_vertex(tri_vertex, s, c);
+  }
+}
+
+// A stall (no operation left, yet redundant points remain, in degenerate
+// stars where neither a flop nor a removal is possible): they are kept, as
+// Steiner points of earlier iterations, after their stars were listed.
+__kernel void keep_stuck_points(__global const int *tracked, __global int *point_state,
+                                volatile __global int *kept, const int n) {
+  const int k = get_global_id(0);
+  if (k < n && point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
+    point_state[tracked[k]] = CLM_POINT_STEINER;
+    atomic_inc(kept);
+  }
+}
+
+// Free lists (thesis §3.6.1): flags of the empty triangle slots and of the
+// deleted points' slots, compacted into sorted lists by the host's scan.
+__kernel void flag_dead_triangles(__global const int *tri_vertex, __global int *keep, const int n) {
+  const int t = get_global_id(0);
+  if (t < n)
+    keep[t] = tri_vertex[3 * t] == CLM_DEAD;
+}
+
+__kernel void flag_deleted_points(__global const int *point_state, __global int *keep,
+                                  const int n) {
+  const int p = get_global_id(0);
+  if (p < n)
+    keep[p] = point_state[p] == CLM_POINT_DELETED;
+}
+
+// Final numbering: the surviving Steiner points follow the input points in
+// slot order (offset: exclusive scan of the survivors among slots first ..);
+// the deleted ones take the numbers after them (they are in no triangle).
+__kernel void number_steiner_points(__global const int *point_state, __global const int *offset,
+                                    const int survivors, __global int *original_id, const int first,
+                                    const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int p = first + k;
+  original_id[p] =
+      point_state[p] != CLM_POINT_DELETED ? first + offset[k] : first + survivors + (k - offset[k]);
+}
+
+__kernel void flag_surviving_points(__global const int *point_state, __global int *keep,
+                                    const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    keep[k] = point_state[first + k] != CLM_POINT_DELETED;
+}

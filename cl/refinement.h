@@ -1,0 +1,19 @@
+// clmesh — per-point state of Delaunay refinement (thesis §3.3.2: pStatus =
+// input, oldSteiner, newSteiner, redundant; §3.4.1: midpoints), shared by
+// off-center insertion and flip-flop deletion.
+#ifndef CLMESH_REFINEMENT_H
+#define CLMESH_REFINEMENT_H
+
+#define CLM_POINT_INPUT 0
+#define CLM_POINT_STEINER 1      // inserted in an earlier iteration
+#define CLM_POINT_NEW 2          // off-center inserted in this iteration
+#define CLM_POINT_NEW_MIDPOINT 3 // hull midpoint inserted in this iteration
+#define CLM_POINT_REDUNDANT 4    // to be deleted by flip-flop
+#define CLM_POINT_DELETED 5      // deleted: its slot is free
+#define CLM_POINT_MIDPOINT 6     // hull midpoint inserted in an earlier iteration
+
+inline bool is_new_point(int state) {
+  return state == CLM_POINT_NEW || state == CLM_POINT_NEW_MIDPOINT;
+}
+
+#endif

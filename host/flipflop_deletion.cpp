@@ -1,0 +1,232 @@
+#include "flipflop_deletion.hpp"
+
+#include <string>
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "flipflop_deletion.cl";
+// A pass deletes a redundant point or flips; far more passes than any mesh
+// needs means a bug, reported instead of a hang.
+constexpr long kMaxPasses = 100000;
+} // namespace
+
+FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
+                                   Flipping &flipping, bool orthogonal_test, double lens)
+    : device_(device), mesh_(mesh), scan_(scan), flipping_(flipping),
+      orthogonal_test_(orthogonal_test ? 1 : 0), lens_(lens),
+      mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
+      propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
+      apply_(device.kernel(kFile, "flipflop_apply", kPhase)),
+      relink_(device.kernel(kFile, "flipflop_relink", kPhase)),
+      count_next_(device.kernel(kFile, "flipflop_count_next", kPhase)),
+      gather_next_(device.kernel(kFile, "flipflop_gather_next", kPhase)),
+      clear_marks_(device.kernel(kFile, "flipflop_clear_marks", kPhase)),
+      track_(device.kernel(kFile, "track_redundant_points", kPhase)),
+      emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
+      mark_first_(device.kernel(kFile, "mark_first_position", kPhase)),
+      keep_first_(device.kernel(kFile, "keep_first_position", kPhase)),
+      clear_positions_(device.kernel(kFile, "clear_position_marks", kPhase)),
+      finish_(device.kernel(kFile, "finish_iteration", kPhase)),
+      keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
+      flag_dead_(device.kernel(kFile, "flag_dead_triangles", kPhase)),
+      flag_deleted_(device.kernel(kFile, "flag_deleted_points", kPhase)),
+      flag_surviving_(device.kernel(kFile, "flag_surviving_points", kPhase)),
+      number_(device.kernel(kFile, "number_steiner_points", kPhase)),
+      // The next list holds the pass's results and the redundant stars before
+      // duplicates are dropped; an active list has distinct live triangles.
+      active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
+      flags_(device, mesh.list_capacity), operation_(device, mesh.list_capacity),
+      proposal_(device, mesh.list_capacity), star_(device, 4 * mesh.list_capacity),
+      applied_(device, mesh.list_capacity), count_(device, 2 * mesh.list_capacity),
+      offset_(device, 2 * mesh.list_capacity), redundant_mark_(device, mesh.point_capacity),
+      redundant_anchor_(device, mesh.point_capacity), star_size_(device, mesh.point_capacity),
+      star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
+      tracked_count_(device, 1), marked_count_(device, 1), flip_counts_(device, 3),
+      failures_(device, 1), midpoints_(device, 1), kept_(device, 1) {
+  redundant_mark_.fill(device_, 0, mesh.point_capacity);
+  failures_.fill(device_, 0, 1);
+}
+
+void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
+                           const DeviceArray<cl_int> &new_points, std::size_t m, int &stamp,
+                           FlipflopCounts &counts) {
+  if (n > mesh_.list_capacity)
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  if (n > 0)
+    guarded(kPhase, "copying the active list", [&] {
+      device_.queue().enqueueCopyBuffer(changed.buffer(), active_.buffer(), 0, 0,
+                                        n * sizeof(cl_int));
+    });
+  flip_counts_.fill(device_, 0, 3);
+  kept_.fill(device_, 0, 1);
+  // The points to follow: this iteration's, then the old ones that encroach
+  // a hull edge split in this iteration (thesis §3.4.1).
+  if (m > 0)
+    guarded(kPhase, "copying the new points", [&] {
+      device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked_.buffer(), 0, 0,
+                                        m * sizeof(cl_int));
+    });
+  tracked_count_.fill(device_, static_cast<cl_int>(m), 1);
+  if (m > 0) {
+    set_args(mark_encroaching_, new_points.buffer(), mesh_.points.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.vertex_triangle.buffer(),
+             mesh_.point_state.buffer(), lens_, redundant_mark_.buffer(),
+             redundant_anchor_.buffer(), tracked_.buffer(), tracked_count_.buffer(),
+             static_cast<cl_int>(m));
+    launch(device_, mark_encroaching_, m, kPhase);
+  }
+  tracked_n_ = static_cast<std::size_t>(tracked_count_.read(device_, 0));
+  FlipCounts checks;
+  redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
+  for (long pass = 0; n > 0; ++pass) {
+    if (pass == kMaxPasses)
+      throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
+                          " passes");
+    const auto items = static_cast<cl_int>(n);
+    const auto pass_stamp = static_cast<cl_int>(stamp++);
+    flipping_.check(active_, n, flags_, checks);
+    marked_count_.fill(device_, 0, 1);
+    set_args(propose_, active_.buffer(), flags_.buffer(), mesh_.points.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.point_state.buffer(),
+             mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), orthogonal_test_,
+             redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
+             mesh_.tri_mark.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+             items);
+    launch(device_, propose_, n, kPhase);
+    set_args(apply_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+             mesh_.tri_mark.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
+             mesh_.point_state.buffer(), applied_.buffer(), flip_counts_.buffer(), pass_stamp,
+             items);
+    launch(device_, apply_, n, kPhase);
+    set_args(relink_, operation_.buffer(), proposal_.buffer(), star_.buffer(), applied_.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
+             mesh_.children.buffer(), pass_stamp, items);
+    launch(device_, relink_, n, kPhase);
+    set_args(count_next_, active_.buffer(), operation_.buffer(), star_.buffer(), applied_.buffer(),
+             mesh_.modified_stamp.buffer(), count_.buffer(), pass_stamp, items);
+    launch(device_, count_next_, n, kPhase);
+    set_args(clear_marks_, active_.buffer(), operation_.buffer(), proposal_.buffer(),
+             star_.buffer(), mesh_.tri_mark.buffer(), items);
+    launch(device_, clear_marks_, n, kPhase);
+    const auto next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
+    set_args(gather_next_, active_.buffer(), proposal_.buffer(), operation_.buffer(),
+             star_.buffer(), applied_.buffer(), count_.buffer(), offset_.buffer(),
+             next_active_.buffer(), items);
+    launch(device_, gather_next_, n, kPhase);
+    ++counts.passes;
+    const int marked = marked_count_.read(device_, 0);
+    if (marked > 0 || redundant_left_) {
+      find_stars(pass_stamp, next, &n);
+      if (next == 0 && marked == 0 && redundant_left_) {
+        // Stalled: what is left cannot be deleted. Their stars are listed.
+        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), kept_.buffer(),
+                 static_cast<cl_int>(tracked_n_));
+        launch(device_, keep_stuck_, tracked_n_, kPhase);
+        redundant_left_ = false;
+      }
+    } else {
+      std::swap(active_, next_active_);
+      n = next;
+    }
+  }
+  const std::vector<cl_int> flips = flip_counts_.download(device_, 3);
+  counts.delaunay_flips += flips[0];
+  counts.non_delaunay_flips += flips[1] + flips[2];
+  counts.deleted += flips[2]; // each removal deletes one point
+  counts.exact_checks += checks.exact_checks;
+  midpoints_.fill(device_, 0, 1);
+  if (m > 0) {
+    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
+             static_cast<cl_int>(m));
+    launch(device_, finish_, m, kPhase);
+  }
+  counts.midpoints += midpoints_.read(device_, 0);
+  counts.kept_redundant += kept_.read(device_, 0);
+}
+
+// Marked points become redundant, and the stars of the redundant ones join the
+// next list (next_active_[0 .. next)), which goes without duplicates to active_.
+void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
+  const std::size_t m = tracked_n_;
+  const auto points = static_cast<cl_int>(m);
+  set_args(track_, tracked_.buffer(), mesh_.point_state.buffer(), redundant_mark_.buffer(),
+           redundant_anchor_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), star_size_.buffer(),
+           failures_.buffer(), static_cast<cl_int>(stamp), points);
+  launch(device_, track_, m, kPhase);
+  const auto stars =
+      static_cast<std::size_t>(scan_.exclusive_scan(star_size_, star_offset_, m, kPhase));
+  if (failures_.read(device_, 0) != 0)
+    throw InternalError("flip-flop lost the star of a redundant point");
+  redundant_left_ = stars > 0;
+  if (next + stars > next_active_.size())
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  if (stars > 0) {
+    // The stars go after the pass's results, from `next` on.
+    set_args(emit_, tracked_.buffer(), redundant_anchor_.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), star_size_.buffer(), star_offset_.buffer(),
+             next_active_.buffer(), static_cast<cl_int>(next), points);
+    launch(device_, emit_, m, kPhase);
+  }
+  const std::size_t total = next + stars;
+  const auto items = static_cast<cl_int>(total);
+  set_args(mark_first_, next_active_.buffer(), mesh_.tri_mark.buffer(), items);
+  launch(device_, mark_first_, total, kPhase);
+  set_args(keep_first_, next_active_.buffer(), mesh_.tri_mark.buffer(), count_.buffer(), items);
+  launch(device_, keep_first_, total, kPhase);
+  set_args(clear_positions_, next_active_.buffer(), mesh_.tri_mark.buffer(), items);
+  launch(device_, clear_positions_, total, kPhase);
+  *n = static_cast<std::size_t>(
+      scan_.compact(next_active_, count_, offset_, active_, total, kPhase));
+  if (*n > mesh_.list_capacity)
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+}
+
+void FlipflopDeletion::collect_free_slots() {
+  DeviceMesh::FreeList &triangles = mesh_.free_triangles, &points = mesh_.free_points;
+  if (triangles.slots.size() < mesh_.triangle_capacity)
+    triangles.slots = DeviceArray<cl_int>(device_, mesh_.triangle_capacity);
+  if (points.slots.size() < mesh_.point_capacity)
+    points.slots = DeviceArray<cl_int>(device_, mesh_.point_capacity);
+  // count_ and offset_ (2 list_capacity > triangle_capacity) serve as scratch.
+  const std::size_t slots = mesh_.triangle_count;
+  set_args(flag_dead_, mesh_.tri_vertex.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, flag_dead_, slots, kPhase);
+  triangles.first = 0;
+  triangles.count = static_cast<std::size_t>(
+      scan_.compact_indices(count_, offset_, triangles.slots, slots, kPhase));
+  const std::size_t point_slots = mesh_.point_count;
+  set_args(flag_deleted_, mesh_.point_state.buffer(), count_.buffer(),
+           static_cast<cl_int>(point_slots));
+  launch(device_, flag_deleted_, point_slots, kPhase);
+  points.first = 0;
+  points.count = static_cast<std::size_t>(
+      scan_.compact_indices(count_, offset_, points.slots, point_slots, kPhase));
+}
+
+std::vector<Point> FlipflopDeletion::steiner_points(std::size_t first) {
+  const std::size_t n = mesh_.point_count - first;
+  std::vector<Point> result;
+  if (n == 0)
+    return result;
+  set_args(flag_surviving_, mesh_.point_state.buffer(), count_.buffer(), static_cast<cl_int>(first),
+           static_cast<cl_int>(n));
+  launch(device_, flag_surviving_, n, kPhase);
+  const int survivors = scan_.exclusive_scan(count_, offset_, n, kPhase);
+  set_args(number_, mesh_.point_state.buffer(), offset_.buffer(), static_cast<cl_int>(survivors),
+           mesh_.original_id.buffer(), static_cast<cl_int>(first), static_cast<cl_int>(n));
+  launch(device_, number_, n, kPhase);
+  // The final download: the coordinates of the survivors, in slot order.
+  const std::vector<cl_double2> points = mesh_.points.download(device_, n, first);
+  const std::vector<cl_int> keep = count_.download(device_, n);
+  result.reserve(static_cast<std::size_t>(survivors));
+  for (std::size_t k = 0; k < n; ++k)
+    if (keep[k])
+      result.push_back({points[k].s[0], points[k].s[1]});
+  return result;
+}
+
+} // namespace clmesh

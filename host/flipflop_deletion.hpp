@@ -1,0 +1,70 @@
+// clmesh — GPU-QM step 3: flip-flop, Delaunay flips together with the
+// deletion of redundant Steiner points (thesis §3.3.2 Algorithms 3.1 and 3.2,
+// §3.5 for GPU-QM-V's orthogonal test), and the free lists of the slots it
+// empties (§3.6.1). Kernels: cl/flipflop_deletion.cl.
+#pragma once
+
+#include "flipping.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <vector>
+
+namespace clmesh {
+
+struct FlipflopCounts {
+  long delaunay_flips = 0;
+  long non_delaunay_flips = 0; // flops and 3-1 flips
+  long deleted = 0;            // redundant points deleted
+  long midpoints = 0;          // hull midpoints inserted (none is ever deleted)
+  long kept_redundant = 0;     // redundant points in degenerate stars, kept
+  long passes = 0;
+  long exact_checks = 0;
+};
+
+class FlipflopDeletion {
+public:
+  static constexpr const char *kPhase = "flipflop_deletion";
+
+  // orthogonal_test: GPU-QM-V (delete one of two connected new points only
+  // when they are less than orthogonal) instead of GPU-QM (always).
+  // lens: Triangle's encroachment test of hull edges (offcenter_insertion.cl).
+  FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan, Flipping &flipping,
+                   bool orthogonal_test, double lens);
+
+  // Step 3 of one iteration: from the triangles `changed` (n entries, -1
+  // ignored), the points new_points[0 .. m) having just been inserted.
+  // Returns when every edge is locally Delaunay and no redundant point is left.
+  void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
+           std::size_t m, int &stamp, FlipflopCounts &counts);
+
+  // Collects the empty triangle and point slots into the mesh's free lists.
+  void collect_free_slots();
+
+  // Numbers the surviving Steiner points (slots first ..) after the input
+  // points in slot order, the deleted ones after them, and returns the
+  // survivors' coordinates in that order.
+  std::vector<Point> steiner_points(std::size_t first);
+
+private:
+  void find_stars(int stamp, std::size_t next, std::size_t *n);
+
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  Flipping &flipping_;
+  cl_int orthogonal_test_;
+  double lens_;
+  std::size_t tracked_n_ = 0;
+  bool redundant_left_ = false;
+  cl::Kernel mark_encroaching_, propose_, apply_, relink_, count_next_, gather_next_, clear_marks_,
+      track_, emit_, mark_first_, keep_first_, clear_positions_, finish_, keep_stuck_, flag_dead_,
+      flag_deleted_, flag_surviving_, number_;
+  DeviceArray<cl_int> active_, next_active_, flags_, operation_, proposal_, star_, applied_, count_,
+      offset_;
+  DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
+      tracked_count_;
+  DeviceArray<cl_int> marked_count_, flip_counts_, failures_, midpoints_, kept_;
+};
+
+} // namespace clmesh

@@ -2,31 +2,45 @@
 // prefix sums, thesis §3.6.1-3.6.2) and list compaction. Results never
 // depend on the work-group size: only its local scratch does.
 
-// Exclusive scan of each work-group's block; block_sums[g] = block total.
+// Each work-item scans CLM_SCAN_ITEMS consecutive entries on its own; the
+// work-group then scans the work-items' sums in local memory, so a block of
+// CLM_SCAN_ITEMS x (work-group size) entries costs a handful of barriers.
+#define CLM_SCAN_ITEMS 8
+
+// Exclusive scan of each block; block_sums[g] = block total.
 __kernel void scan_blocks(__global const int *in, __global int *out, __global int *block_sums,
                           __local int *scratch, const int n) {
-  const int gid = get_global_id(0), lid = get_local_id(0), size = get_local_size(0);
-  const int value = gid < n ? in[gid] : 0;
-  scratch[lid] = value;
+  const int lid = get_local_id(0), size = get_local_size(0);
+  const int first = get_global_id(0) * CLM_SCAN_ITEMS;
+  int prefix[CLM_SCAN_ITEMS];
+  int sum = 0;
+  for (int j = 0; j < CLM_SCAN_ITEMS; ++j) {
+    prefix[j] = sum;
+    sum += first + j < n ? in[first + j] : 0;
+  }
+  scratch[lid] = sum;
   barrier(CLK_LOCAL_MEM_FENCE);
-  // Hillis-Steele inclusive scan in local memory.
+  // Hillis-Steele inclusive scan of the work-items' sums.
   for (int offset = 1; offset < size; offset <<= 1) {
     const int add = lid >= offset ? scratch[lid - offset] : 0;
     barrier(CLK_LOCAL_MEM_FENCE);
     scratch[lid] += add;
     barrier(CLK_LOCAL_MEM_FENCE);
   }
-  if (gid < n)
-    out[gid] = scratch[lid] - value;
+  const int before = scratch[lid] - sum;
+  for (int j = 0; j < CLM_SCAN_ITEMS; ++j)
+    if (first + j < n)
+      out[first + j] = before + prefix[j];
   if (lid == size - 1)
     block_sums[get_group_id(0)] = scratch[lid];
 }
 
-// Adds the scanned block offsets to each block.
-__kernel void scan_add_offsets(__global int *out, __global const int *block_offsets, const int n) {
+// Adds the scanned block offsets to each block of `block` entries.
+__kernel void scan_add_offsets(__global int *out, __global const int *block_offsets,
+                               const int block, const int n) {
   const int gid = get_global_id(0);
   if (gid < n)
-    out[gid] += block_offsets[get_group_id(0)];
+    out[gid] += block_offsets[gid / block];
 }
 
 // total[0] = offsets[n-1] + counts[n-1] (0 when n == 0 is handled on the host).

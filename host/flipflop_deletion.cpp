@@ -117,6 +117,7 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
              next_active_.buffer(), items);
     launch(device_, gather_next_, n, kPhase);
     ++counts.passes;
+    counts.visits += static_cast<long>(n);
     const int marked = marked_count_.read(device_, 0);
     if (marked > 0 || redundant_left_) {
       find_stars(pass_stamp, next, &n);

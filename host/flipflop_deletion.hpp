@@ -19,6 +19,7 @@ struct FlipflopCounts {
   long midpoints = 0;          // hull midpoints inserted (none is ever deleted)
   long kept_redundant = 0;     // redundant points in degenerate stars, kept
   long passes = 0;
+  long visits = 0; // active triangles examined, over all passes
   long exact_checks = 0;
 };
 

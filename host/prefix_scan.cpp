@@ -22,20 +22,23 @@ const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   return it->second.first;
 }
 
+// Items per work-item of scan_blocks (CLM_SCAN_ITEMS in cl/scan.cl).
+constexpr std::size_t kScanItems = 8;
+
 void PrefixScan::scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
                             const std::string &phase) {
-  const std::size_t group = group_;
-  const std::size_t groups = (n + group - 1) / group;
+  const std::size_t group = group_, block = group * kScanItems;
+  const std::size_t groups = (n + block - 1) / block;
   const auto &sums = block_sums(level, groups);
   set_args(scan_blocks_, in, out, sums.buffer(), cl::Local(sizeof(cl_int) * group),
            static_cast<cl_int>(n));
-  launch(device_, scan_blocks_, n, phase, group);
+  launch(device_, scan_blocks_, groups * group, phase, group);
   if (groups == 1)
     return;
   const auto &scanned = levels_.at(level).second;
   scan_level(sums.buffer(), scanned.buffer(), groups, level + 1, phase);
-  set_args(add_offsets_, out, scanned.buffer(), static_cast<cl_int>(n));
-  launch(device_, add_offsets_, n, phase, group);
+  set_args(add_offsets_, out, scanned.buffer(), static_cast<cl_int>(block), static_cast<cl_int>(n));
+  launch(device_, add_offsets_, n, phase);
 }
 
 int PrefixScan::exclusive_scan(const DeviceArray<cl_int> &counts,

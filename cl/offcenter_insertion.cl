@@ -16,10 +16,77 @@
 #include "common.h"
 #include "refinement.h"
 
+// Marks the hull vertices whose hull angle is below the minimum angle
+// (cos_bound: its cosine): no refinement can mend the angle every triangle
+// there has at them (Triangle leaves those too). Run once, on the convex
+// hull of the Delaunay triangulation, ghost by ghost.
+__kernel void flag_acute_hull_vertices(__global const double2 *points,
+                                       __global const int *tri_vertex,
+                                       __global const int *tri_neighbor, const double cos_bound,
+                                       __global int *point_state, const int n) {
+  const int g = get_global_id(0);
+  if (g >= n)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, g);
+  if (!is_ghost(tri) || is_dead(tri))
+    return;
+  // Ghost (infinity, a, b) over hull edge a-b; the next ghost, across its
+  // edge b-infinity, is (infinity, b, c).
+  const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+  const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
+  const int next = link_triangle(tri_neighbor[3 * g + next3(k)]);
+  const VertexTriple following = load_vertices(tri_vertex, next);
+  const int j = following.v[0] == b ? 0 : (following.v[1] == b ? 1 : 2);
+  const int c =
+      following.v[next3(j)] == CLM_INFINITE ? following.v[prev3(j)] : following.v[next3(j)];
+  if (a < 0 || c < 0 || a == c)
+    return;
+  const double2 u = points[a] - points[b], w = points[c] - points[b];
+  const double dot = u.x * w.x + u.y * w.y;
+  const double lengths = sqrt((u.x * u.x + u.y * u.y) * (w.x * w.x + w.y * w.y));
+  if (dot > cos_bound * lengths) // angle(a, b, c) below the bound
+    point_state[b] = CLM_POINT_ACUTE_HULL;
+}
+
+// The quality of a real triangle: skinny (circumradius-to-shortest-edge
+// ratio above the bound), large (area above max_area), its shortest edge
+// (opposite vertex `shortest`, where its smallest angle is) and whether that
+// angle is at an acute hull vertex, where it cannot be mended.
+typedef struct {
+  double2 p[3];
+  double length_squared[3];
+  int shortest;
+  bool skinny, large, unfixable;
+} Quality;
+
+inline Quality assess(__global const double2 *points, __global const int *point_state,
+                      VertexTriple tri, double ratio_bound_squared, double max_area) {
+  Quality q;
+  for (int i = 0; i < 3; ++i)
+    q.p[i] = points[tri.v[i]];
+  q.shortest = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double2 d = q.p[prev3(i)] - q.p[next3(i)]; // edge opposite vertex i
+    q.length_squared[i] = d.x * d.x + d.y * d.y;
+    if (q.length_squared[i] < q.length_squared[q.shortest])
+      q.shortest = i;
+  }
+  const double2 d1 = q.p[1] - q.p[0], d2 = q.p[2] - q.p[0];
+  const double twice_area = d1.x * d2.y - d1.y * d2.x;
+  // R^2 / l^2 = (l0 l1 l2)^2 / (16 K^2 l^2) with l the shortest edge.
+  const double ratio_squared = q.length_squared[0] * q.length_squared[1] * q.length_squared[2] /
+                               (4.0 * twice_area * twice_area * q.length_squared[q.shortest]);
+  q.skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
+  q.large = max_area > 0 && 0.5 * twice_area > max_area;
+  q.unfixable = q.skinny && !q.large && point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL;
+  return q;
+}
+
 // Per slot t: is_bad[t], and the candidate and priority of a bad triangle.
 // Only triangles changed since the last search (modified_stamp >= since), or
 // bad then, are examined again (thesis §3.3.2): the others are still good.
 __kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
+                                 __global const int *point_state,
                                  __global const int *modified_stamp, const int since,
                                  __global int *was_bad, const double ratio_bound_squared,
                                  const double max_area, const double offconstant,
@@ -35,28 +102,12 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
-  double2 p[3];
-  double length_squared[3];
-  for (int i = 0; i < 3; ++i)
-    p[i] = points[tri.v[i]];
-  int shortest = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double2 d = p[prev3(i)] - p[next3(i)]; // edge opposite vertex i
-    length_squared[i] = d.x * d.x + d.y * d.y;
-    if (length_squared[i] < length_squared[shortest])
-      shortest = i;
-  }
-  const double2 d1 = p[1] - p[0], d2 = p[2] - p[0];
-  const double twice_area = d1.x * d2.y - d1.y * d2.x;
-  // R^2 / l^2 = (l0 l1 l2)^2 / (16 K^2 l^2) with l the shortest edge.
-  const double ratio_squared = length_squared[0] * length_squared[1] * length_squared[2] /
-                               (4.0 * twice_area * twice_area * length_squared[shortest]);
-  const bool skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
-  const bool large = max_area > 0 && 0.5 * twice_area > max_area;
-  if (!skinny && !large)
+  const Quality q = assess(points, point_state, tri, ratio_bound_squared, max_area);
+  if ((!q.skinny && !q.large) || q.unfixable)
     return;
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
-  const double2 a = p[next3(shortest)], b = p[prev3(shortest)], r = p[shortest];
+  const int shortest = q.shortest;
+  const double2 a = q.p[next3(shortest)], b = q.p[prev3(shortest)], r = q.p[shortest];
   const double2 e = b - a, f = r - a;
   const double e2 = e.x * e.x + e.y * e.y, f2 = f.x * f.x + f.y * f.y;
   const double denominator = 2.0 * (e.x * f.y - e.y * f.x);
@@ -71,7 +122,24 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   is_bad[t] = 1;
   was_bad[t] = 1;
   slot_candidate[t] = steiner;
-  slot_priority[t] = as_uint((float)length_squared[shortest]);
+  slot_priority[t] = as_uint((float)q.length_squared[shortest]);
+}
+
+// counts[0]: the bad triangles whose smallest angle is at an acute hull
+// vertex (left as they are), counted at the end over every slot.
+__kernel void count_unfixable_triangles(__global const double2 *points,
+                                        __global const int *tri_vertex,
+                                        __global const int *point_state,
+                                        const double ratio_bound_squared, const double max_area,
+                                        volatile __global int *counts, const int n) {
+  const int t = get_global_id(0);
+  if (t >= n)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_ghost(tri) || is_dead(tri))
+    return;
+  if (assess(points, point_state, tri, ratio_bound_squared, max_area).unfixable)
+    atomic_inc(counts);
 }
 
 // The bad triangles as a list in slot order (offsets by prefix sum), so that

@@ -11,6 +11,7 @@
 #define CLM_POINT_REDUNDANT 4    // to be deleted by flip-flop
 #define CLM_POINT_DELETED 5      // deleted: its slot is free
 #define CLM_POINT_MIDPOINT 6     // hull midpoint inserted in an earlier iteration
+#define CLM_POINT_ACUTE_HULL 7   // input point at a hull angle below the minimum angle
 
 inline bool is_new_point(int state) {
   return state == CLM_POINT_NEW || state == CLM_POINT_NEW_MIDPOINT;

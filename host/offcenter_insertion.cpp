@@ -11,6 +11,8 @@ const char *kFile = "offcenter_insertion.cl";
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area)
     : device_(device), mesh_(mesh), max_area_(max_area),
+      flag_acute_(device.kernel(kFile, "flag_acute_hull_vertices", kPhase)),
+      count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
       locate_(device.kernel(kFile, "locate_candidates", kPhase)),
@@ -28,6 +30,7 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
   was_bad_.fill(device_, 0, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
+  cos_bound_ = std::cos(angle);
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
   ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
   // Triangle's diametral lens: a hull edge is encroached by a point that sees
@@ -38,9 +41,30 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
 }
 
+void OffcenterInsertion::flag_acute_hull_vertices() {
+  if (ratio_bound_squared_ <= 0)
+    return; // no angle bound
+  const std::size_t slots = mesh_.triangle_count;
+  set_args(flag_acute_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), cos_bound_, mesh_.point_state.buffer(),
+           static_cast<cl_int>(slots));
+  launch(device_, flag_acute_, slots, kPhase);
+}
+
+std::size_t OffcenterInsertion::count_unfixable() {
+  const std::size_t slots = mesh_.triangle_count;
+  DeviceArray<cl_int> count(device_, 1);
+  count.fill(device_, 0, 1);
+  set_args(count_unfixable_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.point_state.buffer(), ratio_bound_squared_, max_area_, count.buffer(),
+           static_cast<cl_int>(slots));
+  launch(device_, count_unfixable_, slots, kPhase);
+  return static_cast<std::size_t>(count.read(device_, 0));
+}
+
 std::size_t OffcenterInsertion::find(PrefixScan &scan, int stamp) {
   const std::size_t slots = mesh_.triangle_count;
-  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
            mesh_.modified_stamp.buffer(), static_cast<cl_int>(since_), was_bad_.buffer(),
            ratio_bound_squared_, max_area_, offconstant_, keep_.buffer(), slot_candidate_.buffer(),
            slot_priority_.buffer(), static_cast<cl_int>(slots));

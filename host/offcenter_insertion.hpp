@@ -23,6 +23,12 @@ public:
   // only the triangles rewritten from it on (and the bad ones).
   std::size_t find(PrefixScan &scan, int stamp);
 
+  // Once, on the Delaunay triangulation: flags the input points at hull angles
+  // below the minimum angle. Bad triangles whose smallest angle is at one of
+  // them cannot be mended and are left alone; count_unfixable() counts them.
+  void flag_acute_hull_vertices();
+  std::size_t count_unfixable();
+
   // Appends the survivors to the mesh's points (free slots first, then from
   // point_count on; they stay on the device) and lists them in new_points,
   // not inserted yet; none when more than `room`. Returns how many were
@@ -35,8 +41,9 @@ public:
 private:
   Device &device_;
   DeviceMesh &mesh_;
-  double ratio_bound_squared_, max_area_, offconstant_, lens_;
-  cl::Kernel find_bad_, gather_bad_, locate_, mark_, ties_, filter_, clear_, append_;
+  double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
+  cl::Kernel flag_acute_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
+      clear_, append_;
   std::size_t bad_ = 0;
   int since_ = 0; // the first search examines every triangle
   DeviceArray<cl_double2> candidate_;

@@ -134,9 +134,17 @@ TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
     all.insert(all.end(), result.added_points.begin(), result.added_points.end());
     CHECK(!result.mesh.triangles.empty());
     MESSAGE(result.stats.remaining_bad << " bad triangles remain after " << result.stats.iterations
-                                       << " iterations");
-    for (const auto &t : result.mesh.triangles)
+                                       << " iterations, " << result.added_points.size()
+                                       << " Steiner points");
+    long bad = 0;
+    for (const auto &t : result.mesh.triangles) {
       CHECK(area(all, t) > 0);
+      if (smallest_angle_degrees(all, t) < 30) {
+        ++bad; // only at the apex, whose angle no refinement can mend
+        CHECK((t[0] == 0 || t[1] == 0 || t[2] == 0));
+      }
+    }
+    CHECK(bad == result.stats.remaining_bad);
   }
 }
 

@@ -299,7 +299,7 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // each to be inserted in its container, on split_edge when it lies on an
 // edge. Each gets its state, priority and insertion radius (thesis §3.5: the
 // distance to the nearest vertex of its bad triangle; half the hull edge for
-// a midpoint).
+// a midpoint). Their coordinates are logged after the `logged` earlier ones.
 __kernel void append_survivors(__global const double2 *candidate, __global const int *container,
                                __global const int *split_edge, __global const int *origin,
                                __global const uint *priority, __global const int *survive,
@@ -310,7 +310,7 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
                                __global double *insertion_radius2, __global uint *point_priority,
                                __global const int *free_points, const int free_first,
                                const int free_count, const int first_new, __global int *new_points,
-                               const int n) {
+                               __global double2 *insertion_log, const int logged, const int n) {
   const int k = get_global_id(0);
   if (k >= n || !survive[k])
     return;
@@ -337,4 +337,5 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
   insertion_radius2[p] = radius2;
   point_priority[p] = midpoint ? 0u : priority[k];
   new_points[offset[k]] = p;
+  insertion_log[logged + offset[k]] = c; // to count the points inserted more than once
 }

@@ -562,6 +562,7 @@ std::string stats_json(const clmesh::DelaunayResult &result, const std::string &
     json += count("insertions", r.insertions);
     json += count("deleted_redundant", r.deleted);
     json += count("kept_redundant", r.kept_redundant);
+    json += count("inserted_more_than_once", r.inserted_more_than_once);
     json += count("steiner_points", r.inserted);
     json += count("boundary_splits", r.boundary_splits);
     json += count("delaunay_flips", r.delaunay_flips);

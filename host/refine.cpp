@@ -61,6 +61,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   FlipflopCounts flips;
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
                                                      : std::numeric_limits<std::size_t>::max();
+  InsertionLog log;
   std::size_t steiner = 0; // Steiner points in the mesh now
   bool deleted_since_collection = false;
   // Point and triangle slots for `wanted` more points: the free ones, then the
@@ -93,8 +94,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     ++stats.iterations;
     stats.candidates += static_cast<long>(bad);
     std::size_t wanted = 0;
-    const std::size_t added = steps->offcenter.append(std::min(room(), limit - steiner),
-                                                      scheduler.scan(), steps->new_points, &wanted);
+    const std::size_t added = steps->offcenter.append(
+        std::min(room(), limit - steiner), scheduler.scan(), steps->new_points, log, &wanted);
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     if (added == 0)
       break; // the -S limit, or every candidate fell on a vertex
@@ -131,6 +132,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   steps.reset();
   scheduler.download(result.mesh);
   result.mesh.duplicate_of.resize(n + survivors);
+  stats.inserted_more_than_once = log.points_inserted_more_than_once(device);
   return result;
 }
 

@@ -113,6 +113,10 @@ TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than 
   CHECK(qm.stats.deleted > qmv.stats.deleted);
   CHECK(qm.stats.non_delaunay_flips > qmv.stats.non_delaunay_flips);
   CHECK(qmv.stats.delaunay_flips > 0);
+  // Only a deleted point can come back.
+  CHECK(qm.stats.inserted_more_than_once <= qm.stats.deleted);
+  CHECK(qmv.stats.inserted_more_than_once <= qmv.stats.deleted);
+  CHECK(qm.stats.inserted_more_than_once > 0);
 }
 
 TEST_CASE("refine: maximum area, alone and with an angle") {

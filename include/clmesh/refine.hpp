@@ -26,15 +26,16 @@ struct RefineOptions {
 
 struct RefineStats {
   long iterations = 0;
-  long candidates = 0;         // bad triangles' candidates, over all iterations
-  long insertions = 0;         // candidates inserted (step 2), over all iterations
-  long deleted = 0;            // of them, deleted again as redundant (step 3)
-  long kept_redundant = 0;     // redundant points kept: no flip could delete them
-  long inserted = 0;           // Steiner points in the final mesh
-  long boundary_splits = 0;    // insertions that split a hull edge at its midpoint
-  long delaunay_flips = 0;     // step 3's flips of non-locally-Delaunay edges
-  long non_delaunay_flips = 0; // step 3's flops and 3-1 flips deleting points
-  long remaining_bad = 0;      // bad triangles left (small hull angles, -S reached)
+  long candidates = 0;              // bad triangles' candidates, over all iterations
+  long insertions = 0;              // candidates inserted (step 2), over all iterations
+  long deleted = 0;                 // of them, deleted again as redundant (step 3)
+  long kept_redundant = 0;          // redundant points kept: no flip could delete them
+  long inserted_more_than_once = 0; // points deleted as redundant, then inserted again
+  long inserted = 0;                // Steiner points in the final mesh
+  long boundary_splits = 0;         // insertions that split a hull edge at its midpoint
+  long delaunay_flips = 0;          // step 3's flips of non-locally-Delaunay edges
+  long non_delaunay_flips = 0;      // step 3's flops and 3-1 flips deleting points
+  long remaining_bad = 0;           // bad triangles left (small hull angles, -S reached)
 };
 
 struct RefineResult {

@@ -51,11 +51,22 @@ inline void edge_quad(__global const double2 *points, __global const int *tri_ve
   quad[3] = points[tri_vertex[3 * link_triangle(link) + link_edge(link)]];
 }
 
+// active_round[t] = round for the triangles of this pass's list.
+__kernel void flip_mark_active(__global const int *active, __global int *active_round,
+                               const int round, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n && active[gid] >= 0)
+    active_round[active[gid]] = round;
+}
+
 // flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
+// An edge between two listed triangles is tested once, by the smaller one
+// (thesis §3.3.2, Algorithm 3.1 line 8).
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
                               __global const int *constraint_start,
                               __global const int *constraint_adjacent, const int fixed_boundary,
+                              __global const int *active_round, const int round,
                               __global int *flags, __global int *exact_list,
                               volatile __global int *exact_count, const int n) {
   const int gid = get_global_id(0);
@@ -65,6 +76,9 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
   int bits = 0;
   if (t >= 0 && !is_dead(load_vertices(tri_vertex, t)))
     for (int i = 0; i < 3; ++i) {
+      const int u = link_triangle(tri_neighbor[3 * t + i]);
+      if (u < t && active_round[u] == round)
+        continue;
       int real_edge;
       int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, constraint_start,
                                          constraint_adjacent, fixed_boundary, t, i, &real_edge);

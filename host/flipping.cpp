@@ -10,6 +10,7 @@ const char *kFile = "flipping.cl";
 
 Flipping::Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan)
     : device_(device), mesh_(mesh), scan_(scan),
+      mark_active_(device.kernel(kFile, "flip_mark_active", kPhase)),
       check_fast_(device.kernel(kFile, "flip_check_fast", kPhase)),
       check_exact_(device.kernel(kFile, "flip_check_exact", kPhase)),
       propose_(device.kernel(kFile, "flip_propose", kPhase)),
@@ -22,18 +23,24 @@ Flipping::Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       flags_(device, mesh.list_capacity), exact_list_(device, mesh.list_capacity),
       proposal_(device, mesh.list_capacity), flipped_(device, mesh.list_capacity),
       count_(device, mesh.list_capacity), offset_(device, mesh.list_capacity),
-      exact_count_(device, 1), flip_count_(device, 1) {
+      exact_count_(device, 1), flip_count_(device, 1),
+      active_round_(device, mesh.triangle_capacity) {
   flip_count_.fill(device_, 0, 1);
+  active_round_.fill(device_, 0, mesh.triangle_capacity);
 }
 
 void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
                      const DeviceArray<cl_int> &flags, FlipCounts &counts) {
   const auto items = static_cast<cl_int>(n);
   exact_count_.fill(device_, 0, 1);
+  const cl_int round = ++round_;
+  set_args(mark_active_, active.buffer(), active_round_.buffer(), round, items);
+  launch(device_, mark_active_, n, kPhase);
   set_args(check_fast_, active.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
-           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_), flags.buffer(),
-           exact_list_.buffer(), exact_count_.buffer(), items);
+           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_),
+           active_round_.buffer(), round, flags.buffer(), exact_list_.buffer(),
+           exact_count_.buffer(), items);
   launch(device_, check_fast_, n, kPhase);
   const int uncertain = exact_count_.read(device_, 0);
   if (uncertain > 0) {

@@ -435,12 +435,15 @@ __kernel void track_redundant_points(__global const int *tracked, __global int *
     atomic_inc(failures);
     return;
   }
-  redundant_anchor[p] = t;
-  int size = 0, s = t;
+  // The star's smallest slot becomes the anchor, where its listing starts:
+  // the same whichever triangle found the point.
+  int size = 0, s = t, smallest = t;
   do {
     ++size;
+    smallest = min(smallest, s);
     s = next_around(tri_neighbor, s, index_in(tri_vertex, s, p));
   } while (s != t && size < 4096);
+  redundant_anchor[p] = smallest;
   star_size[k] = size;
 }
 
@@ -460,29 +463,6 @@ __kernel void emit_redundant_stars(__global const int *tracked,
     out[base + offset[k] + j] = s;
     s = next_around(tri_neighbor, s, index_in(tri_vertex, s, p));
   }
-}
-
-// Duplicates in a list: each triangle keeps its first position (atomic
-// minimum in tri_mark, cleared afterwards), so the kept set does not depend
-// on scheduling.
-__kernel void mark_first_position(__global const int *list, volatile __global uint *tri_mark,
-                                  const int n) {
-  const int gid = get_global_id(0);
-  if (gid < n)
-    atomic_min(&tri_mark[list[gid]], (uint)gid);
-}
-
-__kernel void keep_first_position(__global const int *list, __global const uint *tri_mark,
-                                  __global int *keep, const int n) {
-  const int gid = get_global_id(0);
-  if (gid < n)
-    keep[gid] = tri_mark[list[gid]] == (uint)gid;
-}
-
-__kernel void clear_position_marks(__global const int *list, __global uint *tri_mark, const int n) {
-  const int gid = get_global_id(0);
-  if (gid < n)
-    tri_mark[list[gid]] = CLM_NO_MARK;
 }
 
 // End of an iteration: its points become points of earlier iterations.
@@ -513,19 +493,28 @@ inline bool in_lens(__global const double2 *points, int a, int b, int q, double 
 // midpoint v of this iteration, on the former hull edge a-b with apex c, the
 // off-centers among c and c's neighbours that encroach a-b are marked
 // redundant (Triangle would not have inserted them: it splits the edge
-// instead). Old ones join the tracked list after the new points, at
-// tracked[tracked_count[0]++] (an order that no result depends on).
+// instead). Three kernels over the new points, so that the list of the old
+// points marked is the same on every run: each encroacher is claimed by the
+// smallest midpoint (claim), the midpoints count the old ones they own
+// (count), and write them after a prefix sum (write).
+#define CLM_ENCROACH_CLAIM 0
+#define CLM_ENCROACH_COUNT 1
+#define CLM_ENCROACH_WRITE 2
+
 __kernel void
 mark_encroaching_points(__global const int *new_points, __global const double2 *points,
                         __global const int *tri_vertex, __global const int *tri_neighbor,
                         __global const int *vertex_triangle, __global const int *point_state,
-                        const double lens, volatile __global int *redundant_mark,
-                        __global int *redundant_anchor, __global int *tracked,
-                        volatile __global int *tracked_count, const int n) {
+                        const double lens, const int step, volatile __global int *claim,
+                        __global int *redundant_mark, __global int *redundant_anchor,
+                        __global int *owned, __global const int *offset, __global int *tracked,
+                        const int first, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int v = new_points[k];
+  if (step == CLM_ENCROACH_COUNT)
+    owned[k] = 0;
   if (point_state[v] != CLM_POINT_NEW_MIDPOINT)
     return;
   // Just after its 1-2 split, v has two real triangles (v,a,c) and (v,c,b).
@@ -542,15 +531,25 @@ mark_encroaching_points(__global const int *new_points, __global const double2 *
   if (a < 0 || b < 0 || c < 0)
     return;
   // c, then its neighbours around it.
-  int s = t, q = c;
-  for (int step = 0; step < 64; ++step) {
+  int s = t, q = c, count = 0;
+  for (int around = 0; around < 64; ++around) {
     if (q >= 0) {
       const int state = point_state[q];
       if ((state == CLM_POINT_STEINER || state == CLM_POINT_NEW) &&
-          in_lens(points, a, b, q, lens) && atomic_cmpxchg(&redundant_mark[q], 0, 1) == 0) {
-        redundant_anchor[q] = s;
-        if (state == CLM_POINT_STEINER)
-          tracked[atomic_inc(tracked_count)] = q;
+          in_lens(points, a, b, q, lens)) {
+        if (step == CLM_ENCROACH_CLAIM) {
+          atomic_min(&claim[q], k);
+        } else if (claim[q] == k) {
+          if (step == CLM_ENCROACH_COUNT) {
+            redundant_mark[q] = 1;
+            redundant_anchor[q] = s;
+          }
+          if (state == CLM_POINT_STEINER) {
+            if (step == CLM_ENCROACH_WRITE)
+              tracked[first + offset[k] + count] = q;
+            ++count;
+          }
+        }
       }
     }
     const int kc = index_in(tri_vertex, s, c);
@@ -559,6 +558,16 @@ mark_encroaching_points(__global const int *new_points, __global const double2 *
       break;
     q = star_vertex(tri_vertex, s, c);
   }
+  if (step == CLM_ENCROACH_COUNT)
+    owned[k] = count;
+}
+
+// Resets the claims of the boundary routine for the next iteration.
+__kernel void clear_encroaching_claims(__global const int *tracked, __global int *claim,
+                                       const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    claim[tracked[k]] = 0x7fffffff;
 }
 
 // A stall (no operation left, yet redundant points remain, in degenerate

@@ -82,23 +82,21 @@ inline Quality assess(__global const double2 *points, __global const int *point_
   return q;
 }
 
-// Per slot t: is_bad[t], and the candidate and priority of a bad triangle.
-// Only triangles changed since the last search (modified_stamp >= since), or
-// bad then, are examined again (thesis §3.3.2): the others are still good.
+// Per entry: is_bad[gid], and the candidate and priority of a bad triangle,
+// for the triangle list[gid] (use_list), else for slot gid. The list holds
+// the bad triangles of the last search and the triangles changed since: the
+// others are still good (thesis §3.3.2).
 __kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *point_state,
-                                 __global const int *modified_stamp, const int since,
-                                 __global int *was_bad, const double ratio_bound_squared,
+                                 __global const int *point_state, __global const int *list,
+                                 const int use_list, const double ratio_bound_squared,
                                  const double max_area, const double offconstant,
                                  __global int *is_bad, __global double2 *slot_candidate,
                                  __global uint *slot_priority, const int n) {
-  const int t = get_global_id(0);
-  if (t >= n)
+  const int gid = get_global_id(0);
+  if (gid >= n)
     return;
-  is_bad[t] = 0;
-  if (modified_stamp[t] < since && !was_bad[t])
-    return;
-  was_bad[t] = 0;
+  is_bad[gid] = 0;
+  const int t = use_list ? list[gid] : gid;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
@@ -119,10 +117,9 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   const double2 steiner = a + offset;
   if (!isfinite(steiner.x) || !isfinite(steiner.y))
     return; // a degenerate computation: leave the triangle alone
-  is_bad[t] = 1;
-  was_bad[t] = 1;
-  slot_candidate[t] = steiner;
-  slot_priority[t] = as_uint((float)q.length_squared[shortest]);
+  is_bad[gid] = 1;
+  slot_candidate[gid] = steiner;
+  slot_priority[gid] = as_uint((float)q.length_squared[shortest]);
 }
 
 // counts[0]: the bad triangles whose smallest angle is at an acute hull
@@ -142,19 +139,21 @@ __kernel void count_unfixable_triangles(__global const double2 *points,
     atomic_inc(counts);
 }
 
-// The bad triangles as a list in slot order (offsets by prefix sum), so that
-// candidate k is the same on every device and for every work-group size.
+// The bad triangles as a list in the order of the search (offsets by prefix
+// sum), so that candidate k is the same on every device and for every
+// work-group size.
 __kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
                                    __global const double2 *slot_candidate,
-                                   __global const uint *slot_priority, __global double2 *candidate,
+                                   __global const uint *slot_priority, __global const int *list,
+                                   const int use_list, __global double2 *candidate,
                                    __global int *origin, __global uint *priority, const int n) {
-  const int t = get_global_id(0);
-  if (t >= n || !is_bad[t])
+  const int gid = get_global_id(0);
+  if (gid >= n || !is_bad[gid])
     return;
-  const int k = offset[t];
-  candidate[k] = slot_candidate[t];
-  origin[k] = t;
-  priority[k] = slot_priority[t];
+  const int k = offset[gid];
+  candidate[k] = slot_candidate[gid];
+  origin[k] = use_list ? list[gid] : gid;
+  priority[k] = slot_priority[gid];
 }
 
 // Locates candidate k walking from its bad triangle. A candidate that ends in a

@@ -65,3 +65,26 @@ __kernel void compact_indices(__global const int *keep, __global const int *offs
   if (gid < n && keep[gid])
     out[offset[gid]] = gid;
 }
+
+// Duplicates in a list of slots (negative entries are dropped): each slot
+// keeps its first position, found with atomic minimum in marks[] (all
+// 0xffffffff outside these kernels, restored by unique_clear), so the list
+// kept is the same however the work is scheduled.
+__kernel void unique_mark(__global const int *list, volatile __global uint *marks, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n && list[gid] >= 0)
+    atomic_min(&marks[list[gid]], (uint)gid);
+}
+
+__kernel void unique_keep(__global const int *list, __global const uint *marks, __global int *keep,
+                          const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    keep[gid] = list[gid] >= 0 && marks[list[gid]] == (uint)gid;
+}
+
+__kernel void unique_clear(__global const int *list, __global uint *marks, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n && list[gid] >= 0)
+    marks[list[gid]] = 0xffffffffu;
+}

@@ -62,6 +62,24 @@ private:
   std::size_t size_ = 0;
 };
 
+// A list of ints on the device that grows as entries are appended from other
+// device arrays (amortised doubling).
+struct DeviceList {
+  DeviceArray<cl_int> items;
+  std::size_t size = 0;
+  void append(Device &device, const DeviceArray<cl_int> &from, std::size_t count) {
+    if (count == 0)
+      return;
+    if (size + count > items.size())
+      items = items.grown(device, 2 * (size + count), -1);
+    guarded("transfer", "appending to a device list", [&] {
+      device.queue().enqueueCopyBuffer(from.buffer(), items.buffer(), 0, size * sizeof(cl_int),
+                                       count * sizeof(cl_int));
+    });
+    size += count;
+  }
+};
+
 // The triangulation and the per-point state that stay resident on the device
 // from upload to download (thesis §2.2 data structure).
 struct DeviceMesh {

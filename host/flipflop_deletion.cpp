@@ -17,6 +17,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
     : device_(device), mesh_(mesh), scan_(scan), flipping_(flipping),
       orthogonal_test_(orthogonal_test ? 1 : 0), lens_(lens),
       mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
+      clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
       apply_(device.kernel(kFile, "flipflop_apply", kPhase)),
       relink_(device.kernel(kFile, "flipflop_relink", kPhase)),
@@ -25,9 +26,6 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       clear_marks_(device.kernel(kFile, "flipflop_clear_marks", kPhase)),
       track_(device.kernel(kFile, "track_redundant_points", kPhase)),
       emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
-      mark_first_(device.kernel(kFile, "mark_first_position", kPhase)),
-      keep_first_(device.kernel(kFile, "keep_first_position", kPhase)),
-      clear_positions_(device.kernel(kFile, "clear_position_marks", kPhase)),
       finish_(device.kernel(kFile, "finish_iteration", kPhase)),
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
       flag_dead_(device.kernel(kFile, "flag_dead_triangles", kPhase)),
@@ -43,15 +41,16 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       offset_(device, 2 * mesh.list_capacity), redundant_mark_(device, mesh.point_capacity),
       redundant_anchor_(device, mesh.point_capacity), star_size_(device, mesh.point_capacity),
       star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
-      tracked_count_(device, 1), marked_count_(device, 1), flip_counts_(device, 3),
-      failures_(device, 1), midpoints_(device, 1), kept_(device, 1) {
+      encroach_claim_(device, mesh.point_capacity), marked_count_(device, 1),
+      flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1), kept_(device, 1) {
   redundant_mark_.fill(device_, 0, mesh.point_capacity);
+  encroach_claim_.fill(device_, 0x7fffffff, mesh.point_capacity);
   failures_.fill(device_, 0, 1);
 }
 
 void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
                            const DeviceArray<cl_int> &new_points, std::size_t m, int &stamp,
-                           FlipflopCounts &counts) {
+                           DeviceList &rewritten, FlipflopCounts &counts) {
   if (n > mesh_.list_capacity)
     throw InternalError("flip-flop: the active list is longer than its arrays");
   if (n > 0)
@@ -68,16 +67,30 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
       device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked_.buffer(), 0, 0,
                                         m * sizeof(cl_int));
     });
-  tracked_count_.fill(device_, static_cast<cl_int>(m), 1);
+  tracked_n_ = m;
   if (m > 0) {
-    set_args(mark_encroaching_, new_points.buffer(), mesh_.points.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.vertex_triangle.buffer(),
-             mesh_.point_state.buffer(), lens_, redundant_mark_.buffer(),
-             redundant_anchor_.buffer(), tracked_.buffer(), tracked_count_.buffer(),
-             static_cast<cl_int>(m));
-    launch(device_, mark_encroaching_, m, kPhase);
+    const auto items = static_cast<cl_int>(m);
+    auto encroaching = [&](int step) {
+      set_args(mark_encroaching_, new_points.buffer(), mesh_.points.buffer(),
+               mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+               mesh_.vertex_triangle.buffer(), mesh_.point_state.buffer(), lens_,
+               static_cast<cl_int>(step), encroach_claim_.buffer(), redundant_mark_.buffer(),
+               redundant_anchor_.buffer(), star_size_.buffer(), star_offset_.buffer(),
+               tracked_.buffer(), items, items);
+      launch(device_, mark_encroaching_, m, kPhase);
+    };
+    encroaching(0); // claim
+    encroaching(1); // count, into star_size_
+    const auto old =
+        static_cast<std::size_t>(scan_.exclusive_scan(star_size_, star_offset_, m, kPhase));
+    if (old > 0) {
+      encroaching(2); // write
+      tracked_n_ += old;
+    }
+    set_args(clear_claims_, tracked_.buffer(), encroach_claim_.buffer(),
+             static_cast<cl_int>(tracked_n_));
+    launch(device_, clear_claims_, tracked_n_, kPhase);
   }
-  tracked_n_ = static_cast<std::size_t>(tracked_count_.read(device_, 0));
   FlipCounts checks;
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   for (long pass = 0; n > 0; ++pass) {
@@ -116,6 +129,7 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
              star_.buffer(), applied_.buffer(), count_.buffer(), offset_.buffer(),
              next_active_.buffer(), items);
     launch(device_, gather_next_, n, kPhase);
+    rewritten.append(device_, next_active_, next); // the pass's results (and losers)
     ++counts.passes;
     counts.visits += static_cast<long>(n);
     const int marked = marked_count_.read(device_, 0);
@@ -172,16 +186,8 @@ void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
              next_active_.buffer(), static_cast<cl_int>(next), points);
     launch(device_, emit_, m, kPhase);
   }
-  const std::size_t total = next + stars;
-  const auto items = static_cast<cl_int>(total);
-  set_args(mark_first_, next_active_.buffer(), mesh_.tri_mark.buffer(), items);
-  launch(device_, mark_first_, total, kPhase);
-  set_args(keep_first_, next_active_.buffer(), mesh_.tri_mark.buffer(), count_.buffer(), items);
-  launch(device_, keep_first_, total, kPhase);
-  set_args(clear_positions_, next_active_.buffer(), mesh_.tri_mark.buffer(), items);
-  launch(device_, clear_positions_, total, kPhase);
   *n = static_cast<std::size_t>(
-      scan_.compact(next_active_, count_, offset_, active_, total, kPhase));
+      scan_.unique(next_active_, next + stars, mesh_.tri_mark, count_, offset_, active_, kPhase));
   if (*n > mesh_.list_capacity)
     throw InternalError("flip-flop: the active list is longer than its arrays");
 }

@@ -36,8 +36,9 @@ public:
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
   // Returns when every edge is locally Delaunay and no redundant point is left.
+  // Every triangle it rewrites is appended to `rewritten`.
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
-           std::size_t m, int &stamp, FlipflopCounts &counts);
+           std::size_t m, int &stamp, DeviceList &rewritten, FlipflopCounts &counts);
 
   // Collects the empty triangle and point slots into the mesh's free lists.
   void collect_free_slots();
@@ -58,13 +59,13 @@ private:
   double lens_;
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
-  cl::Kernel mark_encroaching_, propose_, apply_, relink_, count_next_, gather_next_, clear_marks_,
-      track_, emit_, mark_first_, keep_first_, clear_positions_, finish_, keep_stuck_, flag_dead_,
-      flag_deleted_, flag_surviving_, number_;
+  cl::Kernel mark_encroaching_, clear_claims_, propose_, apply_, relink_, count_next_, gather_next_,
+      clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, flag_surviving_,
+      number_;
   DeviceArray<cl_int> active_, next_active_, flags_, operation_, proposal_, star_, applied_, count_,
       offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
-      tracked_count_;
+      encroach_claim_;
   DeviceArray<cl_int> marked_count_, flip_counts_, failures_, midpoints_, kept_;
 };
 

@@ -39,8 +39,8 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   bool fixed_boundary_ = false;
-  cl::Kernel mark_active_, check_fast_, check_exact_, propose_, apply_, relink_, count_next_, clear_marks_,
-      gather_next_;
+  cl::Kernel mark_active_, check_fast_, check_exact_, propose_, apply_, relink_, count_next_,
+      clear_marks_, gather_next_;
   DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, count_,
       offset_, exact_count_, flip_count_;
   DeviceArray<cl_int> active_round_; // per triangle: the last check that listed it

@@ -26,10 +26,9 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       container_(device, mesh.triangle_capacity), split_edge_(device, mesh.triangle_capacity),
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
-      was_bad_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
+      listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
-  was_bad_.fill(device_, 0, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
@@ -63,25 +62,40 @@ std::size_t OffcenterInsertion::count_unfixable() {
   return static_cast<std::size_t>(count.read(device_, 0));
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan, int stamp) {
-  const std::size_t slots = mesh_.triangle_count;
+std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList *changed) {
+  // The first search sweeps every slot; the later ones only the last bad
+  // triangles and the changed ones, without duplicates.
+  const bool use_list = searched_ && changed != nullptr;
+  std::size_t entries = mesh_.triangle_count;
+  if (use_list) {
+    search_.size = 0;
+    search_.append(device_, origin_, bad_);
+    if (changed->size > 0)
+      search_.append(device_, changed->items, changed->size);
+    if (search_keep_.size() < search_.size) {
+      search_keep_ = DeviceArray<cl_int>(device_, search_.items.size());
+      search_offset_ = DeviceArray<cl_int>(device_, search_.items.size());
+    }
+    entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
+                                                   search_keep_, search_offset_, listed_, kPhase));
+  }
+  searched_ = true;
+  const auto items = static_cast<cl_int>(entries);
   set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
-           mesh_.modified_stamp.buffer(), static_cast<cl_int>(since_), was_bad_.buffer(),
-           ratio_bound_squared_, max_area_, offconstant_, keep_.buffer(), slot_candidate_.buffer(),
-           slot_priority_.buffer(), static_cast<cl_int>(slots));
-  since_ = stamp;
-  launch(device_, find_bad_, slots, kPhase);
-  bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, slots, kPhase));
+           listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
+           offconstant_, keep_.buffer(), slot_candidate_.buffer(), slot_priority_.buffer(), items);
+  launch(device_, find_bad_, entries, kPhase);
+  bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   if (bad_ == 0)
     return 0;
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), slot_candidate_.buffer(),
-           slot_priority_.buffer(), candidate_.buffer(), origin_.buffer(), priority_.buffer(),
-           static_cast<cl_int>(slots));
-  launch(device_, gather_bad_, slots, kPhase);
+           slot_priority_.buffer(), listed_.buffer(), static_cast<cl_int>(use_list),
+           candidate_.buffer(), origin_.buffer(), priority_.buffer(), items);
+  launch(device_, gather_bad_, entries, kPhase);
   const auto n = static_cast<cl_int>(bad_);
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin_.buffer(), lens_,
-           static_cast<cl_int>(slots + 8), n);
+           static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);

@@ -28,9 +28,10 @@ public:
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
   // Returns the number of bad triangles.
-  // stamp: the scheduler's current step stamp; the next search re-examines
-  // only the triangles rewritten from it on (and the bad ones).
-  std::size_t find(PrefixScan &scan, int stamp);
+  // The first search examines every slot; a later one the bad triangles of
+  // the last search and the triangles listed in `changed` (rewritten since,
+  // duplicates allowed; every slot when null).
+  std::size_t find(PrefixScan &scan, const DeviceList *changed);
 
   // Once, on the Delaunay triangulation: flags the input points at hull angles
   // below the minimum angle. Bad triangles whose smallest angle is at one of
@@ -54,10 +55,12 @@ private:
   cl::Kernel flag_acute_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;
-  int since_ = 0; // the first search examines every triangle
+  bool searched_ = false; // the first search examines every slot
+  DeviceList search_;     // the next search's triangles, with duplicates
+  DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
-  DeviceArray<cl_int> origin_, container_, split_edge_, survive_, keep_, offset_, tie_mark_,
-      was_bad_;
+  DeviceArray<cl_int> origin_, container_, split_edge_, survive_, keep_, offset_, tie_mark_;
+  DeviceArray<cl_int> listed_; // the triangles of a search after the first
   DeviceArray<cl_double2> slot_candidate_;
   DeviceArray<cl_uint> slot_priority_, priority_;
 };

@@ -10,7 +10,10 @@ PrefixScan::PrefixScan(Device &device)
       total_(device.kernel("scan.cl", "scan_total", "scan")),
       compact_(device.kernel("scan.cl", "compact_list", "scan")),
       compact_indices_(device.kernel("scan.cl", "compact_indices", "scan")),
-      total_buffer_(device, 1), group_(std::min<std::size_t>(256, device.max_work_group())) {}
+      unique_mark_(device.kernel("scan.cl", "unique_mark", "scan")),
+      unique_keep_(device.kernel("scan.cl", "unique_keep", "scan")),
+      unique_clear_(device.kernel("scan.cl", "unique_clear", "scan")), total_buffer_(device, 1),
+      group_(std::min<std::size_t>(256, device.max_work_group())) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   auto it = levels_.find(level);
@@ -70,6 +73,22 @@ int PrefixScan::compact_indices(const DeviceArray<cl_int> &keep, const DeviceArr
   set_args(compact_indices_, keep.buffer(), offsets.buffer(), out.buffer(), static_cast<cl_int>(n));
   launch(device_, compact_indices_, n, phase);
   return kept;
+}
+
+int PrefixScan::unique(const DeviceArray<cl_int> &list, std::size_t n,
+                       const DeviceArray<cl_int> &marks, const DeviceArray<cl_int> &keep,
+                       const DeviceArray<cl_int> &offsets, const DeviceArray<cl_int> &out,
+                       const std::string &phase) {
+  if (n == 0)
+    return 0;
+  const auto items = static_cast<cl_int>(n);
+  set_args(unique_mark_, list.buffer(), marks.buffer(), items);
+  launch(device_, unique_mark_, n, phase);
+  set_args(unique_keep_, list.buffer(), marks.buffer(), keep.buffer(), items);
+  launch(device_, unique_keep_, n, phase);
+  set_args(unique_clear_, list.buffer(), marks.buffer(), items);
+  launch(device_, unique_clear_, n, phase);
+  return compact(list, keep, offsets, out, n, phase);
 }
 
 } // namespace clmesh

@@ -24,13 +24,21 @@ public:
   int compact_indices(const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
                       const DeviceArray<cl_int> &out, std::size_t n, const std::string &phase);
 
+  // out = list[0 .. n) without duplicates and negative entries, each slot at
+  // its first position; marks: a per-slot array holding 0xffffffff (restored).
+  // keep and offsets: scratch of n entries. Returns the length of out.
+  int unique(const DeviceArray<cl_int> &list, std::size_t n, const DeviceArray<cl_int> &marks,
+             const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
+             const DeviceArray<cl_int> &out, const std::string &phase);
+
 private:
   void scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
                   const std::string &phase);
   const DeviceArray<cl_int> &block_sums(int level, std::size_t size);
 
   Device &device_;
-  cl::Kernel scan_blocks_, add_offsets_, total_, compact_, compact_indices_;
+  cl::Kernel scan_blocks_, add_offsets_, total_, compact_, compact_indices_, unique_mark_,
+      unique_keep_, unique_clear_;
   DeviceArray<cl_int> total_buffer_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned

@@ -62,6 +62,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
                                                      : std::numeric_limits<std::size_t>::max();
   InsertionLog log;
+  DeviceList changed;      // the triangles rewritten since the last search
   std::size_t steiner = 0; // Steiner points in the mesh now
   bool deleted_since_collection = false;
   // Point and triangle slots for `wanted` more points: the free ones, then the
@@ -75,7 +76,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
   for (long iteration = 0;; ++iteration) {
-    const std::size_t bad = steps->offcenter.find(scheduler.scan(), scheduler.stamp());
+    const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed);
+    changed.size = 0;
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     stats.remaining_bad = static_cast<long>(bad);
     if (bad == 0 || iteration == max_iterations || steiner >= limit)
@@ -106,8 +108,9 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
       throw InternalError("Steiner points placed in place were not all inserted in one round");
     scheduler.timer().charge(MissingPointInsertion::kPhase);
     const long deleted_before = flips.deleted;
+    changed.append(device, insertion.changed(), 4 * inserted);
     steps->flipflop.run(insertion.changed(), 4 * inserted, steps->new_points, added,
-                        scheduler.stamp(), flips);
+                        scheduler.stamp(), changed, flips);
     scheduler.timer().charge(FlipflopDeletion::kPhase);
     const auto deleted = static_cast<std::size_t>(flips.deleted - deleted_before);
     deleted_since_collection = deleted_since_collection || deleted > 0;

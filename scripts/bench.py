@@ -45,24 +45,44 @@ Two kinds of segments (--variants):
          points) to 90 (1M) point spacings, crossing that many triangles or more.
 
 With --quality the same point sets (sizes default to 100000 in this mode,
-10000 with --quick) are turned into quality meshes, once per minimum angle in
---angles (default 20,30 degrees):
+10000 with --quick) are turned into quality meshes of their convex hull, once
+per minimum angle in --angles (default 20,30 degrees), by four mesh generators:
 
-  clmesh    build/clmesh -Q -qANGLE --stats-json F.json INPUT.node
+  QM-V      build/clmesh --refine qmv -Q -qANGLE --stats-json F.json INPUT.node
+  QM        build/clmesh --refine qm -Q -qANGLE --stats-json F.json INPUT.node
+            (--algorithms qmv,qm picks which of the two run; default both)
             time = seconds.compute; vertices = input points + the
-            refinement's steiner_points; also its remaining_bad_triangles
+            refinement's steiner_points.  The last column gives the first
+            variant's seconds in the three steps of each iteration (phases
+            offcenter_insertion / missing_point_insertion / flipflop_deletion,
+            plus the flipping phase; the initial Delaunay triangulation's
+            missing point insertion and flipping are charged to them too),
+            step 3's Delaunay (D) and non-Delaunay (ND: flops and 3-1 flips)
+            flips, the redundant points it deleted and the points inserted
+            again after being deleted (inserted_more_than_once); bad triangles
+            left (small hull angles, as Triangle leaves them) are added there
+            and listed as warnings.
   Triangle  triangle.triangulate({'vertices': pts}, 'qANGLE'), timing only
             that call; vertices = len(result['vertices'])
-  (no CGAL in this mode)
+  CGAL      build/cgal_bench mesh ANGLE INPUT.node  (Constrained_Delaunay_triangulation_2,
+            Epick, the points inserted as a range, the convex hull edges made
+            constraints, then refine_Delaunay_mesh_2 with
+            Delaunay_mesh_criteria_2(sin^2 ANGLE): times all of that, not the
+            file reading; vertices = number_of_vertices().  CGAL guarantees
+            termination only up to about 20.7 degrees.)
 
-The vertex ratio is clmesh's vertex count / Triangle's for the same angle
+The time ratios are each clmesh variant's time / Triangle's (below 1: clmesh
+is faster), the vertex ratios its vertex count / Triangle's for the same angle
 bound (above 1: clmesh inserted more Steiner points).  --repeat works as above.
 
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
            [--dists uniform,grid] [--repeat K] [--markdown OUT.md]
        python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
        python3 scripts/bench.py --quality [--quick] [--sizes 100000] [--angles 20,30]
-           [--dists ...]
+           [--dists ...] [--algorithms qmv,qm]
+
+All modes take --build-dir DIR (default build/: DIR/clmesh, DIR/cgal_bench and the
+cached inputs in DIR/bench/), or the binaries with --clmesh and --cgal.
 """
 import argparse
 import glob
@@ -288,7 +308,7 @@ def run_clmesh(exe, node, timeout, switches=()):
     return {"seconds": seconds, "peak_mb": peak, "phases": phases,
             "triangles": counts.get("triangles"), "device": stats.get("device"),
             "vertices": vertices, "remaining_bad": refinement.get("remaining_bad_triangles"),
-            "iterations": refinement.get("iterations")}
+            "iterations": refinement.get("iterations"), "refinement": refinement}
 
 
 def ensure_triangle_package():
@@ -312,12 +332,14 @@ def run_triangle(available, node, timeout, child=TRIANGLE_CHILD, switches=""):
             "vertices": r.get("vertices")}
 
 
-def run_cgal(exe, node, timeout, mode="dt"):
+def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
+    """cgal_bench MODE [MODE_ARGS...] NODE, e.g. mode "mesh" with mode_args ("30",)."""
     if not os.path.isfile(exe):
         raise ToolFailure(f"{exe} not built (needs libcgal-dev at configure time)")
-    stdout, peak = run_measured([exe, mode, node], timeout)
+    stdout, peak = run_measured([exe, mode, *mode_args, node], timeout)
     r = last_json_line(stdout)
-    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles")}
+    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles"),
+            "vertices": r.get("vertices")}
 
 
 def best_of(k, fn, *args):
@@ -404,6 +426,42 @@ def fmt_vertex_ratio(a, b):
     return f"{a['vertices'] / b['vertices']:.3f}"
 
 
+def fmt_k(v):
+    """A count in a few characters: 950, 12k, 1.2M."""
+    if v is None:
+        return "?"
+    v = int(v)
+    if abs(v) < 1000:
+        return str(v)
+    if abs(v) < 1000000:
+        return f"{v / 1000:.1f}k" if abs(v) < 10000 else f"{v / 1000:.0f}k"
+    return f"{v / 1e6:.1f}M" if abs(v) < 10000000 else f"{v / 1e6:.0f}M"
+
+
+# The phases of one refinement iteration, in the thesis's step order.
+REFINE_STEPS = ("offcenter_insertion", "missing_point_insertion", "flipflop_deletion")
+
+
+def fmt_refine_details(r):
+    """Per-step seconds, flips and deletions of a clmesh refinement, e.g.
+    'steps 1.20/0.30/2.10; flips 600k D + 60k ND; deleted 22k; reinserted 12k'."""
+    if not r:
+        return "fail"
+    phases = dict(r.get("phases") or [])
+    ref = r.get("refinement") or {}
+    steps = "/".join(f"{phases[p]:.3f}" if p in phases else "-" for p in REFINE_STEPS)
+    if "flipping" in phases:  # timed apart from the steps
+        steps += f" (+ flipping {phases['flipping']:.3f})"
+    text = (f"steps {steps}; flips {fmt_k(ref.get('delaunay_flips'))} D + "
+            f"{fmt_k(ref.get('non_delaunay_flips'))} ND; "
+            f"deleted {fmt_k(ref.get('deleted_redundant'))}; "
+            f"reinserted {fmt_k(ref.get('inserted_more_than_once'))}; "
+            f"{ref.get('iterations', '?')} iterations")
+    if ref.get("remaining_bad_triangles"):
+        text += f"; {ref['remaining_bad_triangles']} bad left"
+    return text
+
+
 def machine_line(device):
     cpu = platform.processor() or platform.machine()
     try:
@@ -440,11 +498,14 @@ def main(argv=None):
     ap.add_argument("--variants", default="short,long",
                     help="with --cdt: comma-separated subset of short,long")
     ap.add_argument("--quality", action="store_true",
-                    help="quality meshes of the distributions: clmesh -qANGLE vs Triangle "
-                         "'qANGLE' (time, output vertices, clmesh's remaining bad triangles; "
-                         "no CGAL)")
+                    help="quality meshes of the distributions: clmesh --refine qmv and qm "
+                         "-qANGLE vs Triangle 'qANGLE' vs CGAL refine_Delaunay_mesh_2 (time, "
+                         "output vertices, clmesh's per-step times and flips)")
     ap.add_argument("--angles", default="20,30",
                     help="with --quality: comma-separated minimum angles in degrees (default 20,30)")
+    ap.add_argument("--algorithms", default="qmv,qm",
+                    help="with --quality: comma-separated clmesh refinement variants to run, "
+                         "subset of qmv,qm (default both)")
     a = ap.parse_args(argv)
     if a.cdt and a.quality:
         ap.error("--cdt and --quality cannot be combined")
@@ -571,6 +632,10 @@ def main_cdt(a, ap):
                   device, warnings, failures)
 
 
+# clmesh's refinement variants in --quality: (--algorithms name, --refine value, label).
+QUALITY_ALGORITHMS = (("qmv", "qmv", "QM-V"), ("qm", "qm", "QM"))
+
+
 def main_quality(a, ap):
     sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
     dists = [d for d in a.dists.replace(" ", "").split(",") if d]
@@ -584,24 +649,37 @@ def main_quality(a, ap):
                 raise ValueError
         except ValueError:
             ap.error(f"bad angle {angle!r} (degrees, between 0 and 60)")
+    wanted = [s for s in a.algorithms.replace(" ", "").lower().split(",") if s]
+    known = [name for name, _, _ in QUALITY_ALGORITHMS]
+    for w in wanted:
+        if w not in known:
+            ap.error(f"unknown refinement algorithm {w!r} (choose from {', '.join(known)})")
+    if not wanted:
+        ap.error("--algorithms needs at least one of qmv,qm")
+    algorithms = [alg for alg in QUALITY_ALGORITHMS if alg[0] in wanted]  # table order
     if a.repeat < 1:
         ap.error("--repeat must be >= 1")
     clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
+    cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
     bench_dir = os.path.join(a.build_dir, "bench")
     os.makedirs(bench_dir, exist_ok=True)
     have_triangle = ensure_triangle_package()
 
+    labels = [label for _, _, label in algorithms]
     rows, failures, warnings = [], [], []
     device = None
     for dist in dists:
         for n in sizes:
             node = input_file(bench_dir, dist, n, a.seed)
             for angle in angles:
+                tools = [(label, run_clmesh, (clmesh, node, a.timeout,
+                                              ("--refine", refine, f"-q{angle}")))
+                         for _, refine, label in algorithms]
+                tools += [("Triangle", run_triangle, (have_triangle, node, a.timeout,
+                                                      TRIANGLE_CHILD, f"q{angle}")),
+                          ("CGAL", run_cgal, (cgal, node, a.timeout, "mesh", (angle,)))]
                 results = {}
-                for name, fn, args in (
-                        ("clmesh", run_clmesh, (clmesh, node, a.timeout, (f"-q{angle}",))),
-                        ("Triangle", run_triangle, (have_triangle, node, a.timeout,
-                                                    TRIANGLE_CHILD, f"q{angle}"))):
+                for name, fn, args in tools:
                     log(f"bench.py: quality {dist} n={n} q{angle}: {name} ...")
                     t0 = time.time()
                     try:
@@ -613,26 +691,42 @@ def main_quality(a, ap):
                         results[name] = None
                         failures.append(f"quality {dist} n={n} q{angle}: {name}: {e}")
                         log(f"bench.py:   fail: {e}")
-                cl, tr = results["clmesh"], results["Triangle"]
-                if cl and cl.get("device"):
-                    device = cl["device"]
-                if cl and cl.get("remaining_bad"):
-                    warnings.append(f"quality {dist} n={n} q{angle}: clmesh left "
-                                    f"{cl['remaining_bad']} bad triangle(s)")
-                rows.append([dist, str(n), angle, fmt_s(cl), fmt_s(tr), fmt_ratio(cl, tr),
-                             fmt_count(cl, "vertices"), fmt_count(tr, "vertices"),
-                             fmt_vertex_ratio(cl, tr), fmt_count(cl, "remaining_bad"),
-                             fmt_phases(cl)])
+                tr = results["Triangle"]
+                for label in labels:
+                    cl = results[label]
+                    if cl and cl.get("device"):
+                        device = cl["device"]
+                    if cl and cl.get("remaining_bad"):
+                        warnings.append(f"quality {dist} n={n} q{angle}: {label} left "
+                                        f"{cl['remaining_bad']} bad triangle(s)")
+                rows.append([dist, str(n), angle]
+                            + [fmt_s(results[k]) for k in labels + ["Triangle", "CGAL"]]
+                            + [fmt_ratio(results[k], tr) for k in labels]
+                            + [fmt_count(results[k], "vertices")
+                               for k in labels + ["Triangle", "CGAL"]]
+                            + [fmt_vertex_ratio(results[k], tr) for k in labels]
+                            + [fmt_refine_details(results[labels[0]])])
 
-    header = ["dist", "n", "angle", "clmesh compute s", "Triangle s", "clmesh/Triangle",
-              "clmesh vertices", "Triangle vertices", "vertex ratio (clmesh/Triangle)",
-              "clmesh remaining bad triangles", "clmesh phases (s)"]
+    header = (["dist", "n", "angle"] + [f"{k} s" for k in labels] + ["Triangle s", "CGAL s"]
+              + [f"{k}/Triangle" for k in labels]
+              + [f"vertices {k}" for k in labels] + ["vertices Triangle", "vertices CGAL"]
+              + [f"vertex ratio {k}/Triangle" for k in labels]
+              + [f"{labels[0]} steps 1/2/3 s, flips"])
     return report(a, header, rows,
-                  [f"Quality meshes with minimum angle ANGLE degrees (clmesh -qANGLE, Triangle "
-                   f"'qANGLE'); best of {a.repeat} run(s), seed {a.seed}; times exclude file reading "
-                   "and writing; clmesh/Triangle is the time ratio (below 1: clmesh is faster); "
-                   "clmesh vertices = input points + Steiner points, Triangle vertices = "
-                   "len(result['vertices'])."],
+                  [f"Quality meshes of the convex hull with minimum angle ANGLE degrees "
+                   f"(clmesh --refine qmv|qm -qANGLE, Triangle 'qANGLE', CGAL "
+                   f"refine_Delaunay_mesh_2 with Delaunay_mesh_criteria_2(sin^2 ANGLE)); best of "
+                   f"{a.repeat} run(s), seed {a.seed}; times exclude file reading and writing "
+                   "(clmesh: seconds.compute); X/Triangle is the time ratio (below 1: clmesh is "
+                   "faster); clmesh vertices = input points + Steiner points, Triangle vertices = "
+                   "len(result['vertices']), CGAL vertices = number_of_vertices(); the vertex "
+                   "ratio is clmesh's vertices / Triangle's.",
+                   f"Last column ({labels[0]}): seconds of step 1 (off-center insertion) / step 2 "
+                   "(missing point insertion) / step 3 (flip-flop deletion) over all iterations, "
+                   "plus the 'flipping' phase timed apart from them (these phases include the "
+                   "initial Delaunay triangulation's missing point insertion and flipping); "
+                   "step 3's Delaunay (D) and non-Delaunay (ND) flips; redundant Steiner points "
+                   "deleted; points inserted again after a deletion; refinement iterations."],
                   device, warnings, failures)
 
 

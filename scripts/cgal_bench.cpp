@@ -2,6 +2,7 @@
 //
 //   cgal_bench [MODE] FILE.node
 //   cgal_bench cdt FILE.poly
+//   cgal_bench mesh ANGLE FILE.node
 //
 // MODE (default dt):
 //   dt    Delaunay triangulation of the points: times only the construction of
@@ -14,11 +15,26 @@
 //         index), the vertex handle of every index looked up, then every
 //         segment inserted with insert_constraint(handle, handle).  Segments
 //         must not cross (CGAL's default intersection tag throws).
-//   (mesh is reserved for the refinement benchmark.)
+//   mesh  Quality mesh of the points' convex hull with minimum angle ANGLE
+//         degrees (like Triangle's -qANGLE on a .node): a
+//         CGAL::Constrained_Delaunay_triangulation_2<Epick> with the mesher's
+//         Delaunay_mesh_vertex_base_2 and Delaunay_mesh_face_base_2; the points
+//         inserted as a range, then every convex hull edge (between consecutive
+//         hull vertices, collinear ones included: the finite edges of the
+//         infinite faces) made a constraint, then
+//         CGAL::refine_Delaunay_mesh_2 with Delaunay_mesh_criteria_2(b),
+//         b = sin^2(ANGLE) (CGAL's bound on the squared sine of a good
+//         triangle's smallest angle; no size bound).  Times from the point
+//         insertion to the end of the refinement, not the file reading.  CGAL
+//         guarantees termination only up to about 20.7 degrees (b <= 0.125).
 //
 // Prints one line of JSON on stdout:
 //   {"mode": "dt", "seconds": s, "triangles": n, "vertices": n}
 // where triangles counts the finite faces and vertices the distinct vertices.
+// With mesh, vertices are the input points plus the Steiner points, and
+// triangles only the faces in the mesh's domain: a hull edge split at a
+// rounded midpoint slightly inside the hull leaves a sliver between the
+// constrained subsegments and the hull, a finite face outside the domain.
 //
 // The readers are deliberately simple: '#' comments, a header
 // "<#vertices> <dim> <#attributes> <#markers>", then "<id> <x> <y> ..." lines
@@ -29,11 +45,16 @@
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Delaunay_mesh_criteria_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -55,6 +76,10 @@ using CdtVb = CGAL::Triangulation_vertex_base_with_info_2<long, Kernel>;
 using CdtFb = CGAL::Constrained_triangulation_face_base_2<Kernel>;
 using CdtTds = CGAL::Triangulation_data_structure_2<CdtVb, CdtFb>;
 using CDT = CGAL::Constrained_Delaunay_triangulation_2<Kernel, CdtTds>;
+using MeshVb = CGAL::Delaunay_mesh_vertex_base_2<Kernel>;
+using MeshFb = CGAL::Delaunay_mesh_face_base_2<Kernel>;
+using MeshTds = CGAL::Triangulation_data_structure_2<MeshVb, MeshFb>;
+using MeshCDT = CGAL::Constrained_Delaunay_triangulation_2<Kernel, MeshTds>;
 
 // Splits the file into the whitespace-separated tokens of its non-comment
 // parts, one vector of tokens per non-empty line.
@@ -205,9 +230,34 @@ double time_cdt(const Poly &poly, CDT &cdt) {
   return std::chrono::duration<double>(t1 - t0).count();
 }
 
+// Times CGAL's quality mesh of the points' convex hull (see the top of the file); returns the
+// seconds.
+double time_mesh(const std::vector<Point> &pts, double angle_degrees, MeshCDT &cdt) {
+  const double pi = std::acos(-1.0);
+  const double sine = std::sin(angle_degrees * pi / 180.0);
+  auto t0 = std::chrono::steady_clock::now();
+  cdt.insert(pts.begin(), pts.end());
+  if (cdt.dimension() < 2)
+    throw std::runtime_error("the points are collinear: nothing to mesh");
+  // The hull edges, between consecutive hull vertices (collinear ones too): the finite edge of
+  // every infinite face.  Collected first, then constrained.
+  std::vector<std::pair<MeshCDT::Vertex_handle, MeshCDT::Vertex_handle>> hull;
+  const MeshCDT::Vertex_handle inf = cdt.infinite_vertex();
+  MeshCDT::Face_circulator f = cdt.incident_faces(inf), done = f;
+  do {
+    const int i = f->index(inf);
+    hull.emplace_back(f->vertex(MeshCDT::ccw(i)), f->vertex(MeshCDT::cw(i)));
+  } while (++f != done);
+  for (const auto &e : hull)
+    cdt.insert_constraint(e.first, e.second);
+  CGAL::refine_Delaunay_mesh_2(cdt, CGAL::Delaunay_mesh_criteria_2<MeshCDT>(sine * sine));
+  auto t1 = std::chrono::steady_clock::now();
+  return std::chrono::duration<double>(t1 - t0).count();
+}
+
 int usage() {
-  std::fprintf(stderr, "usage: cgal_bench [dt] FILE.node | cgal_bench cdt FILE.poly   (mesh is not "
-                       "implemented yet)\n");
+  std::fprintf(stderr, "usage: cgal_bench [dt] FILE.node | cgal_bench cdt FILE.poly | "
+                       "cgal_bench mesh ANGLE FILE.node\n");
   return 2;
 }
 
@@ -216,19 +266,25 @@ int usage() {
 int main(int argc, char **argv) {
   std::string mode = "dt";
   std::string path;
+  double angle = 0;
   if (argc == 2) {
     path = argv[1];
   } else if (argc == 3) {
     mode = argv[1];
     path = argv[2];
+  } else if (argc == 4 && std::strcmp(argv[1], "mesh") == 0) {
+    mode = argv[1];
+    char *end = nullptr;
+    angle = std::strtod(argv[2], &end);
+    if (end == argv[2] || *end != '\0' || !(angle > 0 && angle < 60)) {
+      std::fprintf(stderr, "cgal_bench: bad angle '%s' (degrees, between 0 and 60)\n", argv[2]);
+      return 2;
+    }
+    path = argv[3];
   } else {
     return usage();
   }
-  if (mode == "mesh") {
-    std::fprintf(stderr, "cgal_bench: mode '%s' is not implemented yet\n", mode.c_str());
-    return 2;
-  }
-  if (mode != "dt" && mode != "cdt")
+  if (mode != "dt" && mode != "cdt" && !(mode == "mesh" && argc == 4))
     return usage();
 
   try {
@@ -243,6 +299,19 @@ int main(int argc, char **argv) {
     }
 
     std::vector<Point> pts = read_node(path);
+    if (mode == "mesh") {
+      MeshCDT cdt;
+      const double seconds = time_mesh(pts, angle, cdt);
+      // Only the mesh's faces: the rounded midpoints of split hull edges leave slivers between
+      // the constrained subsegments and the convex hull, outside the domain.
+      size_t triangles = 0;
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+        triangles += f->is_in_domain() ? 1 : 0;
+      std::printf(
+          "{\"mode\": \"mesh\", \"seconds\": %.9g, \"triangles\": %zu, \"vertices\": %zu}\n",
+          seconds, triangles, static_cast<size_t>(cdt.number_of_vertices()));
+      return 0;
+    }
 
     auto t0 = std::chrono::steady_clock::now();
     DT dt;

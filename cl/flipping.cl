@@ -14,18 +14,14 @@
 #define CLM_FLIP 1
 #define CLM_KEEP 0
 
-// Must the edge opposite vertex i of t flip? Real-real edges that are not
-// constraints are left to the in-circle test (*real_edge set, CLM_KEEP
-// returned); ghost edges are decided here with the exact orientation test.
-inline int ghost_edge_must_flip(__global const double2 *points, __global const int *tri_vertex,
-                                __global const int *tri_neighbor,
+// Must the edge a-b between triangles (c,a,b) and (d,b,a) flip? Real-real
+// edges that are not constraints are left to the in-circle test (*real_edge
+// set, CLM_KEEP returned); ghost edges are decided here with the exact
+// orientation test. constrained: whether the mesh has constraints at all.
+inline int ghost_edge_must_flip(__global const double2 *points,
                                 __global const int *constraint_start,
-                                __global const int *constraint_adjacent, int fixed_boundary, int t,
-                                int i, int *real_edge) {
-  const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
-            b = tri_vertex[3 * t + prev3(i)];
-  const int link = tri_neighbor[3 * t + i];
-  const int d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+                                __global const int *constraint_adjacent, int constrained,
+                                int fixed_boundary, int c, int a, int b, int d, int *real_edge) {
   *real_edge = 0;
   if (fixed_boundary && (a == CLM_INFINITE || b == CLM_INFINITE))
     return CLM_KEEP;     // refinement: the boundary stays as split, convex or not
@@ -35,7 +31,7 @@ inline int ghost_edge_must_flip(__global const double2 *points, __global const i
     return orient_vertices(points, c, a, d) > 0 ? CLM_FLIP : CLM_KEEP;
   if (c == CLM_INFINITE || d == CLM_INFINITE)
     return CLM_KEEP; // a hull edge: the hull only grows
-  if (is_constraint(constraint_start, constraint_adjacent, a, b))
+  if (constrained && is_constraint(constraint_start, constraint_adjacent, a, b))
     return CLM_KEEP; // constrained Delaunay: constraints never flip (thesis §4.2 step 3)
   *real_edge = 1;
   return CLM_KEEP;
@@ -65,28 +61,32 @@ __kernel void flip_mark_active(__global const int *active, __global int *active_
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
                               __global const int *constraint_start,
-                              __global const int *constraint_adjacent, const int fixed_boundary,
-                              __global const int *active_round, const int round,
-                              __global int *flags, __global int *exact_list,
+                              __global const int *constraint_adjacent, const int constrained,
+                              const int fixed_boundary, __global const int *active_round,
+                              const int round, __global int *flags, __global int *exact_list,
                               volatile __global int *exact_count, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
   const int t = active[gid];
   int bits = 0;
-  if (t >= 0 && !is_dead(load_vertices(tri_vertex, t)))
+  const VertexTriple tri = t >= 0 ? load_vertices(tri_vertex, t) : (VertexTriple){{CLM_DEAD}};
+  if (t >= 0 && !is_dead(tri)) {
+    double2 p[3];
+    for (int i = 0; i < 3; ++i)
+      p[i] = tri.v[i] >= 0 ? points[tri.v[i]] : (double2)(0, 0);
     for (int i = 0; i < 3; ++i) {
-      const int u = link_triangle(tri_neighbor[3 * t + i]);
+      const int link = tri_neighbor[3 * t + i], u = link_triangle(link);
       if (u < t && active_round[u] == round)
         continue;
+      const int d = tri_vertex[3 * u + link_edge(link)];
       int real_edge;
-      int verdict = ghost_edge_must_flip(points, tri_vertex, tri_neighbor, constraint_start,
-                                         constraint_adjacent, fixed_boundary, t, i, &real_edge);
+      int verdict = ghost_edge_must_flip(points, constraint_start, constraint_adjacent, constrained,
+                                         fixed_boundary, tri.v[i], tri.v[next3(i)], tri.v[prev3(i)],
+                                         d, &real_edge);
       if (real_edge) {
-        double2 q[4];
-        edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
-        const int inside =
-            clm_incircle_filter(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x, q[3].y);
+        const double2 c = p[i], a = p[next3(i)], b = p[prev3(i)], q = points[d];
+        const int inside = clm_incircle_filter(c.x, c.y, a.x, a.y, b.x, b.y, q.x, q.y);
         verdict = inside == CLM_UNCERTAIN ? CLM_UNCERTAIN : (inside > 0 ? CLM_FLIP : CLM_KEEP);
       }
       if (verdict == CLM_FLIP)
@@ -94,6 +94,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
       else if (verdict == CLM_UNCERTAIN)
         bits |= 8 << i;
     }
+  }
   flags[gid] = bits;
   if (bits & 0x38)
     exact_list[atomic_inc(exact_count)] = gid;

@@ -90,6 +90,7 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   mesh_.constraint_start.upload(device_, start);
   mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
   mesh_.constraint_adjacent.upload(device_, adjacent);
+  mesh_.has_constraints = !adjacent.empty();
   segment_a_ = DeviceArray<cl_int>(device_, m);
   segment_b_ = DeviceArray<cl_int>(device_, m);
   segment_state_ = DeviceArray<cl_int>(device_, m);

@@ -107,6 +107,7 @@ struct DeviceMesh {
   // rows (all starts 0) for a plain Delaunay triangulation.
   DeviceArray<cl_int> constraint_start;    // point_capacity + 1
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
+  bool has_constraints = false;            // any row not empty
 
   std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
 

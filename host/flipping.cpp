@@ -38,9 +38,9 @@ void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
   launch(device_, mark_active_, n, kPhase);
   set_args(check_fast_, active.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
-           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(fixed_boundary_),
-           active_round_.buffer(), round, flags.buffer(), exact_list_.buffer(),
-           exact_count_.buffer(), items);
+           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),
+           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round, flags.buffer(),
+           exact_list_.buffer(), exact_count_.buffer(), items);
   launch(device_, check_fast_, n, kPhase);
   const int uncertain = exact_count_.read(device_, 0);
   if (uncertain > 0) {

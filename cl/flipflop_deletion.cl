@@ -154,13 +154,14 @@ inline int redundant_one(__global const int *point_state, __global const uint *p
 // in proposal[gid] (encode_link(neighbour, edge)) or, for a 3-1 flip, the
 // deleted point in proposal[gid] and its triangles in star[4 gid ..].
 // flags[gid]: bit i = edge i is not locally Delaunay (flipping.cl's checks).
+// any_redundant: whether any point is redundant now.
 __kernel void flipflop_propose(__global const int *active, __global const int *flags,
                                __global const double2 *points, __global const int *tri_vertex,
                                __global const int *tri_neighbor, __global const int *point_state,
                                __global const double *insertion_radius2,
                                __global const uint *point_priority, const int orthogonal_test,
-                               __global int *redundant_mark, __global int *redundant_anchor,
-                               volatile __global int *marked_count,
+                               const int any_redundant, __global int *redundant_mark,
+                               __global int *redundant_anchor, volatile __global int *marked_count,
                                volatile __global uint *tri_mark, __global int *operation,
                                __global int *proposal, __global int *star, const int n) {
   const int gid = get_global_id(0);
@@ -173,8 +174,10 @@ __kernel void flipflop_propose(__global const int *active, __global const int *f
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_dead(tri) || is_ghost(tri))
     return;
+  if (!any_redundant && (flags[gid] & 7) == 0)
+    return;               // nothing to flip, nothing to delete
   int own = CLM_NO_POINT; // the smallest redundant vertex of t
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3 && any_redundant; ++i)
     if (point_state[tri.v[i]] == CLM_POINT_REDUNDANT)
       own = min(own, tri.v[i]);
   for (int i = 0; i < 3; ++i) {
@@ -183,7 +186,7 @@ __kernel void flipflop_propose(__global const int *active, __global const int *f
     const int c = tri.v[i], a = tri.v[next3(i)], b = tri.v[prev3(i)];
     const int d = tri_vertex[3 * u + link_edge(link)];
     int smallest = own;
-    if (d >= 0 && point_state[d] == CLM_POINT_REDUNDANT)
+    if (any_redundant && d >= 0 && point_state[d] == CLM_POINT_REDUNDANT)
       smallest = min(smallest, d);
     bool flop = false;
     if (smallest != CLM_NO_POINT) {

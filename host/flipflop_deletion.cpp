@@ -104,9 +104,9 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
     set_args(propose_, active_.buffer(), flags_.buffer(), mesh_.points.buffer(),
              mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.point_state.buffer(),
              mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), orthogonal_test_,
-             redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
-             mesh_.tri_mark.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
-             items);
+             static_cast<cl_int>(redundant_left_ && pass > 0), redundant_mark_.buffer(),
+             redundant_anchor_.buffer(), marked_count_.buffer(), mesh_.tri_mark.buffer(),
+             operation_.buffer(), proposal_.buffer(), star_.buffer(), items);
     launch(device_, propose_, n, kPhase);
     set_args(apply_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
              mesh_.tri_mark.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),

@@ -299,6 +299,7 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // edge. Each gets its state, priority and insertion radius (thesis §3.5: the
 // distance to the nearest vertex of its bad triangle; half the hull edge for
 // a midpoint). Their coordinates are logged after the `logged` earlier ones.
+// Only the first `count` survivors are taken (the -S limit).
 __kernel void append_survivors(__global const double2 *candidate, __global const int *container,
                                __global const int *split_edge, __global const int *origin,
                                __global const uint *priority, __global const int *survive,
@@ -309,9 +310,10 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
                                __global double *insertion_radius2, __global uint *point_priority,
                                __global const int *free_points, const int free_first,
                                const int free_count, const int first_new, __global int *new_points,
-                               __global double2 *insertion_log, const int logged, const int n) {
+                               __global double2 *insertion_log, const int logged, const int count,
+                               const int n) {
   const int k = get_global_id(0);
-  if (k >= n || !survive[k])
+  if (k >= n || !survive[k] || offset[k] >= count)
     return;
   const int p = allocate_slot(free_points, free_first, free_count, first_new, offset[k]);
   const double2 c = candidate[k];

@@ -953,6 +953,9 @@ int run(const Options &options) {
   clmesh::RefineStats refinement;
   const clmesh::ConstrainedResult result = triangulate(*device, input, options, &refinement);
   const bool refined = !input.poly && (options.quality || options.max_area > 0);
+  if (refined && refinement.out_of_memory)
+    std::fprintf(stderr, "Warning:  refinement stopped: the device cannot hold more Steiner points "
+                         "(minimum angles above about 33 degrees need not terminate).\n");
   if (refined && refinement.remaining_bad > 0)
     std::fprintf(stderr,
                  "Warning:  %ld triangles still miss the quality or area bound (small angles "

@@ -120,9 +120,9 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
   if (bad_ == 0)
     return 0;
   const auto n = static_cast<cl_int>(bad_);
-  const auto count = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, bad_, kPhase));
-  *wanted = count;
-  if (count == 0 || count > room)
+  *wanted = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, bad_, kPhase));
+  const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
+  if (count == 0)
     return 0;
   if (log.size + count > log.coordinates.size())
     log.coordinates = log.coordinates.grown(device_, 2 * (log.size + count), cl_double2{{0, 0}});
@@ -138,7 +138,7 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
            mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
            mesh_.point_priority.buffer(), free_list, free_first, free_count,
            static_cast<cl_int>(mesh_.point_count), new_points.buffer(), log.coordinates.buffer(),
-           static_cast<cl_int>(log.size), n);
+           static_cast<cl_int>(log.size), static_cast<cl_int>(count), n);
   launch(device_, append_, bad_, kPhase);
   mesh_.point_count += new_slots;
   log.size += count;

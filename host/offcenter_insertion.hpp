@@ -41,7 +41,7 @@ public:
 
   // Appends the survivors to the mesh's points (free slots first, then from
   // point_count on; they stay on the device), logs them and lists them in new_points,
-  // not inserted yet; none when more than `room`. Returns how many were
+  // not inserted yet; the first `room` of them when more survived. Returns how many were
   // appended; *wanted: how many survived.
   std::size_t append(std::size_t room, PrefixScan &scan, const DeviceArray<cl_int> &new_points,
                      InsertionLog &log, std::size_t *wanted);

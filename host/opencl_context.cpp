@@ -246,6 +246,14 @@ std::size_t Device::max_work_group() const {
   return device_.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
 }
 
+std::size_t Device::max_allocation() const {
+  return static_cast<std::size_t>(device_.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>());
+}
+
+std::size_t Device::global_memory() const {
+  return static_cast<std::size_t>(device_.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+}
+
 void Device::set_work_group(std::size_t size) {
   const std::size_t max_size = max_work_group();
   if (size == 0 || size > max_size)

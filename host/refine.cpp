@@ -22,6 +22,17 @@ namespace {
 // out (thesis §3.6.1).
 std::size_t first_room(std::size_t n) { return n + 4096; }
 
+// Can the device hold the refinement's arrays for `points` points? About 600
+// bytes per point in all; the largest array (flip-flop's stars, 4 entries
+// per list entry) takes 16 x 8/3 bytes per point.
+bool device_holds(const Device &device, std::size_t points) {
+  const double per_point = 600, largest_per_point = 16.0 * 8 / 3;
+  return per_point * static_cast<double>(points) <
+             0.9 * static_cast<double>(device.global_memory()) &&
+         largest_per_point * static_cast<double>(points) <
+             static_cast<double>(device.max_allocation());
+}
+
 // The phase objects of the three steps, sized by the mesh: built again when
 // the mesh grows.
 struct RefinementSteps {
@@ -89,7 +100,12 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
       deleted_since_collection = false;
     }
     if (room() < bad && steiner + bad <= limit) {
-      scheduler.grow(std::max(bad, n));
+      const std::size_t extra = std::max(bad, n);
+      if (!device_holds(device, scheduler.mesh().point_capacity + extra)) {
+        stats.out_of_memory = true;
+        break; // reported with the bad triangles left (angles above about 33 degrees may not end)
+      }
+      scheduler.grow(extra);
       steps = std::make_unique<RefinementSteps>(scheduler, options);
       continue;
     }

@@ -484,14 +484,6 @@ __kernel void finish_iteration(__global const int *new_points, __global int *poi
   }
 }
 
-// Is q inside the diametral lens of a-b (Triangle's encroachment test, see
-// offcenter_insertion.cl)?
-inline bool in_lens(__global const double2 *points, int a, int b, int q, double lens) {
-  const double2 da = points[a] - points[q], db = points[b] - points[q];
-  const double dot = da.x * db.x + da.y * db.y;
-  return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
-}
-
 // The boundary routine of thesis §3.4.1, before step 3: for each hull
 // midpoint v of this iteration, on the former hull edge a-b with apex c, the
 // off-centers among c and c's neighbours that encroach a-b are marked
@@ -539,7 +531,7 @@ mark_encroaching_points(__global const int *new_points, __global const double2 *
     if (q >= 0) {
       const int state = point_state[q];
       if ((state == CLM_POINT_STEINER || state == CLM_POINT_NEW) &&
-          in_lens(points, a, b, q, lens)) {
+          in_lens(points[a], points[b], points[q], lens)) {
         if (step == CLM_ENCROACH_CLAIM) {
           atomic_min(&claim[q], k);
         } else if (claim[q] == k) {

@@ -191,12 +191,8 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
         const int u = link_triangle(tri_neighbor[3 * s + i]);
         if (!is_ghost(load_vertices(tri_vertex, u)))
           continue;
-        const double2 pa = points[tri_vertex[3 * s + next3(i)]],
-                      pb = points[tri_vertex[3 * s + prev3(i)]];
-        const double2 da = c - pa, db = c - pb;
-        const double dot = da.x * db.x + da.y * db.y;
-        if (dot < 0 &&
-            dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y)) {
+        if (in_lens(points[tri_vertex[3 * s + next3(i)]], points[tri_vertex[3 * s + prev3(i)]], c,
+                    lens)) {
           hull_edge = i;
           t = s;
         }

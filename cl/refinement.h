@@ -17,4 +17,13 @@ inline bool is_new_point(int state) {
   return state == CLM_POINT_NEW || state == CLM_POINT_NEW_MIDPOINT;
 }
 
+// Is c inside the diametral lens of the edge pa-pb? Triangle's encroachment
+// test: c sees the edge at an angle whose cosine squared is at least `lens`
+// (cos(2 x minimum angle) squared) while negative.
+inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
+  const double2 da = pa - c, db = pb - c;
+  const double dot = da.x * db.x + da.y * db.y;
+  return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
+}
+
 #endif

@@ -23,7 +23,8 @@
 __kernel void flag_acute_hull_vertices(__global const double2 *points,
                                        __global const int *tri_vertex,
                                        __global const int *tri_neighbor, const double cos_bound,
-                                       __global int *point_state, const int n) {
+                                       __global int *point_state, volatile __global int *flagged,
+                                       const int n) {
   const int g = get_global_id(0);
   if (g >= n)
     return;
@@ -45,7 +46,10 @@ __kernel void flag_acute_hull_vertices(__global const double2 *points,
   const double dot = u.x * w.x + u.y * w.y;
   const double lengths = sqrt((u.x * u.x + u.y * u.y) * (w.x * w.x + w.y * w.y));
   if (dot > cos_bound * lengths) // angle(a, b, c) below the bound
+  {
     point_state[b] = CLM_POINT_ACUTE_HULL;
+    atomic_inc(flagged);
+  }
 }
 
 // The quality of a real triangle: skinny (circumradius-to-shortest-edge

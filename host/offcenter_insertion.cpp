@@ -41,14 +41,17 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
 }
 
-void OffcenterInsertion::flag_acute_hull_vertices() {
+std::size_t OffcenterInsertion::flag_acute_hull_vertices() {
   if (ratio_bound_squared_ <= 0)
-    return; // no angle bound
+    return 0; // no angle bound
   const std::size_t slots = mesh_.triangle_count;
+  DeviceArray<cl_int> flagged(device_, 1);
+  flagged.fill(device_, 0, 1);
   set_args(flag_acute_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), cos_bound_, mesh_.point_state.buffer(),
+           mesh_.tri_neighbor.buffer(), cos_bound_, mesh_.point_state.buffer(), flagged.buffer(),
            static_cast<cl_int>(slots));
   launch(device_, flag_acute_, slots, kPhase);
+  return static_cast<std::size_t>(flagged.read(device_, 0));
 }
 
 std::size_t OffcenterInsertion::count_unfixable() {

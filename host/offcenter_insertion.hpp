@@ -36,7 +36,7 @@ public:
   // Once, on the Delaunay triangulation: flags the input points at hull angles
   // below the minimum angle. Bad triangles whose smallest angle is at one of
   // them cannot be mended and are left alone; count_unfixable() counts them.
-  void flag_acute_hull_vertices();
+  std::size_t flag_acute_hull_vertices(); // returns how many
   std::size_t count_unfixable();
 
   // Appends the survivors to the mesh's points (free slots first, then from

@@ -67,7 +67,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   mesh.enable_refinement(device);
   scheduler.flipping().set_fixed_boundary(true);
   auto steps = std::make_unique<RefinementSteps>(scheduler, options);
-  steps->offcenter.flag_acute_hull_vertices();
+  const std::size_t acute_hull_vertices = steps->offcenter.flag_acute_hull_vertices();
   RefineStats &stats = result.stats;
   FlipflopCounts flips;
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
@@ -133,7 +133,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     stats.insertions += static_cast<long>(added);
     steiner += added - deleted;
   }
-  stats.remaining_bad += static_cast<long>(steps->offcenter.count_unfixable());
+  if (acute_hull_vertices > 0)
+    stats.remaining_bad += static_cast<long>(steps->offcenter.count_unfixable());
   stats.deleted = flips.deleted;
   stats.kept_redundant = flips.kept_redundant;
   stats.boundary_splits = flips.midpoints;

@@ -53,5 +53,36 @@ for input in random lattice; do
   done
 done
 
+# Refinement (both algorithms; an area bound on the lattice puts Steiner
+# points on cocircular edges): the same files whatever the work-group size.
+refinements=("random:-q30" "random:-q30 --refine qm" "lattice:-q30a0.05" "lattice:-q25a0.05 --refine qm")
+for index in "${!refinements[@]}"; do
+  refinement="${refinements[$index]}"
+  input="${refinement%%:*}"
+  switches="${refinement#*:}"
+  reference=""
+  for group in 1 128; do
+    dir="$work/refine.$index.$group"
+    mkdir "$dir"
+    cp "$work/$input.node" "$dir/"
+    status=0
+    # shellcheck disable=SC2086  # switches holds separate arguments
+    (cd "$dir" && "$bin" -nQC $switches --work-group "$group" "$input.node") \
+      > "$dir.log" 2>&1 || status=$?
+    if [[ "$status" -ne 0 ]]; then
+      fail "$input with '$switches --work-group $group' exited with $status: $(cat "$dir.log")"
+      continue
+    fi
+    if [[ -z "$reference" ]]; then
+      reference="$dir"
+      continue
+    fi
+    for ext in node ele neigh; do
+      cmp -s "$reference/$input.1.$ext" "$dir/$input.1.$ext" ||
+        fail "$input.1.$ext of '$switches' differs between work-group sizes 1 and $group"
+    done
+  done
+done
+
 finish determinism.sh
 echo "determinism.sh: all checks passed"

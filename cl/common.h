@@ -31,6 +31,13 @@ inline int encode_link(int triangle, int edge) { return (triangle << 2) | edge; 
 inline int link_triangle(int link) { return link >> 2; }
 inline int link_edge(int link) { return link & 3; }
 
+// The index (0-2) of vertex v in triangle t, or -1.
+inline int index_in(__global const int *tri_vertex, int t, int v) {
+  return tri_vertex[3 * t] == v
+             ? 0
+             : (tri_vertex[3 * t + 1] == v ? 1 : (tri_vertex[3 * t + 2] == v ? 2 : -1));
+}
+
 inline VertexTriple load_vertices(__global const int *tri_vertex, int t) {
   VertexTriple tri;
   tri.v[0] = tri_vertex[3 * t];

@@ -31,10 +31,6 @@
 #define CLM_PAIR_DOUBLE 3
 #define CLM_PAIR_CONCAVE 4
 
-inline int index_in(__global const int *tri_vertex, int t, int v) {
-  return tri_vertex[3 * t] == v ? 0 : (tri_vertex[3 * t + 1] == v ? 1 : 2);
-}
-
 // Segment endpoints that are duplicate points stand for their kept point.
 __kernel void resolve_duplicate_endpoints(__global const int *duplicate_of, __global int *segment_a,
                                           __global int *segment_b, const int m) {

@@ -31,12 +31,6 @@
 
 #define CLM_NO_POINT 0x7fffffff
 
-inline int index_in(__global const int *tri_vertex, int t, int p) {
-  return tri_vertex[3 * t] == p
-             ? 0
-             : (tri_vertex[3 * t + 1] == p ? 1 : (tri_vertex[3 * t + 2] == p ? 2 : -1));
-}
-
 // The triangle after t counter-clockwise around its vertex p (at index k).
 inline int next_around(__global const int *tri_neighbor, int t, int k) {
   return link_triangle(tri_neighbor[3 * t + next3(k)]);

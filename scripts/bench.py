@@ -478,6 +478,29 @@ def machine_line(device):
     return line
 
 
+class Setup:
+    """What every mode parses and prepares: sizes, tool paths, the input cache."""
+
+    def __init__(self, a, ap):
+        self.sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",")
+                                              if s]
+        if a.repeat < 1:
+            ap.error("--repeat must be >= 1")
+        self.clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
+        self.cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
+        self.bench_dir = os.path.join(a.build_dir, "bench")
+        os.makedirs(self.bench_dir, exist_ok=True)
+        self.have_triangle = ensure_triangle_package()
+
+
+def distributions(a, ap):
+    dists = [d for d in a.dists.replace(" ", "").split(",") if d]
+    for d in dists:
+        if d not in DISTS:
+            ap.error(f"unknown distribution {d!r} (choose from {', '.join(DISTS)})")
+    return dists
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description="clmesh vs Triangle vs CGAL on the thesis distributions")
     ap.add_argument("--sizes", default=None,
@@ -516,18 +539,10 @@ def main(argv=None):
     if a.quality:
         return main_quality(a, ap)
 
-    sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
-    dists = [d for d in a.dists.replace(" ", "").split(",") if d]
-    for d in dists:
-        if d not in DISTS:
-            ap.error(f"unknown distribution {d!r} (choose from {', '.join(DISTS)})")
-    if a.repeat < 1:
-        ap.error("--repeat must be >= 1")
-    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
-    cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
-    bench_dir = os.path.join(a.build_dir, "bench")
-    os.makedirs(bench_dir, exist_ok=True)
-    have_triangle = ensure_triangle_package()
+    dists = distributions(a, ap)
+    setup = Setup(a, ap)
+    sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
+    have_triangle = setup.have_triangle
 
     rows, failures, warnings = [], [], []
     device = None
@@ -568,18 +583,13 @@ def main(argv=None):
 
 
 def main_cdt(a, ap):
-    sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
     variants = [v for v in a.variants.replace(" ", "").split(",") if v]
     for v in variants:
         if v not in ("short", "long"):
             ap.error(f"unknown PSLG variant {v!r} (choose from short, long)")
-    if a.repeat < 1:
-        ap.error("--repeat must be >= 1")
-    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
-    cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
-    bench_dir = os.path.join(a.build_dir, "bench")
-    os.makedirs(bench_dir, exist_ok=True)
-    have_triangle = ensure_triangle_package()
+    setup = Setup(a, ap)
+    sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
+    have_triangle = setup.have_triangle
 
     rows, failures, warnings = [], [], []
     device = None
@@ -637,11 +647,7 @@ QUALITY_ALGORITHMS = (("qmv", "qmv", "QM-V"), ("qm", "qm", "QM"))
 
 
 def main_quality(a, ap):
-    sizes = [10000] if a.quick else [int(s) for s in a.sizes.replace(" ", "").split(",") if s]
-    dists = [d for d in a.dists.replace(" ", "").split(",") if d]
-    for d in dists:
-        if d not in DISTS:
-            ap.error(f"unknown distribution {d!r} (choose from {', '.join(DISTS)})")
+    dists = distributions(a, ap)
     angles = [s for s in a.angles.replace(" ", "").split(",") if s]
     for angle in angles:
         try:
@@ -657,13 +663,9 @@ def main_quality(a, ap):
     if not wanted:
         ap.error("--algorithms needs at least one of qmv,qm")
     algorithms = [alg for alg in QUALITY_ALGORITHMS if alg[0] in wanted]  # table order
-    if a.repeat < 1:
-        ap.error("--repeat must be >= 1")
-    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
-    cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
-    bench_dir = os.path.join(a.build_dir, "bench")
-    os.makedirs(bench_dir, exist_ok=True)
-    have_triangle = ensure_triangle_package()
+    setup = Setup(a, ap)
+    sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
+    have_triangle = setup.have_triangle
 
     labels = [label for _, _, label in algorithms]
     rows, failures, warnings = [], [], []

@@ -478,6 +478,34 @@ def machine_line(device):
     return line
 
 
+def run_tools(a, what, tools, failures):
+    """Runs each (name, fn, args) of tools, best of --repeat, logging as it goes;
+    a tool that fails is recorded in failures and gets None."""
+    results = {}
+    for name, fn, args in tools:
+        log(f"bench.py: {what}: {name} ...")
+        t0 = time.time()
+        try:
+            results[name] = best_of(a.repeat, fn, *args)
+            vertices = results[name].get("vertices")
+            log(f"bench.py:   {results[name]['seconds']:.3f} s"
+                + (f", {vertices} vertices" if vertices is not None else "")
+                + f" (wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
+        except ToolFailure as e:
+            results[name] = None
+            failures.append(f"{what}: {name}: {e}")
+            log(f"bench.py:   fail: {e}")
+    return results
+
+
+def compare_triangle_counts(what, results, warnings):
+    counts = {k: r["triangles"] for k, r in results.items()
+              if r and r.get("triangles") is not None}
+    if len(set(counts.values())) > 1:
+        warnings.append(f"{what}: triangle counts differ: "
+                        + ", ".join(f"{k} {v}" for k, v in counts.items()))
+
+
 class Setup:
     """What every mode parses and prepares: sizes, tool paths, the input cache."""
 
@@ -549,27 +577,14 @@ def main(argv=None):
     for dist in dists:
         for n in sizes:
             node = input_file(bench_dir, dist, n, a.seed)
-            results = {}
-            for name, fn, args in (("clmesh", run_clmesh, (clmesh, node, a.timeout)),
-                                   ("Triangle", run_triangle, (have_triangle, node, a.timeout)),
-                                   ("CGAL", run_cgal, (cgal, node, a.timeout))):
-                log(f"bench.py: {dist} n={n}: {name} ...")
-                t0 = time.time()
-                try:
-                    results[name] = best_of(a.repeat, fn, *args)
-                    log(f"bench.py:   {results[name]['seconds']:.3f} s "
-                        f"(wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
-                except ToolFailure as e:
-                    results[name] = None
-                    failures.append(f"{dist} n={n}: {name}: {e}")
-                    log(f"bench.py:   fail: {e}")
+            results = run_tools(a, f"{dist} n={n}", (
+                ("clmesh", run_clmesh, (clmesh, node, a.timeout)),
+                ("Triangle", run_triangle, (have_triangle, node, a.timeout)),
+                ("CGAL", run_cgal, (cgal, node, a.timeout))), failures)
             cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
             if cl and cl.get("device"):
                 device = cl["device"]
-            counts = {k: r["triangles"] for k, r in results.items() if r and r.get("triangles") is not None}
-            if len(set(counts.values())) > 1:
-                warnings.append(f"{dist} n={n}: triangle counts differ: "
-                                + ", ".join(f"{k} {v}" for k, v in counts.items()))
+            compare_triangle_counts(f"{dist} n={n}", results, warnings)
             rows.append([dist, str(n), fmt_s(cl), fmt_s(tr), fmt_s(cg), fmt_ratio(cl, tr),
                          fmt_ratio(cl, cg), fmt_mb(cl), fmt_mb(tr), fmt_phases(cl)])
 
@@ -602,29 +617,14 @@ def main_cdt(a, ap):
                 failures.append(f"{variant} n={n}: {e}")
                 log(f"bench.py:   fail: {e}")
                 continue
-            results = {}
-            for name, fn, args in (
-                    ("clmesh", run_clmesh, (clmesh, poly, a.timeout, ("-pc",))),
-                    ("Triangle", run_triangle, (have_triangle, poly, a.timeout, TRIANGLE_CDT_CHILD)),
-                    ("CGAL", run_cgal, (cgal, poly, a.timeout, "cdt"))):
-                log(f"bench.py: cdt {variant} n={n} m={m}: {name} ...")
-                t0 = time.time()
-                try:
-                    results[name] = best_of(a.repeat, fn, *args)
-                    log(f"bench.py:   {results[name]['seconds']:.3f} s "
-                        f"(wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
-                except ToolFailure as e:
-                    results[name] = None
-                    failures.append(f"cdt {variant} n={n}: {name}: {e}")
-                    log(f"bench.py:   fail: {e}")
+            results = run_tools(a, f"cdt {variant} n={n} m={m}", (
+                ("clmesh", run_clmesh, (clmesh, poly, a.timeout, ("-pc",))),
+                ("Triangle", run_triangle, (have_triangle, poly, a.timeout, TRIANGLE_CDT_CHILD)),
+                ("CGAL", run_cgal, (cgal, poly, a.timeout, "cdt"))), failures)
             cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
             if cl and cl.get("device"):
                 device = cl["device"]
-            counts = {k: r["triangles"] for k, r in results.items()
-                      if r and r.get("triangles") is not None}
-            if len(set(counts.values())) > 1:
-                warnings.append(f"cdt {variant} n={n}: triangle counts differ: "
-                                + ", ".join(f"{k} {v}" for k, v in counts.items()))
+            compare_triangle_counts(f"cdt {variant} n={n}", results, warnings)
             rows.append([variant, str(n), str(m), fmt_s(cl), fmt_s(tr), fmt_s(cg),
                          fmt_ratio(cl, tr), fmt_ratio(cl, cg), fmt_mb(cl), fmt_mb(tr),
                          fmt_mb(cg), fmt_phases(cl)])
@@ -680,19 +680,7 @@ def main_quality(a, ap):
                 tools += [("Triangle", run_triangle, (have_triangle, node, a.timeout,
                                                       TRIANGLE_CHILD, f"q{angle}")),
                           ("CGAL", run_cgal, (cgal, node, a.timeout, "mesh", (angle,)))]
-                results = {}
-                for name, fn, args in tools:
-                    log(f"bench.py: quality {dist} n={n} q{angle}: {name} ...")
-                    t0 = time.time()
-                    try:
-                        results[name] = best_of(a.repeat, fn, *args)
-                        log(f"bench.py:   {results[name]['seconds']:.3f} s, "
-                            f"{results[name].get('vertices')} vertices "
-                            f"(wall {time.time() - t0:.1f} s for {a.repeat} run(s))")
-                    except ToolFailure as e:
-                        results[name] = None
-                        failures.append(f"quality {dist} n={n} q{angle}: {name}: {e}")
-                        log(f"bench.py:   fail: {e}")
+                results = run_tools(a, f"quality {dist} n={n} q{angle}", tools, failures)
                 tr = results["Triangle"]
                 for label in labels:
                     cl = results[label]

@@ -176,10 +176,7 @@ CheckReport check_triangulation(const std::vector<Point> &points,
         boundary_ok = false;
         continue;
       }
-      partner[3 * e.tri + e.slot] = f.tri;
-      partner_slot[3 * e.tri + e.slot] = f.slot;
-      partner[3 * f.tri + f.slot] = e.tri;
-      partner_slot[3 * f.tri + f.slot] = e.slot;
+      pair_sides(partner, partner_slot, e, f);
     } else {
       partner[3 * e.tri + e.slot] = -1;
       ++boundary_edges;

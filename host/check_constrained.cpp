@@ -122,10 +122,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
         topology_ok = false;
         continue;
       }
-      partner[3 * e.tri + e.slot] = f.tri;
-      partner_slot[3 * e.tri + e.slot] = f.slot;
-      partner[3 * f.tri + f.slot] = e.tri;
-      partner_slot[3 * f.tri + f.slot] = e.slot;
+      pair_sides(partner, partner_slot, e, f);
     } else {
       partner[3 * e.tri + e.slot] = -1;
     }

@@ -48,6 +48,15 @@ struct EdgeRecord {
   int32_t slot;
 };
 
+// Records that sides e and f are the two sides of one edge.
+inline void pair_sides(std::vector<int32_t> &partner, std::vector<int32_t> &partner_slot,
+                       const EdgeRecord &e, const EdgeRecord &f) {
+  partner[3 * e.tri + e.slot] = f.tri;
+  partner_slot[3 * e.tri + e.slot] = f.slot;
+  partner[3 * f.tri + f.slot] = e.tri;
+  partner_slot[3 * f.tri + f.slot] = e.slot;
+}
+
 // Every side of the usable triangles, sorted by edge (then triangle, side),
 // so the sides of one edge are adjacent.
 inline std::vector<EdgeRecord> sorted_sides(const std::vector<Triangle> &triangles,

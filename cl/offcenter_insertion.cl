@@ -203,12 +203,18 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
       }
     }
   }
+  bool splits_cleanly = true;
   if (hull_edge >= 0) {
-    const double2 pa = points[tri_vertex[3 * t + next3(hull_edge)]],
-                  pb = points[tri_vertex[3 * t + prev3(hull_edge)]];
-    candidate[k] = 0.5 * (pa + pb);
+    const int a = tri_vertex[3 * t + next3(hull_edge)], b = tri_vertex[3 * t + prev3(hull_edge)],
+              apex = tri_vertex[3 * t + hull_edge];
+    const double2 middle = 0.5 * (points[a] + points[b]);
+    candidate[k] = middle;
+    // The rounded midpoint must leave both halves counter-clockwise (on a
+    // nearly straight run of hull points it may not): else no split.
+    splits_cleanly =
+        orient_point(points, apex, a, middle) > 0 && orient_point(points, b, apex, middle) > 0;
   }
-  const bool located = walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0;
+  const bool located = (walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0) && splits_cleanly;
   container[k] = located ? t : -1;
   split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;
 }

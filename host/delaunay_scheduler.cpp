@@ -354,7 +354,7 @@ std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &
   return result;
 }
 
-std::size_t DelaunayScheduler::insert_appended(std::size_t count, bool in_place) {
+std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
   DeviceMesh &mesh = *mesh_;
   const auto first = static_cast<int32_t>(mesh.point_count);
   std::vector<cl_int> ids(count);
@@ -365,14 +365,6 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count, bool in_place)
   mesh.point_count += count;
   MissingPointInsertion insertion(device_, mesh, *scan_);
   insertion.set_points(ids);
-  if (in_place) {
-    const std::size_t inserted = insertion.run_round(stamp_++, false);
-    timer_->charge(MissingPointInsertion::kPhase);
-    if (insertion.pending() > 0)
-      throw InternalError("points placed in place were not all inserted in one round");
-    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
-    timer_->charge(Flipping::kPhase);
-  }
   while (insertion.pending() > 0) {
     const std::size_t inserted = insertion.run_round(stamp_++);
     timer_->charge(MissingPointInsertion::kPhase);

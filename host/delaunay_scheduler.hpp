@@ -55,10 +55,7 @@ public:
   // Inserts the points point_count .. point_count + count - 1, already on the
   // device with their start triangles in location[], and restores the
   // Delaunay property. Returns how many coincided with a vertex already there.
-  // in_place: each goes into the triangle (and edge) location[] and
-  // location_edge[] name, without walking, all in one round (they must not
-  // conflict).
-  std::size_t insert_appended(std::size_t count, bool in_place = false);
+  std::size_t insert_appended(std::size_t count);
 
   // Makes room for `extra_points` more points; the phase objects that size
   // their lists by the mesh are rebuilt.

@@ -571,19 +571,12 @@ __kernel void keep_stuck_points(__global const int *tracked, __global int *point
   }
 }
 
-// Free lists (thesis §3.6.1): flags of the empty triangle slots and of the
-// deleted points' slots, compacted into sorted lists by the host's scan.
+// Free lists (thesis §3.6.1): flags of the empty triangle slots (and, below,
+// of the deleted points' slots), compacted into sorted lists by the host's scan.
 __kernel void flag_dead_triangles(__global const int *tri_vertex, __global int *keep, const int n) {
   const int t = get_global_id(0);
   if (t < n)
     keep[t] = tri_vertex[3 * t] == CLM_DEAD;
-}
-
-__kernel void flag_deleted_points(__global const int *point_state, __global int *keep,
-                                  const int n) {
-  const int p = get_global_id(0);
-  if (p < n)
-    keep[p] = point_state[p] == CLM_POINT_DELETED;
 }
 
 // Final numbering: the surviving Steiner points follow the input points in
@@ -600,9 +593,10 @@ __kernel void number_steiner_points(__global const int *point_state, __global co
       point_state[p] != CLM_POINT_DELETED ? first + offset[k] : first + survivors + (k - offset[k]);
 }
 
-__kernel void flag_surviving_points(__global const int *point_state, __global int *keep,
-                                    const int first, const int n) {
+// keep[k] = whether point first + k is deleted (deleted = 1) or not (deleted = 0).
+__kernel void flag_deleted_points(__global const int *point_state, const int deleted,
+                                  __global int *keep, const int first, const int n) {
   const int k = get_global_id(0);
   if (k < n)
-    keep[k] = point_state[first + k] != CLM_POINT_DELETED;
+    keep[k] = (point_state[first + k] == CLM_POINT_DELETED) == deleted;
 }

@@ -59,8 +59,7 @@ struct Options {
   double max_area = -1;             // -a[area]
   long max_steiner = -1;            // -S[N]
   clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv; // --refine
-  bool algorithm_given = false;
-  bool help = false; // -h, --help
+  bool help = false;                                                // -h, --help
   // Long options.
   bool version = false;
   bool list_devices = false;
@@ -349,7 +348,6 @@ int parse_long_option(int argc, char **argv, int i, Options &options) {
       throw UsageError("--refine takes qm or qmv, not '" + algorithm + "'");
     options.algorithm =
         algorithm == "qm" ? clmesh::RefineAlgorithm::qm : clmesh::RefineAlgorithm::qmv;
-    options.algorithm_given = true;
   } else if (name == "--stats-json")
     options.stats_json = take_value();
   else if (name == "--voronoi-image")

@@ -62,19 +62,23 @@ private:
   std::size_t size_ = 0;
 };
 
-// A list of ints on the device that grows as entries are appended from other
-// device arrays (amortised doubling).
-struct DeviceList {
-  DeviceArray<cl_int> items;
+// A list on the device that grows (amortised doubling): entries appended
+// from other device arrays, or written by kernels into room reserved first.
+template <typename T> struct DeviceList {
+  DeviceArray<T> items;
   std::size_t size = 0;
-  void append(Device &device, const DeviceArray<cl_int> &from, std::size_t count) {
+  // Room for `count` more entries after the first `size`.
+  void reserve(Device &device, std::size_t count) {
+    if (size + count > items.size())
+      items = items.grown(device, 2 * (size + count), T{});
+  }
+  void append(Device &device, const DeviceArray<T> &from, std::size_t count) {
     if (count == 0)
       return;
-    if (size + count > items.size())
-      items = items.grown(device, 2 * (size + count), -1);
+    reserve(device, count);
     guarded("transfer", "appending to a device list", [&] {
-      device.queue().enqueueCopyBuffer(from.buffer(), items.buffer(), 0, size * sizeof(cl_int),
-                                       count * sizeof(cl_int));
+      device.queue().enqueueCopyBuffer(from.buffer(), items.buffer(), 0, size * sizeof(T),
+                                       count * sizeof(T));
     });
     size += count;
   }

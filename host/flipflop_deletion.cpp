@@ -30,7 +30,6 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
       flag_dead_(device.kernel(kFile, "flag_dead_triangles", kPhase)),
       flag_deleted_(device.kernel(kFile, "flag_deleted_points", kPhase)),
-      flag_surviving_(device.kernel(kFile, "flag_surviving_points", kPhase)),
       number_(device.kernel(kFile, "number_steiner_points", kPhase)),
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
@@ -50,7 +49,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
 
 void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
                            const DeviceArray<cl_int> &new_points, std::size_t m, int &stamp,
-                           DeviceList &rewritten, FlipflopCounts &counts) {
+                           DeviceList<cl_int> &rewritten, FlipflopCounts &counts) {
   if (n > mesh_.list_capacity)
     throw InternalError("flip-flop: the active list is longer than its arrays");
   if (n > 0)
@@ -131,7 +130,6 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
     launch(device_, gather_next_, n, kPhase);
     rewritten.append(device_, next_active_, next); // the pass's results (and losers)
     ++counts.passes;
-    counts.visits += static_cast<long>(n);
     const int marked = marked_count_.read(device_, 0);
     if (marked > 0 || redundant_left_) {
       find_stars(pass_stamp, next, &n);
@@ -206,7 +204,7 @@ void FlipflopDeletion::collect_free_slots() {
   triangles.count = static_cast<std::size_t>(
       scan_.compact_indices(count_, offset_, triangles.slots, slots, kPhase));
   const std::size_t point_slots = mesh_.point_count;
-  set_args(flag_deleted_, mesh_.point_state.buffer(), count_.buffer(),
+  set_args(flag_deleted_, mesh_.point_state.buffer(), cl_int{1}, count_.buffer(), cl_int{0},
            static_cast<cl_int>(point_slots));
   launch(device_, flag_deleted_, point_slots, kPhase);
   points.first = 0;
@@ -219,9 +217,9 @@ std::vector<Point> FlipflopDeletion::steiner_points(std::size_t first) {
   std::vector<Point> result;
   if (n == 0)
     return result;
-  set_args(flag_surviving_, mesh_.point_state.buffer(), count_.buffer(), static_cast<cl_int>(first),
-           static_cast<cl_int>(n));
-  launch(device_, flag_surviving_, n, kPhase);
+  set_args(flag_deleted_, mesh_.point_state.buffer(), cl_int{0}, count_.buffer(),
+           static_cast<cl_int>(first), static_cast<cl_int>(n));
+  launch(device_, flag_deleted_, n, kPhase);
   const int survivors = scan_.exclusive_scan(count_, offset_, n, kPhase);
   set_args(number_, mesh_.point_state.buffer(), offset_.buffer(), static_cast<cl_int>(survivors),
            mesh_.original_id.buffer(), static_cast<cl_int>(first), static_cast<cl_int>(n));

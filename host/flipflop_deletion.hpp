@@ -19,7 +19,6 @@ struct FlipflopCounts {
   long midpoints = 0;          // hull midpoints inserted (none is ever deleted)
   long kept_redundant = 0;     // redundant points in degenerate stars, kept
   long passes = 0;
-  long visits = 0; // active triangles examined, over all passes
   long exact_checks = 0;
 };
 
@@ -38,7 +37,7 @@ public:
   // Returns when every edge is locally Delaunay and no redundant point is left.
   // Every triangle it rewrites is appended to `rewritten`.
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
-           std::size_t m, int &stamp, DeviceList &rewritten, FlipflopCounts &counts);
+           std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, FlipflopCounts &counts);
 
   // Collects the empty triangle and point slots into the mesh's free lists.
   void collect_free_slots();
@@ -60,8 +59,7 @@ private:
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, apply_, relink_, count_next_, gather_next_,
-      clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, flag_surviving_,
-      number_;
+      clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_;
   DeviceArray<cl_int> active_, next_active_, flags_, operation_, proposal_, star_, applied_, count_,
       offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,

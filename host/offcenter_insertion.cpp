@@ -65,7 +65,7 @@ std::size_t OffcenterInsertion::count_unfixable() {
   return static_cast<std::size_t>(count.read(device_, 0));
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList *changed) {
+std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed) {
   // The first search sweeps every slot; the later ones only the last bad
   // triangles and the changed ones, without duplicates.
   const bool use_list = searched_ && changed != nullptr;
@@ -127,8 +127,7 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
   const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
   if (count == 0)
     return 0;
-  if (log.size + count > log.coordinates.size())
-    log.coordinates = log.coordinates.grown(device_, 2 * (log.size + count), cl_double2{{0, 0}});
+  log.coordinates.reserve(device_, count);
   DeviceMesh::FreeList &free = mesh_.free_points;
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
@@ -140,16 +139,17 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
            mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
            mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
            mesh_.point_priority.buffer(), free_list, free_first, free_count,
-           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), log.coordinates.buffer(),
-           static_cast<cl_int>(log.size), static_cast<cl_int>(count), n);
+           static_cast<cl_int>(mesh_.point_count), new_points.buffer(),
+           log.coordinates.items.buffer(), static_cast<cl_int>(log.coordinates.size),
+           static_cast<cl_int>(count), n);
   launch(device_, append_, bad_, kPhase);
   mesh_.point_count += new_slots;
-  log.size += count;
+  log.coordinates.size += count;
   return count;
 }
 
 long InsertionLog::points_inserted_more_than_once(Device &device) const {
-  std::vector<cl_double2> all = coordinates.download(device, size);
+  std::vector<cl_double2> all = coordinates.items.download(device, coordinates.size);
   std::sort(all.begin(), all.end(), [](const cl_double2 &a, const cl_double2 &b) {
     return a.s[0] != b.s[0] ? a.s[0] < b.s[0] : a.s[1] < b.s[1];
   });

@@ -14,8 +14,7 @@ namespace clmesh {
 // on the device until the end (thesis §3.7 counts the points inserted more
 // than once: deleted as redundant, then inserted again).
 struct InsertionLog {
-  DeviceArray<cl_double2> coordinates;
-  std::size_t size = 0;
+  DeviceList<cl_double2> coordinates;
   long points_inserted_more_than_once(Device &device) const;
 };
 
@@ -31,7 +30,7 @@ public:
   // The first search examines every slot; a later one the bad triangles of
   // the last search and the triangles listed in `changed` (rewritten since,
   // duplicates allowed; every slot when null).
-  std::size_t find(PrefixScan &scan, const DeviceList *changed);
+  std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed);
 
   // Once, on the Delaunay triangulation: flags the input points at hull angles
   // below the minimum angle. Bad triangles whose smallest angle is at one of
@@ -55,8 +54,8 @@ private:
   cl::Kernel flag_acute_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;
-  bool searched_ = false; // the first search examines every slot
-  DeviceList search_;     // the next search's triangles, with duplicates
+  bool searched_ = false;     // the first search examines every slot
+  DeviceList<cl_int> search_; // the next search's triangles, with duplicates
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> origin_, container_, split_edge_, survive_, keep_, offset_, tie_mark_;

@@ -73,8 +73,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
                                                      : std::numeric_limits<std::size_t>::max();
   InsertionLog log;
-  DeviceList changed;      // the triangles rewritten since the last search
-  std::size_t steiner = 0; // Steiner points in the mesh now
+  DeviceList<cl_int> changed; // the triangles rewritten since the last search
+  std::size_t steiner = 0;    // Steiner points in the mesh now
   bool deleted_since_collection = false;
   // Point and triangle slots for `wanted` more points: the free ones, then the
   // ones past the used ranges.

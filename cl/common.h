@@ -20,6 +20,11 @@
 // §3.6.1), waiting in the free list.
 #define CLM_DEAD (-2)
 
+// Site states of GPU-DT Phases 1-3: a point may colour the digital Voronoi
+// diagram, or has been left out of it (a missing point).
+#define CLM_SITE 0
+#define CLM_LEFT_OUT 1
+
 typedef struct {
   int v[3];
 } VertexTriple;
@@ -71,6 +76,11 @@ inline bool is_ghost(VertexTriple tri) {
   return tri.v[0] == CLM_INFINITE || tri.v[1] == CLM_INFINITE || tri.v[2] == CLM_INFINITE;
 }
 
+// Index (0-2) of the vertex at infinity of a ghost triangle.
+inline int infinite_index(VertexTriple tri) {
+  return tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+}
+
 inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y);
@@ -102,24 +112,28 @@ inline WalkResult walk_to_point(__global const double2 *points, __global const i
     const VertexTriple tri = load_vertices(tri_vertex, t);
     int cross = -1;
     if (is_ghost(tri)) {
-      const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+      const int k = infinite_index(tri);
       const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
       const int side = orient_point(points, a, b, p);
       if (side > 0) { // strictly outside hull edge a-b
         result.outcome = CLM_WALK_LOCATED;
         break;
       }
+      cross = k;       // back into the hull through the real edge
       if (side == 0) { // on the line of the hull edge: inside the segment it splits the edge
         const double2 pa = points[a], pb = points[b];
-        const bool between = pa.x != pb.x ? (p.x > fmin(pa.x, pb.x) && p.x < fmax(pa.x, pb.x))
-                                          : (p.y > fmin(pa.y, pb.y) && p.y < fmax(pa.y, pb.y));
-        if (between) {
+        const bool x_axis = pa.x != pb.x;
+        const double lo = x_axis ? fmin(pa.x, pb.x) : fmin(pa.y, pb.y),
+                     hi = x_axis ? fmax(pa.x, pb.x) : fmax(pa.y, pb.y), q = x_axis ? p.x : p.y;
+        if (q > lo && q < hi) {
           result.outcome = CLM_WALK_LOCATED;
           result.edge = k;
           break;
         }
+        // Beyond an end (not on it): along the hull to the ghost past that end.
+        if (q != lo && q != hi)
+          cross = (q > hi) == ((x_axis ? pa.x : pa.y) == hi) ? prev3(k) : next3(k);
       }
-      cross = k; // back into the hull through the real edge
     } else {
       int zeros = 0, nonzero = -1, on_edge = -1;
       for (int i = 0; i < 3 && cross < 0; ++i) {

@@ -43,9 +43,24 @@ __kernel void locate_points(__global const double2 *points, __global const int *
                     : (walk.outcome == CLM_WALK_AT_VERTEX ? CLM_DUPLICATE : CLM_LOST);
 }
 
+// A point outside the hull conflicts with every ghost whose hull edge it
+// sees, not only with the one it was located in: the ghosts next to `g` on
+// side `dir` (0: after, 1: before) that it is strictly outside of, in turn.
+// Returns the next such ghost, or -1.
+inline int next_visible_ghost(__global const double2 *points, __global const int *tri_vertex,
+                              __global const int *tri_neighbor, int g, int p, int dir) {
+  const VertexTriple tri = load_vertices(tri_vertex, g);
+  const int k = infinite_index(tri);
+  const int h = link_triangle(tri_neighbor[3 * g + (dir == 0 ? prev3(k) : next3(k))]);
+  const VertexTriple next = load_vertices(tri_vertex, h);
+  const int j = infinite_index(next);
+  return orient_vertices(points, next.v[next3(j)], next.v[prev3(j)], p) > 0 ? h : -1;
+}
+
 // Marks the triangle(s) each pending point would split with its priority.
 __kernel void mark_containers(__global const int *remaining, __global const int *location,
                               __global const int *location_edge, __global const int *status,
+                              __global const double2 *points, __global const int *tri_vertex,
                               __global const int *tri_neighbor, volatile __global uint *tri_mark,
                               const int n) {
   const int gid = get_global_id(0);
@@ -56,11 +71,16 @@ __kernel void mark_containers(__global const int *remaining, __global const int 
   atomic_min(&tri_mark[t], key);
   if (edge >= 0)
     atomic_min(&tri_mark[link_triangle(tri_neighbor[3 * t + edge])], key);
+  else if (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0)
+    for (int dir = 0; dir < 2; ++dir)
+      for (int g = t; (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+        atomic_min(&tri_mark[g], key);
 }
 
 // winner[gid] = 1 when every mark written by the point survived.
 __kernel void select_winners(__global const int *remaining, __global const int *location,
                              __global const int *location_edge, __global const int *status,
+                             __global const double2 *points, __global const int *tri_vertex,
                              __global const int *tri_neighbor, __global const uint *tri_mark,
                              __global int *winner, const int n) {
   const int gid = get_global_id(0);
@@ -72,6 +92,12 @@ __kernel void select_winners(__global const int *remaining, __global const int *
     const uint key = priority_of((uint)p);
     wins = tri_mark[t] == key &&
            (edge < 0 || tri_mark[link_triangle(tri_neighbor[3 * t + edge])] == key);
+    if (edge < 0 &&
+        (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0))
+      for (int dir = 0; dir < 2; ++dir)
+        for (int g = t;
+             wins && (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+          wins = tri_mark[g] == key;
   }
   winner[gid] = wins;
 }
@@ -79,6 +105,7 @@ __kernel void select_winners(__global const int *remaining, __global const int *
 // Clears the marks of this round (before the topology changes).
 __kernel void clear_container_marks(__global const int *remaining, __global const int *location,
                                     __global const int *location_edge, __global const int *status,
+                                    __global const double2 *points, __global const int *tri_vertex,
                                     __global const int *tri_neighbor, __global uint *tri_mark,
                                     const int n) {
   const int gid = get_global_id(0);
@@ -88,6 +115,10 @@ __kernel void clear_container_marks(__global const int *remaining, __global cons
   tri_mark[t] = CLM_NO_MARK;
   if (edge >= 0)
     tri_mark[link_triangle(tri_neighbor[3 * t + edge])] = CLM_NO_MARK;
+  else if (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0)
+    for (int dir = 0; dir < 2; ++dir)
+      for (int g = t; (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+        tri_mark[g] = CLM_NO_MARK;
 }
 
 // Splits the winners' triangles. Each winner takes new slots 2 * winner_offset

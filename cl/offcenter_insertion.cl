@@ -33,7 +33,7 @@ __kernel void flag_acute_hull_vertices(__global const double2 *points,
     return;
   // Ghost (infinity, a, b) over hull edge a-b; the next ghost, across its
   // edge b-infinity, is (infinity, b, c).
-  const int k = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+  const int k = infinite_index(tri);
   const int a = tri.v[next3(k)], b = tri.v[prev3(k)];
   const int next = link_triangle(tri_neighbor[3 * g + next3(k)]);
   const VertexTriple following = load_vertices(tri_vertex, next);
@@ -180,7 +180,7 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
   const VertexTriple tri = load_vertices(tri_vertex, t);
   int hull_edge = -1;
   if (is_ghost(tri)) {
-    const int g = tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
+    const int g = infinite_index(tri);
     const int link = tri_neighbor[3 * t + g];
     t = link_triangle(link); // the real triangle on that hull edge
     hull_edge = link_edge(link);

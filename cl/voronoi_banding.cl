@@ -12,8 +12,10 @@
 
 #define CLM_NO_SITE (-1)
 
-// Pixel of each point, and atomic minimum of point index per pixel.
-__kernel void map_points_to_pixels(__global const double2 *points, __global int *pixel_of,
+// Pixel of each point, and atomic minimum of point index per pixel (points
+// left out take none; site_state may be absent: use_state == 0).
+__kernel void map_points_to_pixels(__global const double2 *points, __global const int *site_state,
+                                   const int use_state, __global int *pixel_of,
                                    volatile __global int *site_of_pixel, const double min_x,
                                    const double min_y, const double scale, const int grid,
                                    const int n) {
@@ -24,7 +26,8 @@ __kernel void map_points_to_pixels(__global const double2 *points, __global int 
   const int x = min((int)((q.x - min_x) * scale), grid - 1);
   const int y = min((int)((q.y - min_y) * scale), grid - 1);
   pixel_of[p] = y * grid + x;
-  atomic_min(&site_of_pixel[y * grid + x], p);
+  if (!use_state || site_state[p] == CLM_SITE)
+    atomic_min(&site_of_pixel[y * grid + x], p);
 }
 
 // site_of_pixel starts at INT_MAX; empty pixels become CLM_NO_SITE.

@@ -4,6 +4,8 @@
 #include "delaunay_scheduler.hpp"
 
 #include "predicates.h"
+#include "shifting.hpp"
+#include "triangulation_construction.hpp"
 
 #include <algorithm>
 #include <array>
@@ -148,6 +150,15 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
   return hull;
 }
 
+// Lower-left corner and side of the square that the digital Voronoi texture covers.
+std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
+  const auto [low_x, high_x] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
+  const auto [low_y, high_y] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
+  return {{low_x->x, low_y->y}, std::max(high_x->x - low_x->x, high_y->y - low_y->y)};
+}
+
 // The hull polygon fanned from its first vertex, closed by one ghost triangle
 // per hull edge; links are (triangle << 2) | edge.
 struct HullFan {
@@ -227,8 +238,9 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   stats.device = describe(device);
   stats.input_points = static_cast<long>(points.size());
   // Build every program before the clock starts.
-  for (const char *file : {"scan.cl", "voronoi_banding.cl", "missing_point_insertion.cl",
-                           "flipping.cl", "mesh_output.cl"})
+  for (const char *file :
+       {"scan.cl", "voronoi_banding.cl", "triangulation_construction.cl", "shifting.cl",
+        "missing_point_insertion.cl", "flipping.cl", "mesh_output.cl"})
     device.program(file, "setup");
   start_ = Clock::now();
 }
@@ -266,48 +278,46 @@ bool DelaunayScheduler::triangulate() {
   std::vector<int32_t> device_hull(hull.size());
   for (std::size_t i = 0; i < hull.size(); ++i)
     device_hull[i] = device_id_[hull[i]];
-  const HullFan fan = hull_fan(device_hull);
-  mesh.tri_vertex.upload(device, fan.vertices);
-  mesh.tri_neighbor.upload(device, fan.neighbors);
-  mesh.triangle_count = fan.vertices.size() / 3;
   mesh.tri_mark.fill(device, -1, mesh.triangle_capacity); // no mark: all bits set
   mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
   mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
   mesh.location.fill(device, 0, mesh.point_capacity);
   mesh.constraint_start.fill(device, 0, mesh.point_capacity + 1);
-  std::vector<char> in_mesh(n, 0);
-  for (const int32_t v : device_hull)
-    in_mesh[v] = 1;
-  std::vector<cl_int> missing;
-  missing.reserve(n - hull.size());
-  for (std::size_t i = 0; i < n; ++i)
-    if (!in_mesh[i])
-      missing.push_back(static_cast<cl_int>(i));
-  insertion.set_points(missing);
-  stats_.missing_points = static_cast<long>(missing.size());
-  std::vector<cl_int>().swap(missing);
   timer_->charge("upload");
 
-  // Phase 1. Phases 2 and 3 (triangulation construction from the digital
-  // Voronoi vertices, shifting) are not built yet, so the diagram serves the
-  // picture only and every point is placed by Phase 4: the run is skipped
-  // unless the picture is wanted.
-  if (options_.want_voronoi_image) {
+  // Phases 1-3 build the first triangulation and list the missing points;
+  // when their result cannot be used, the hull is fanned instead.
+  if (!options_.voronoi_construction && options_.want_voronoi_image) {
     stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::default_grid(n);
     VoronoiBanding banding(device, mesh, *scan_);
-    const auto [low_x, high_x] = std::minmax_element(
-        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
-    const auto [low_y, high_y] = std::minmax_element(
-        points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
-    const double span = std::max(high_x->x - low_x->x, high_y->y - low_y->y);
-    stats_.pixel_collisions =
-        static_cast<long>(banding.run(stats_.grid, {low_x->x, low_y->y}, span));
+    const auto [low, span] = bounding_square(points);
+    stats_.pixel_collisions = static_cast<long>(banding.run(stats_.grid, low, span));
     voronoi_ = banding.download_image();
     timer_->charge(VoronoiBanding::kPhase);
   }
-
-  // The fan is a triangulation, not yet a Delaunay one: flip it first.
-  flip_all(flips_);
+  if (!options_.voronoi_construction || !construct_from_voronoi(insertion)) {
+    const HullFan fan = hull_fan(device_hull);
+    mesh.tri_vertex.upload(device, fan.vertices);
+    mesh.tri_neighbor.upload(device, fan.neighbors);
+    mesh.triangle_count = fan.vertices.size() / 3;
+    mesh.tri_mark.fill(device, -1, mesh.triangle_capacity);
+    mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+    mesh.location.fill(device, 0, mesh.point_capacity);
+    std::vector<char> in_mesh(n, 0);
+    for (const int32_t v : device_hull)
+      in_mesh[v] = 1;
+    std::vector<cl_int> missing;
+    missing.reserve(n - hull.size());
+    for (std::size_t i = 0; i < n; ++i)
+      if (!in_mesh[i])
+        missing.push_back(static_cast<cl_int>(i));
+    insertion.set_points(missing);
+    stats_.construction = "hull_fan";
+    flips_ = FlipCounts{};
+    // The fan is a triangulation, not yet a Delaunay one: flip it first.
+    flip_all(flips_);
+  }
+  stats_.missing_points = static_cast<long>(insertion.pending());
 
   // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so that
   // the next round's walks run in a Delaunay triangulation.
@@ -324,6 +334,71 @@ bool DelaunayScheduler::triangulate() {
   stats_.flips = flips_.flips;
   stats_.flip_passes = flips_.passes;
   stats_.exact_predicate_calls = flips_.exact_checks;
+  return true;
+}
+
+bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
+  const std::vector<Point> &points = points_;
+  const std::size_t n = points.size();
+  DeviceMesh &mesh = *mesh_;
+  stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::default_grid(n);
+  const auto [low, span] = bounding_square(points);
+  VoronoiBanding banding(device_, mesh, *scan_);
+  TriangulationConstruction construction(device_, mesh, *scan_);
+  Shifting shifting(device_, mesh, *scan_);
+  DeviceArray<cl_int> site_state(device_, n), bad(device_, n);
+  site_state.fill(device_, 0, n); // CLM_SITE (cl/common.h)
+  bad.fill(device_, 0, n);
+  TriangulationConstruction::Built built;
+  bool settled = false;
+  stats_.dropped_sites = 0;
+  for (int round = 0; round < kConstructionRounds && !settled; ++round) {
+    // Phase 1: the digital Voronoi diagram of the sites not left out.
+    const std::size_t not_sites = banding.run(stats_.grid, low, span, &site_state);
+    if (round == 0) {
+      stats_.pixel_collisions = static_cast<long>(not_sites);
+      if (options_.want_voronoi_image) // the diagram of every point
+        voronoi_ = banding.download_image();
+    }
+    ++stats_.construction_rounds;
+    timer_->charge(VoronoiBanding::kPhase);
+    // Phase 2: triangles from its vertices, ghosts along the border, links.
+    built = construction.run(banding.diagram(), stats_.grid, bad);
+    timer_->charge(TriangulationConstruction::kPhase);
+    if (!built.fits)
+      break;
+    // Phase 3: at the real coordinates; sites of turned-over or unmatched
+    // triangles are left out of the next diagram.
+    shifting.flag_inverted(built.real, bad);
+    const long left_out = shifting.leave_out_flagged(bad, site_state);
+    stats_.dropped_sites += left_out;
+    timer_->charge(Shifting::kPhase);
+    settled = left_out == 0;
+  }
+  if (!settled)
+    return false;
+  stats_.constructed_triangles = static_cast<long>(built.real);
+  mesh.triangle_count = built.real + built.ghosts;
+
+  // Phase 5 on the whole construction: the ghost flips make the outer cycle
+  // convex. A structure that is no triangulation may flip on and on: a bound
+  // on the passes, then the check that the cycle winds around once.
+  flips_ = FlipCounts{};
+  std::vector<cl_int> every_slot(mesh.triangle_count);
+  std::iota(every_slot.begin(), every_slot.end(), 0);
+  DeviceArray<cl_int> active(device_, every_slot.size());
+  active.upload(device_, every_slot);
+  const long max_passes = 64 + 4 * static_cast<long>(std::sqrt(static_cast<double>(n)));
+  const bool flipped = flipping_->run(active, every_slot.size(), stamp_, flips_, max_passes);
+  timer_->charge(Flipping::kPhase);
+  if (!flipped || !shifting.boundary_winds_once())
+    return false;
+  DeviceArray<cl_int> missing(device_, n);
+  const std::size_t count =
+      shifting.collect_missing(banding.diagram(), banding.pixel_of(), missing);
+  insertion.set_points(missing, count);
+  timer_->charge(Shifting::kPhase);
+  stats_.construction = "voronoi";
   return true;
 }
 

@@ -43,7 +43,7 @@ public:
                     std::size_t extra_points = 0);
   ~DelaunayScheduler();
 
-  // Phases 1, 4, 5; false when all points are collinear (no triangle).
+  // Phases 1-5; false when all points are collinear (no triangle).
   bool triangulate();
   // Inserts new points (numbered after every earlier one, in the device and
   // in the output), each walking from the given triangle, and restores the
@@ -81,6 +81,14 @@ public:
   const std::vector<int32_t> &original_ids() const { return original_id_; }
 
 private:
+  // Rounds of Phases 1-3 before the hull fan is used instead.
+  static constexpr int kConstructionRounds = 8;
+
+  // Phases 1-3: the first triangulation from the digital Voronoi diagram,
+  // flipped to Delaunay, and the missing points given to `insertion`. False
+  // (the mesh to be rebuilt from the hull fan) when that did not succeed.
+  bool construct_from_voronoi(MissingPointInsertion &insertion);
+
   Device &device_;
   const std::vector<Point> &points_;
   DelaunayOptions options_;

@@ -52,14 +52,16 @@ void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
   }
 }
 
-void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
-                   FlipCounts &counts) {
+bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts,
+                   long max_passes) {
   if (n == 0)
-    return;
+    return true;
   guarded(kPhase, "copying the active list", [&] {
     device_.queue().enqueueCopyBuffer(active.buffer(), active_.buffer(), 0, 0, n * sizeof(cl_int));
   });
-  while (n > 0) {
+  for (long pass = 0; n > 0; ++pass) {
+    if (pass == max_passes)
+      return false;
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     check(active_, n, flags_, counts);
@@ -89,6 +91,7 @@ void Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     std::swap(active_, next_active_);
     n = static_cast<std::size_t>(next);
   }
+  return true;
 }
 
 } // namespace clmesh

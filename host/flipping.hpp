@@ -20,8 +20,10 @@ public:
 
   // Flips until every edge of the triangles reachable from `active` (n
   // entries, -1 entries ignored) is locally Delaunay. `stamp` numbers each
-  // pass; it is advanced past the last one used.
-  void run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts);
+  // pass; it is advanced past the last one used. Returns false when
+  // `max_passes` passes (-1: no limit) did not finish the work.
+  bool run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts,
+           long max_passes = -1);
 
   // The first step of a pass, shared with flip-flop: flags[k] bit i set when
   // edge i of triangle active[k] is not locally Delaunay (the filter, then

@@ -57,14 +57,16 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   }
 
   set_args(mark_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, pending_, kPhase);
   set_args(select_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), winner_.buffer(),
-           n);
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), winner_.buffer(), n);
   launch(device_, select_, pending_, kPhase);
   set_args(clear_marks_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, clear_marks_, pending_, kPhase);
 
   const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);

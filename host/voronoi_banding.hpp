@@ -17,13 +17,20 @@ public:
 
   VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // A texture side suited to n points: the power of two near 2 sqrt(n).
+  // A texture side suited to n points: the power of two at or above sqrt(n) / 2.
   static int default_grid(std::size_t n);
 
   // Maps the device points into a grid x grid texture over the square
   // [min, min + span]^2 and colours every pixel with its nearest site.
-  // Returns how many points lost their pixel to another (missing points).
-  std::size_t run(int grid, Point min, double span);
+  // Points whose `site_state` is CLM_LEFT_OUT (cl/common.h) are no sites.
+  // Returns how many points are not sites (missing points).
+  std::size_t run(int grid, Point min, double span,
+                  const DeviceArray<cl_int> *site_state = nullptr);
+
+  // The diagram of the last run (grid * grid device point numbers) and the
+  // pixel of every point.
+  const DeviceArray<cl_int> &diagram() const { return voronoi_; }
+  const DeviceArray<cl_int> &pixel_of() const { return pixel_of_; }
 
   // The diagram in the input numbering (-1: no site), for pictures.
   std::vector<int32_t> download_image();
@@ -34,7 +41,8 @@ private:
   PrefixScan &scan_;
   cl::Kernel map_points_, clear_empty_, count_missing_, column_sweep_, row_colour_, renumber_;
   int grid_ = 0;
-  DeviceArray<cl_int> voronoi_;
+  DeviceArray<cl_int> site_of_pixel_, column_site_row_, stack_x_, stack_y_, voronoi_, pixel_of_,
+      missing_, missing_offset_;
 };
 
 } // namespace clmesh

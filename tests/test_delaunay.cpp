@@ -210,6 +210,41 @@ TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   CHECK(first.neighbors == second.neighbors);
   CHECK(first.triangles == third.triangles);
   CHECK(first.stats.flips == third.stats.flips);
+  CHECK(first.stats.construction == "voronoi");
+  CHECK(first.stats.dropped_sites == second.stats.dropped_sites);
+  CHECK(first.stats.construction_rounds == second.stats.construction_rounds);
+  CHECK(first.stats.missing_points == second.stats.missing_points);
+}
+
+// Phases 1-3 against the hull fan: the same triangles, whatever the grid.
+// Coarse grids leave out most points, hull corners among them, so Phase 4
+// also inserts points outside the first triangulation's hull.
+TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any grid") {
+  const std::vector<std::pair<std::string, std::vector<Point>>> inputs = {
+      {"uniform", fixtures::uniform(20000, 21)},
+      {"gaussian", fixtures::gaussian(20000, 22)},
+      {"disk", fixtures::disk(20000, 23)},
+      {"lattice", fixtures::lattice(120)},
+      {"lattice far from the origin", fixtures::lattice(60, 1e-3, {1e6, -2e6})}};
+  for (const auto &[name, points] : inputs)
+    for (const int grid : {4, 16, 64, 0, 1024}) {
+      CAPTURE(name);
+      CAPTURE(grid);
+      clmesh::DelaunayOptions options;
+      options.voronoi_construction = false;
+      const auto fan = clmesh::delaunay(device(), points, options);
+      CHECK(fan.stats.construction == "hull_fan");
+      options.voronoi_construction = true;
+      options.grid = grid;
+      const auto result = triangulate_and_check(points, options);
+      CHECK(result.triangles == fan.triangles);
+      CHECK(result.stats.construction_rounds >= 1);
+      if (grid == 0 && name.rfind("lattice", 0) != 0) { // the default grid: no fallback
+        CHECK(result.stats.construction == "voronoi");
+        CHECK(result.stats.constructed_triangles > static_cast<long>(points.size()) / 4);
+        CHECK(result.stats.missing_points < static_cast<long>(points.size()));
+      }
+    }
 }
 
 TEST_CASE("delaunay: bad input is refused with a typed error") {

@@ -14,6 +14,10 @@ struct DelaunayOptions {
   int grid = 0;               // side of the digital Voronoi texture; 0: chosen from n
   std::size_t work_group = 0; // work-group size; 0: device default (64)
   bool want_voronoi_image = false;
+  // Build the first triangulation from the digital Voronoi diagram (Phases
+  // 1-3); false starts from a fan of the convex hull instead, as the Voronoi
+  // route itself does when its result cannot be used. The mesh is the same.
+  bool voronoi_construction = true;
 };
 
 struct PhaseTime {
@@ -27,8 +31,13 @@ struct DelaunayStats {
   std::vector<PhaseTime> phases;
   long input_points = 0;
   long duplicates = 0;
-  long missing_points = 0;   // points inserted by Phase 4 (all but the hull vertices for now)
+  long missing_points = 0;   // points inserted by Phase 4
   long pixel_collisions = 0; // points that lost their Voronoi pixel to another (Phase 1)
+  // "voronoi" (Phases 1-3 built the first triangulation) or "hull_fan".
+  std::string construction;
+  long construction_rounds = 0;   // diagrams built by Phases 1-3
+  long constructed_triangles = 0; // triangles of the last Phase 2 (ghosts excluded)
+  long dropped_sites = 0;         // sites Phase 3 left out (their triangles turned over)
   long flips = 0;
   long insertion_rounds = 0;
   long flip_passes = 0;

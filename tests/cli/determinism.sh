@@ -23,7 +23,8 @@ with open("lattice.node", "w") as out:                  # cocircular everywhere
         out.write(f"{i} {i % 20} {i // 20} {i * 0.5} {i % 3}\n")
 PY
 
-configs=("" "" "--grid 64" "--grid 512" "--work-group 1" "--work-group 128" "--grid 64 --work-group 1")
+configs=("" "" "--grid 64" "--grid 512" "--work-group 1" "--work-group 128" "--grid 64 --work-group 1"
+         "--construction fan")
 
 for input in random lattice; do
   reference=""

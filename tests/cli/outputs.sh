@@ -150,7 +150,7 @@ if [[ -f stats.json ]]; then
   python3 - stats.json <<'PY' || fail "--stats-json: keys or values wrong: $(cat stats.json)"
 import json, sys
 s = json.load(open(sys.argv[1]))
-assert set(s) == {"device", "seconds", "phases", "counts", "grid"}, sorted(s)
+assert set(s) == {"device", "seconds", "phases", "counts", "construction", "grid"}, sorted(s)
 assert isinstance(s["device"], str)
 assert set(s["seconds"]) == {"read", "compute", "write"}
 assert all(isinstance(v, (int, float)) and v >= 0 for v in s["seconds"].values())
@@ -158,11 +158,13 @@ assert isinstance(s["phases"], list)
 for p in s["phases"]:
     assert set(p) == {"name", "seconds"} and isinstance(p["name"], str)
 keys = {"input_points", "duplicates", "missing_points", "flips", "triangles",
+        "construction_rounds", "constructed_triangles", "dropped_sites", "pixel_collisions",
         "insertion_rounds", "flip_passes", "exact_predicate_calls"}
 assert set(s["counts"]) == keys, sorted(s["counts"])
 assert all(isinstance(v, int) for v in s["counts"].values())
 assert s["counts"]["triangles"] == 10 and s["counts"]["input_points"] == 8
 assert isinstance(s["grid"], int)
+assert s["construction"] in ("voronoi", "hull_fan")
 PY
 else
   fail "--stats-json: stats.json not written"

@@ -351,6 +351,7 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
   bad.fill(device_, 0, n);
   TriangulationConstruction::Built built;
   bool settled = false;
+  long left_out_before = 0;
   stats_.dropped_sites = 0;
   for (int round = 0; round < kConstructionRounds && !settled; ++round) {
     // Phase 1: the digital Voronoi diagram of the sites not left out.
@@ -374,6 +375,12 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
     stats_.dropped_sites += left_out;
     timer_->charge(Shifting::kPhase);
     settled = left_out == 0;
+    // Each round should fix most of what is left; when it does not (a hull
+    // whose nearly collinear points turn over one layer after another), the
+    // hull fan is cheaper than more rounds.
+    if (round >= 2 && left_out > kStalledSites && 2 * left_out > left_out_before)
+      break;
+    left_out_before = left_out;
   }
   if (!settled)
     return false;

@@ -44,17 +44,18 @@ __kernel void locate_points(__global const double2 *points, __global const int *
 }
 
 // A point outside the hull conflicts with every ghost whose hull edge it
-// sees, not only with the one it was located in: the ghosts next to `g` on
-// side `dir` (0: after, 1: before) that it is strictly outside of, in turn.
-// Returns the next such ghost, or -1.
+// sees, not only with the one it was located in (`start`): the ghosts next
+// to `g` on side `dir` (0: after, 1: before) that it is strictly outside of,
+// in turn. Returns the next such ghost, or -1 (also back at `start`, which a
+// convex hull never allows).
 inline int next_visible_ghost(__global const double2 *points, __global const int *tri_vertex,
-                              __global const int *tri_neighbor, int g, int p, int dir) {
+                              __global const int *tri_neighbor, int g, int start, int p, int dir) {
   const VertexTriple tri = load_vertices(tri_vertex, g);
   const int k = infinite_index(tri);
   const int h = link_triangle(tri_neighbor[3 * g + (dir == 0 ? prev3(k) : next3(k))]);
   const VertexTriple next = load_vertices(tri_vertex, h);
   const int j = infinite_index(next);
-  return orient_vertices(points, next.v[next3(j)], next.v[prev3(j)], p) > 0 ? h : -1;
+  return h != start && orient_vertices(points, next.v[next3(j)], next.v[prev3(j)], p) > 0 ? h : -1;
 }
 
 // Marks the triangle(s) each pending point would split with its priority.
@@ -73,7 +74,8 @@ __kernel void mark_containers(__global const int *remaining, __global const int 
     atomic_min(&tri_mark[link_triangle(tri_neighbor[3 * t + edge])], key);
   else if (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0)
     for (int dir = 0; dir < 2; ++dir)
-      for (int g = t; (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+      for (int g = t;
+           (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, t, p, dir)) >= 0;)
         atomic_min(&tri_mark[g], key);
 }
 
@@ -96,7 +98,7 @@ __kernel void select_winners(__global const int *remaining, __global const int *
         (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0))
       for (int dir = 0; dir < 2; ++dir)
         for (int g = t;
-             wins && (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+             wins && (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, t, p, dir)) >= 0;)
           wins = tri_mark[g] == key;
   }
   winner[gid] = wins;
@@ -117,7 +119,8 @@ __kernel void clear_container_marks(__global const int *remaining, __global cons
     tri_mark[link_triangle(tri_neighbor[3 * t + edge])] = CLM_NO_MARK;
   else if (tri_vertex[3 * t] < 0 || tri_vertex[3 * t + 1] < 0 || tri_vertex[3 * t + 2] < 0)
     for (int dir = 0; dir < 2; ++dir)
-      for (int g = t; (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, p, dir)) >= 0;)
+      for (int g = t;
+           (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, t, p, dir)) >= 0;)
         tri_mark[g] = CLM_NO_MARK;
 }
 

@@ -56,7 +56,12 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     throw UsageError("the minimum angle (-q) must be between 0 and 45 degrees");
   RefineResult result;
   const std::size_t n = points.size();
-  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, first_room(n));
+  // Refinement breaks ties by triangle slot, so it must start from a slot
+  // layout that depends on the input alone: the hull fan's. (The Voronoi
+  // construction's layout depends on the grid; the triangles do not.)
+  DelaunayOptions delaunay = options.delaunay;
+  delaunay.voronoi_construction = false;
+  DelaunayScheduler scheduler(device, points, delaunay, result.mesh.stats, first_room(n));
   device.program("offcenter_insertion.cl", "setup");
   device.program("flipflop_deletion.cl", "setup");
   if (!scheduler.triangulate()) {

@@ -185,7 +185,7 @@ TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
   CHECK(result.added_points.size() == 50u);
 }
 
-TEST_CASE("refine: the same mesh whatever the work-group size") {
+TEST_CASE("refine: the same mesh whatever the work-group size, grid or construction") {
   clmesh::RefineOptions options;
   options.min_angle = 30;
   const auto points = fixtures::gaussian(3000, 78);
@@ -201,6 +201,15 @@ TEST_CASE("refine: the same mesh whatever the work-group size") {
       CHECK((first.added_points[i].x == second.added_points[i].x &&
              first.added_points[i].y == second.added_points[i].y));
     CHECK(first.stats.deleted == second.stats.deleted);
+    // Nor on the Voronoi grid or the first triangulation's construction.
+    options.delaunay.grid = 16;
+    const auto third = clmesh::refine_delaunay(device(), points, options);
+    options.delaunay.grid = 0;
+    options.delaunay.voronoi_construction = false;
+    const auto fourth = clmesh::refine_delaunay(device(), points, options);
+    CHECK(first.mesh.triangles == third.mesh.triangles);
+    CHECK(first.mesh.triangles == fourth.mesh.triangles);
+    options.delaunay.voronoi_construction = true;
   }
 }
 

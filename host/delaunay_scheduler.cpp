@@ -57,19 +57,40 @@ std::vector<int32_t> duplicates_on_host(const std::vector<Point> &points) {
   return duplicate_of;
 }
 
-// Position along a Hilbert curve of a point quantized to a 2^16 x 2^16 grid.
-uint32_t hilbert_index(uint32_t x, uint32_t y) {
-  uint32_t d = 0;
-  for (uint32_t s = 1u << 15; s > 0; s >>= 1) {
-    const uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
-    d += s * s * ((3 * rx) ^ ry);
-    if (ry == 0) { // rotate the quadrant
-      if (rx == 1) {
-        x = s - 1 - (x & (s - 1)) + (x & ~(s - 1));
-        y = s - 1 - (y & (s - 1)) + (y & ~(s - 1));
+// The Hilbert curve on a 2^16 x 2^16 grid, four bits of x and y at a time:
+// for each orientation of the curve (x and y swapped, both complemented) and
+// each 4x4-bit input, the eight bits of curve position it contributes and the
+// orientation that follows.
+struct HilbertTable {
+  std::array<std::array<uint8_t, 256>, 4> digits{}, next{};
+  HilbertTable() {
+    for (uint32_t orientation = 0; orientation < 4; ++orientation)
+      for (uint32_t in = 0; in < 256; ++in) {
+        uint32_t swapped = orientation & 1, complemented = orientation >> 1, d = 0;
+        for (int b = 3; b >= 0; --b) {
+          const uint32_t bx = (in >> (4 + b)) & 1, by = (in >> b) & 1;
+          const uint32_t x = (swapped ? by : bx) ^ complemented,
+                         y = (swapped ? bx : by) ^ complemented;
+          d = (d << 2) | ((3 * x) ^ y); // quadrants 0, 1, 2, 3 along the curve
+          if (y == 0) {                 // lower quadrants turn the curve
+            complemented ^= x;
+            swapped ^= 1;
+          }
+        }
+        digits[orientation][in] = static_cast<uint8_t>(d);
+        next[orientation][in] = static_cast<uint8_t>(swapped | (complemented << 1));
       }
-      std::swap(x, y);
-    }
+  }
+};
+
+// Position along the Hilbert curve of a point quantized to the 2^16 x 2^16 grid.
+uint32_t hilbert_index(uint32_t x, uint32_t y) {
+  static const HilbertTable table;
+  uint32_t d = 0, orientation = 0;
+  for (int b = 12; b >= 0; b -= 4) {
+    const uint32_t in = (((x >> b) & 15) << 4) | ((y >> b) & 15);
+    d = (d << 8) | table.digits[orientation][in];
+    orientation = table.next[orientation][in];
   }
   return d;
 }
@@ -107,26 +128,47 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
 
 // Vertices of the convex hull, counter-clockwise, without collinear points
 // (Andrew's monotone chain with the exact orientation predicate).
-// Points strictly inside the quadrilateral of the four extreme points are
-// dropped first (Akl-Toussaint), which leaves few points to sort.
+// Points strictly inside the octagon of the extreme points in eight
+// directions are dropped first (Akl-Toussaint), which leaves few points to
+// sort (a quadrilateral of four keeps half a square's points).
 std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
-  std::array<int32_t, 4> extreme{0, 0, 0, 0}; // min x, min y, max x, max y
-  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i) {
+  // Extremes counter-clockwise: min y, max x-y, max x, max x+y, max y,
+  // max y-x, min x, min x+y. Rounded sums only choose which points; the
+  // octagon's corners are input points either way.
+  const auto key = [&](int32_t i, int k) {
     const Point &p = points[i];
-    if (p.x < points[extreme[0]].x)
-      extreme[0] = i;
-    if (p.y < points[extreme[1]].y)
-      extreme[1] = i;
-    if (p.x > points[extreme[2]].x)
-      extreme[2] = i;
-    if (p.y > points[extreme[3]].y)
-      extreme[3] = i;
-  }
+    switch (k) {
+    case 0:
+      return -p.y;
+    case 1:
+      return p.x - p.y;
+    case 2:
+      return p.x;
+    case 3:
+      return p.x + p.y;
+    case 4:
+      return p.y;
+    case 5:
+      return p.y - p.x;
+    case 6:
+      return -p.x;
+    default:
+      return -p.x - p.y;
+    }
+  };
+  std::array<int32_t, 8> extreme{};
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
+    for (int k = 0; k < 8; ++k)
+      if (key(i, k) > key(extreme[k], k))
+        extreme[k] = i;
   std::vector<int32_t> order;
   for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i) {
     bool inside = true;
-    for (int k = 0; k < 4 && inside; ++k)
-      inside = orient(points[extreme[k]], points[extreme[(k + 1) % 4]], points[i]) > 0;
+    for (int k = 0; k < 8 && inside; ++k) {
+      const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
+      if (a.x != b.x || a.y != b.y) // corners may repeat
+        inside = orient(a, b, points[i]) > 0;
+    }
     if (!inside)
       order.push_back(i);
   }
@@ -148,6 +190,18 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
     push(*it, lower);
   hull.resize(k > 1 ? k - 1 : k);
   return hull;
+}
+
+// Whether every point lies on one line (no triangle at all).
+bool all_collinear(const std::vector<Point> &points) {
+  std::size_t second = 1;
+  while (second < points.size() && points[second].x == points[0].x &&
+         points[second].y == points[0].y)
+    ++second;
+  for (std::size_t i = second + 1; i < points.size(); ++i)
+    if (orient(points[0], points[second], points[i]) != 0)
+      return false;
+  return true;
 }
 
 // Lower-left corner and side of the square that the digital Voronoi texture covers.
@@ -250,11 +304,10 @@ DelaunayScheduler::~DelaunayScheduler() = default;
 bool DelaunayScheduler::triangulate() {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
-  const std::vector<int32_t> hull = convex_hull(points);
-  if (hull.size() < 3)
-    return false; // all points collinear: no triangle
-
   timer_ = std::make_unique<PhaseTimer>(device_, stats_);
+  if (all_collinear(points))
+    return false; // no triangle
+
   mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
   flipping_ = std::make_unique<Flipping>(device_, *mesh_, *scan_);
@@ -275,9 +328,6 @@ bool DelaunayScheduler::triangulate() {
   mesh.points.upload(device, coordinates);
   std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
   mesh.original_id.upload(device, original_id);
-  std::vector<int32_t> device_hull(hull.size());
-  for (std::size_t i = 0; i < hull.size(); ++i)
-    device_hull[i] = device_id_[hull[i]];
   mesh.tri_mark.fill(device, -1, mesh.triangle_capacity); // no mark: all bits set
   mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
   mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
@@ -296,7 +346,13 @@ bool DelaunayScheduler::triangulate() {
     timer_->charge(VoronoiBanding::kPhase);
   }
   if (!options_.voronoi_construction || !construct_from_voronoi(insertion)) {
+    // The hull only now: the Voronoi construction does without it.
+    const std::vector<int32_t> hull = convex_hull(points);
+    std::vector<int32_t> device_hull(hull.size());
+    for (std::size_t i = 0; i < hull.size(); ++i)
+      device_hull[i] = device_id_[hull[i]];
     const HullFan fan = hull_fan(device_hull);
+    timer_->charge("upload");
     mesh.tri_vertex.upload(device, fan.vertices);
     mesh.tri_neighbor.upload(device, fan.neighbors);
     mesh.triangle_count = fan.vertices.size() / 3;

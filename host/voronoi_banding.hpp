@@ -17,7 +17,7 @@ public:
 
   VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // A texture side suited to n points: the power of two at or above sqrt(n) / 2.
+  // A texture side suited to n points: the power of two nearest sqrt(n) / 2.5.
   static int default_grid(std::size_t n);
 
   // Maps the device points into a grid x grid texture over the square

@@ -125,6 +125,22 @@ inline bool triangle_before(__global const int *out_vertex, int s, int t) {
   return s1 < t1 || (s1 == t1 && out_vertex[3 * s + 2] < out_vertex[3 * t + 2]);
 }
 
+// Moves the root of the max-heap bucket[0 .. size) down to its place.
+inline void sift_down(__global const int *out_vertex, __global int *bucket, int root, int size) {
+  const int t = bucket[root];
+  for (int child = 2 * root + 1; child < size; child = 2 * root + 1) {
+    if (child + 1 < size && triangle_before(out_vertex, bucket[child], bucket[child + 1]))
+      ++child;
+    if (!triangle_before(out_vertex, t, bucket[child]))
+      break;
+    bucket[root] = bucket[child];
+    root = child;
+  }
+  bucket[root] = t;
+}
+
+// Buckets are small (a vertex's triangles), but not always: the centre of a
+// wheel owns them all, so large ones are heap-sorted (O(d log d)).
 __kernel void sort_buckets(__global const int *out_vertex, __global const int *bucket_start,
                            __global const int *bucket_size, __global int *order,
                            __global int *position, const int points) {
@@ -132,17 +148,29 @@ __kernel void sort_buckets(__global const int *out_vertex, __global const int *b
   if (v >= points)
     return;
   const int start = bucket_start[v], size = bucket_size[v];
-  for (int i = 1; i < size; ++i) {
-    const int t = order[start + i];
-    int j = i - 1;
-    while (j >= 0 && triangle_before(out_vertex, t, order[start + j])) {
-      order[start + j + 1] = order[start + j];
-      --j;
+  __global int *bucket = order + start;
+  if (size <= 32) {
+    for (int i = 1; i < size; ++i) {
+      const int t = bucket[i];
+      int j = i - 1;
+      while (j >= 0 && triangle_before(out_vertex, t, bucket[j])) {
+        bucket[j + 1] = bucket[j];
+        --j;
+      }
+      bucket[j + 1] = t;
     }
-    order[start + j + 1] = t;
+  } else {
+    for (int root = size / 2 - 1; root >= 0; --root)
+      sift_down(out_vertex, bucket, root, size);
+    for (int end = size - 1; end > 0; --end) {
+      const int top = bucket[0];
+      bucket[0] = bucket[end];
+      bucket[end] = top;
+      sift_down(out_vertex, bucket, 0, end);
+    }
   }
   for (int i = 0; i < size; ++i)
-    position[order[start + i]] = start + i;
+    position[bucket[i]] = start + i;
 }
 
 __kernel void write_sorted(__global const int *order, __global const int *position,

@@ -112,6 +112,21 @@ TEST_CASE("delaunay: degenerate input") {
     const auto result = triangulate_and_check(points);
     CHECK(result.stats.duplicates == 3);
   }
+  SUBCASE("a wheel: cocircular points around one vertex that owns every triangle") {
+    std::vector<Point> points = {{0, 0}};
+    const int spokes = 4000;
+    for (int i = 0; i < spokes; ++i) {
+      const double angle = 2 * M_PI * i / spokes;
+      points.push_back({std::cos(angle), std::sin(angle)});
+    }
+    const auto result = triangulate_and_check(points);
+    // In general position the centre is in every triangle; rounded points on
+    // the circle may shave a few off, never most.
+    long at_centre = 0;
+    for (const auto &t : result.triangles)
+      at_centre += t[0] == 0;
+    CHECK(at_centre > spokes / 2);
+  }
   SUBCASE("a line plus one point") {
     std::vector<Point> points;
     for (int i = 0; i < 3000; ++i)

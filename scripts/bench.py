@@ -155,10 +155,16 @@ def read_poly(path):
     return pts, segs
 
 pts, segs = read_poly(sys.argv[1])
+# The Delaunay triangulation of the points alone first: Triangle's -p builds
+# it the same way before it recovers the segments, so the difference of the
+# two times is its segment recovery.
 t0 = time.perf_counter()
-out = triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc')
+triangle.triangulate({'vertices': pts}, '')
 t1 = time.perf_counter()
-print(json.dumps({'seconds': t1 - t0, 'triangles': int(len(out['triangles'])),
+out = triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc')
+t2 = time.perf_counter()
+print(json.dumps({'seconds': t2 - t1, 'dt_seconds': t1 - t0,
+                  'triangles': int(len(out['triangles'])),
                   'vertices': int(len(out['vertices']))}))
 """
 
@@ -329,7 +335,7 @@ def run_triangle(available, node, timeout, child=TRIANGLE_CHILD, switches=""):
     stdout, peak = run_measured(cmd, timeout)
     r = last_json_line(stdout)
     return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles"),
-            "vertices": r.get("vertices")}
+            "vertices": r.get("vertices"), "dt_seconds": r.get("dt_seconds")}
 
 
 def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
@@ -625,20 +631,31 @@ def main_cdt(a, ap):
             if cl and cl.get("device"):
                 device = cl["device"]
             compare_triangle_counts(f"cdt {variant} n={n}", results, warnings)
+            # Segment insertion on its own: clmesh's phase, Triangle's -pc time
+            # less its Delaunay triangulation of the same points.
+            ours = dict(cl["phases"]).get("constraint_insertion") if cl else None
+            theirs = (tr["seconds"] - tr["dt_seconds"]
+                      if tr and tr.get("dt_seconds") is not None else None)
             rows.append([variant, str(n), str(m), fmt_s(cl), fmt_s(tr), fmt_s(cg),
-                         fmt_ratio(cl, tr), fmt_ratio(cl, cg), fmt_mb(cl), fmt_mb(tr),
-                         fmt_mb(cg), fmt_phases(cl)])
+                         fmt_ratio(cl, tr), fmt_ratio(cl, cg),
+                         "fail" if ours is None else f"{ours:.3f}",
+                         "fail" if theirs is None else f"{theirs:.3f}",
+                         fmt_ratio({"seconds": ours} if ours is not None else None,
+                                   {"seconds": theirs} if theirs is not None else None),
+                         fmt_mb(cl), fmt_mb(tr), fmt_mb(cg), fmt_phases(cl)])
 
     header = ["segments", "n", "m", "clmesh compute s", "Triangle -pc s", "CGAL CDT s",
-              "clmesh/Triangle", "clmesh/CGAL", "clmesh peak MB", "Triangle peak MB",
-              "CGAL peak MB", "clmesh phases (s)"]
+              "clmesh/Triangle", "clmesh/CGAL", "clmesh constraint insertion s",
+              "Triangle segment recovery s", "insertion/recovery", "clmesh peak MB",
+              "Triangle peak MB", "CGAL peak MB", "clmesh phases (s)"]
     return report(a, header, rows,
                   [f"Constrained Delaunay triangulation of the whole convex hull (-pc); best of "
                    f"{a.repeat} run(s), seed {a.seed}; n uniform points, m segments ('short': random "
                    "edges of the Delaunay triangulation of a quarter of the points; 'long': x-monotone "
                    "chains in horizontal strips, segments about 1/11 of the square long); times "
                    "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
-                   "clmesh is faster)."],
+                   "clmesh is faster); Triangle's segment recovery is its -pc time less its "
+                   "Delaunay triangulation of the same points, timed just before."],
                   device, warnings, failures)
 
 

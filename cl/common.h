@@ -81,6 +81,17 @@ inline int infinite_index(VertexTriple tri) {
   return tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
 }
 
+// A ghost stands on the hull edge from its vertex before infinity to its
+// vertex after it (counter-clockwise along the hull).
+inline int ghost_edge_start(VertexTriple ghost) { return ghost.v[prev3(infinite_index(ghost))]; }
+inline int ghost_edge_end(VertexTriple ghost) { return ghost.v[next3(infinite_index(ghost))]; }
+
+// The ghost after ghost g along the hull (after: 1) or before it (after: 0).
+inline int adjacent_ghost(__global const int *tri_neighbor, VertexTriple ghost, int g, int after) {
+  const int k = infinite_index(ghost);
+  return link_triangle(tri_neighbor[3 * g + (after ? prev3(k) : next3(k))]);
+}
+
 inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y);

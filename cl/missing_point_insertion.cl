@@ -50,12 +50,11 @@ __kernel void locate_points(__global const double2 *points, __global const int *
 // convex hull never allows).
 inline int next_visible_ghost(__global const double2 *points, __global const int *tri_vertex,
                               __global const int *tri_neighbor, int g, int start, int p, int dir) {
-  const VertexTriple tri = load_vertices(tri_vertex, g);
-  const int k = infinite_index(tri);
-  const int h = link_triangle(tri_neighbor[3 * g + (dir == 0 ? prev3(k) : next3(k))]);
+  const int h = adjacent_ghost(tri_neighbor, load_vertices(tri_vertex, g), g, dir == 0);
   const VertexTriple next = load_vertices(tri_vertex, h);
-  const int j = infinite_index(next);
-  return h != start && orient_vertices(points, next.v[next3(j)], next.v[prev3(j)], p) > 0 ? h : -1;
+  return h != start && orient_vertices(points, ghost_edge_end(next), ghost_edge_start(next), p) > 0
+             ? h
+             : -1;
 }
 
 // Marks the triangle(s) each pending point would split with its priority.

@@ -56,12 +56,9 @@ __kernel void count_lowest_boundary_vertices(__global const double2 *points,
   if (!is_ghost(tri))
     return;
   // This ghost stands on the boundary edge u -> w; the previous one on z -> u.
-  const int k = infinite_index(tri);
-  const int u = tri.v[prev3(k)], w = tri.v[next3(k)];
-  const int previous = link_triangle(tri_neighbor[3 * t + next3(k)]);
-  const VertexTriple before = load_vertices(tri_vertex, previous);
-  const int j = infinite_index(before);
-  const int z = before.v[prev3(j)];
+  const int u = ghost_edge_start(tri), w = ghost_edge_end(tri);
+  const int z =
+      ghost_edge_start(load_vertices(tri_vertex, adjacent_ghost(tri_neighbor, tri, t, 0)));
   const double2 pz = points[z], pu = points[u], pw = points[w];
   const int turn = clm_orient2d(pz.x, pz.y, pu.x, pu.y, pw.x, pw.y);
   // Straight on: u strictly between z and w (a turn back is no convex cycle).

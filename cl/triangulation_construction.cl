@@ -14,11 +14,21 @@
 // leaves them out of the diagram and the construction is repeated.
 #include "common.h"
 
-// The distinct sites of block (x, y) counter-clockwise from its lower-left
-// pixel, consecutive repeats removed; returns how many triangles they make.
-inline int block_sites(__global const int *voronoi, int grid, int x, int y, int *s) {
-  const int c[4] = {voronoi[y * grid + x], voronoi[y * grid + x + 1],
-                    voronoi[(y + 1) * grid + x + 1], voronoi[(y + 1) * grid + x]};
+// The site colours of block b's corners, counter-clockwise from its
+// lower-left pixel.
+inline void load_corners(__global const int *voronoi, int grid, int b, int *c) {
+  const int side = grid - 1, x = b % side, y = b / side;
+  c[0] = voronoi[y * grid + x];
+  c[1] = voronoi[y * grid + x + 1];
+  c[2] = voronoi[(y + 1) * grid + x + 1];
+  c[3] = voronoi[(y + 1) * grid + x];
+}
+
+// The distinct sites of block b counter-clockwise from its lower-left pixel,
+// consecutive repeats removed; returns how many triangles they make.
+inline int block_sites(__global const int *voronoi, int grid, int b, int *s) {
+  int c[4];
+  load_corners(voronoi, grid, b, c);
   int k = 0;
   for (int i = 0; i < 4; ++i)
     if (c[i] != c[(i + 3) & 3])
@@ -36,7 +46,7 @@ __kernel void count_block_triangles(__global const int *voronoi, __global int *c
   if (b >= side * side)
     return;
   int s[4];
-  counts[b] = block_sites(voronoi, grid, b % side, b / side, s);
+  counts[b] = block_sites(voronoi, grid, b, s);
 }
 
 __kernel void emit_block_triangles(__global const double2 *points, __global const int *voronoi,
@@ -46,7 +56,7 @@ __kernel void emit_block_triangles(__global const double2 *points, __global cons
   if (b >= side * side)
     return;
   int s[4];
-  const int count = block_sites(voronoi, grid, b % side, b / side, s);
+  const int count = block_sites(voronoi, grid, b, s);
   if (count == 0)
     return;
   int first = 0; // the diagonal from s[first] to s[first + 2]
@@ -121,14 +131,6 @@ __kernel void flag_repeated_border_sites(__global const int *cycle, __global con
 // triangle holds v -> u, or out of the texture to the ghost of that border
 // edge. Blocks are numbered y * (grid - 1) + x; side k of a block joins its
 // corners k and k + 1 (0 bottom, 1 right, 2 top, 3 left).
-
-inline void load_corners(__global const int *voronoi, int grid, int b, int *c) {
-  const int side = grid - 1, x = b % side, y = b / side;
-  c[0] = voronoi[y * grid + x];
-  c[1] = voronoi[y * grid + x + 1];
-  c[2] = voronoi[(y + 1) * grid + x + 1];
-  c[3] = voronoi[(y + 1) * grid + x];
-}
 
 // The link of the directed edge from -> to among the triangles of block b, or -1.
 inline int block_edge(__global const int *tri_vertex, __global const int *offsets, int b,

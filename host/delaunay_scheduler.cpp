@@ -447,13 +447,8 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
   // convex. A structure that is no triangulation may flip on and on: a bound
   // on the passes, then the check that the cycle winds around once.
   flips_ = FlipCounts{};
-  std::vector<cl_int> every_slot(mesh.triangle_count);
-  std::iota(every_slot.begin(), every_slot.end(), 0);
-  DeviceArray<cl_int> active(device_, every_slot.size());
-  active.upload(device_, every_slot);
   const long max_passes = 64 + 4 * static_cast<long>(std::sqrt(static_cast<double>(n)));
-  const bool flipped = flipping_->run(active, every_slot.size(), stamp_, flips_, max_passes);
-  timer_->charge(Flipping::kPhase);
+  const bool flipped = flip_all(flips_, Flipping::kPhase, max_passes);
   if (!flipped || !shifting.boundary_winds_once())
     return false;
   DeviceArray<cl_int> missing(device_, n);
@@ -524,13 +519,14 @@ void DelaunayScheduler::grow(std::size_t extra_points) {
   flipping_->set_fixed_boundary(fixed);
 }
 
-void DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase) {
+bool DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase, long max_passes) {
   std::vector<cl_int> every_triangle(mesh_->triangle_count);
   std::iota(every_triangle.begin(), every_triangle.end(), 0);
   DeviceArray<cl_int> active(device_, every_triangle.size());
   active.upload(device_, every_triangle);
-  flipping_->run(active, every_triangle.size(), stamp_, counts);
+  const bool done = flipping_->run(active, every_triangle.size(), stamp_, counts, max_passes);
   timer_->charge(phase);
+  return done;
 }
 
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,

@@ -61,8 +61,10 @@ public:
   // their lists by the mesh are rebuilt.
   void grow(std::size_t extra_points);
 
-  // Flips every triangle until locally (constrained) Delaunay.
-  void flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase);
+  // Flips every triangle until locally (constrained) Delaunay; false when
+  // `max_passes` passes (-1: no limit) did not finish.
+  bool flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase,
+                long max_passes = -1);
 
   // Downloads the real triangles not flagged in `removed` (per slot), with
   // the per-slot `label` of each in `labels` when given.

@@ -70,6 +70,25 @@ inline int allocate_slot(__global const int *free_list, int free_first, int free
   return k < free_count ? free_list[free_first + k] : first_new + (k - free_count);
 }
 
+// Reserves `count` consecutive entries of a list whose length is *total, with
+// one global atomic per work-group instead of one per item (a shared counter
+// hit by every item serialises the device). Returns the first entry of this
+// work-item's range. The ranges' order depends on scheduling: use it only for
+// lists whose order cannot reach the output, and for counts. Every work-item
+// of the group must call it (it holds barriers); scratch: two __local ints.
+inline int reserve_in_group(int count, volatile __local int *scratch,
+                            volatile __global int *total) {
+  if (get_local_id(0) == 0)
+    scratch[0] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const int offset = count > 0 ? atomic_add(&scratch[0], count) : 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0)
+    scratch[1] = scratch[0] > 0 ? atomic_add(total, scratch[0]) : 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return scratch[1] + offset;
+}
+
 inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
 
 inline bool is_ghost(VertexTriple tri) {

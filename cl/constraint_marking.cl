@@ -3,7 +3,10 @@
 //
 // Outer loop: one work-item per constraint a-b finds, in the triangle fan of
 // a, the triangle the constraint leaves a through, then walks along it to b
-// and marks every triangle it crosses with atomic minimum of its index. A
+// and marks every triangle it crosses with atomic minimum of its index. (The
+// device index is the constraint's priority: the host numbers constraints in
+// a scrambled order so that neighbouring input segments do not wait for one
+// another; the walks still run in input order, walk_order, for locality.) A
 // vertex lying exactly on the constraint, or a crossed edge that is itself a
 // constraint, is reported to the host (split the constraint there / refuse
 // crossing constraints). Inner loop: one work-item per marked triangle A
@@ -62,21 +65,17 @@ inline bool ahead(__global const double2 *points, int a, int b, int v) {
   return (pv.x - pa.x) * (pb.x - pa.x) + (pv.y - pa.y) * (pb.y - pa.y) > 0;
 }
 
-__kernel void
-mark_constraint_triangles(__global const double2 *points, __global const int *tri_vertex,
-                          __global const int *tri_neighbor, __global const int *vertex_triangle,
-                          __global const int *constraint_start,
-                          __global const int *constraint_adjacent, __global const int *segment_a,
-                          __global const int *segment_b, __global int *segment_state,
-                          __global int *split_vertex, __global int *crossed_vertex,
-                          __global int *crossed_triangle, volatile __global int *constraint_mark,
-                          volatile __global int *counters, const int max_steps, const int m) {
-  // counters[0]: segments still pending, [1]: constraint-triangle intersections,
-  // [2]: segments to split, crossing another, or lost (read back only then)
-  const int s = get_global_id(0);
-  if (s >= m || segment_state[s] == CLM_SEGMENT_PRESENT)
-    return;
-  const int a = segment_a[s], b = segment_b[s];
+// Walks constraint s (see the header) and marks the triangles it crosses;
+// returns how many it marked. *pending: set when s is not yet in the mesh
+// and can be walked; *report: set when the host must look at its state.
+inline int mark_constraint(__global const double2 *points, __global const int *tri_vertex,
+                           __global const int *tri_neighbor, __global const int *vertex_triangle,
+                           __global const int *constraint_start,
+                           __global const int *constraint_adjacent, int a, int b, int s,
+                           __global int *segment_state, __global int *split_vertex,
+                           __global int *crossed_vertex, __global int *crossed_triangle,
+                           volatile __global int *constraint_mark, int max_steps, int *pending,
+                           int *report) {
   // The triangle of a's fan whose cone holds the direction a -> b.
   const int first = vertex_triangle[a];
   int t = first, k = index_in(tri_vertex, t, a), exit_triangle = -1;
@@ -84,7 +83,7 @@ mark_constraint_triangles(__global const double2 *points, __global const int *tr
     const int x = tri_vertex[3 * t + next3(k)], y = tri_vertex[3 * t + prev3(k)];
     if (x == b || y == b) {
       segment_state[s] = CLM_SEGMENT_PRESENT;
-      return;
+      return 0;
     }
     // A fan vertex on a-b splits the segment there (y is checked too: the
     // next triangle of the fan may be a ghost).
@@ -96,8 +95,8 @@ mark_constraint_triangles(__global const double2 *points, __global const int *tr
     if (on_segment >= 0) {
       segment_state[s] = CLM_SEGMENT_SPLIT;
       split_vertex[s] = on_segment;
-      atomic_inc(&counters[2]);
-      return;
+      *report = 1;
+      return 0;
     }
     if (x >= 0 && y >= 0 && ox > 0 && oy < 0) {
       exit_triangle = t;
@@ -110,46 +109,68 @@ mark_constraint_triangles(__global const double2 *points, __global const int *tr
   }
   if (exit_triangle < 0) {
     segment_state[s] = CLM_SEGMENT_LOST;
-    atomic_inc(&counters[2]);
-    return;
+    *report = 1;
+    return 0;
   }
-  atomic_inc(&counters[0]);
+  *pending = 1;
   // Walk along a-b, crossing edge e of t each step.
   t = exit_triangle;
   int e = k;
   for (int step = 0; step < max_steps; ++step) {
     atomic_min(&constraint_mark[t], s);
-    atomic_inc(&counters[1]);
     const int p = tri_vertex[3 * t + next3(e)], q = tri_vertex[3 * t + prev3(e)];
     if (is_constraint(constraint_start, constraint_adjacent, p, q)) {
       segment_state[s] = CLM_SEGMENT_CROSSING;
       split_vertex[s] = p;
       crossed_vertex[s] = q;
       crossed_triangle[s] = t;
-      atomic_inc(&counters[2]);
-      return;
+      *report = 1;
+      return step + 1;
     }
     const int link = tri_neighbor[3 * t + e];
     const int u = link_triangle(link), j = link_edge(link);
     const int z = tri_vertex[3 * u + j];
     if (z == b) {
       atomic_min(&constraint_mark[u], s);
-      atomic_inc(&counters[1]);
-      return;
+      return step + 2;
     }
     const int oz = orient_vertices(points, a, b, z);
     if (oz == 0) {
       segment_state[s] = CLM_SEGMENT_SPLIT; // z lies on a-b
       split_vertex[s] = z;
-      atomic_inc(&counters[2]);
-      return;
+      *report = 1;
+      return step + 1;
     }
     // u = (z, q, p): leave through z-q (opposite p) when z is on p's side.
     e = oz == orient_vertices(points, a, b, p) ? prev3(j) : next3(j);
     t = u;
   }
   segment_state[s] = CLM_SEGMENT_LOST;
-  atomic_inc(&counters[2]);
+  *report = 1;
+  return max_steps;
+}
+
+__kernel void mark_constraint_triangles(
+    __global const double2 *points, __global const int *tri_vertex,
+    __global const int *tri_neighbor, __global const int *vertex_triangle,
+    __global const int *constraint_start, __global const int *constraint_adjacent,
+    __global const int *walk_order, __global const int *segment_a, __global const int *segment_b,
+    __global int *segment_state, __global int *split_vertex, __global int *crossed_vertex,
+    __global int *crossed_triangle, volatile __global int *constraint_mark,
+    volatile __global int *counters, const int max_steps, const int m) {
+  // counters[0]: segments still pending, [1]: constraint-triangle intersections,
+  // [2]: segments to split, crossing another, or lost (read back only then)
+  const int gid = get_global_id(0), s = gid < m ? walk_order[gid] : -1;
+  int pending = 0, report = 0, crossings = 0;
+  if (s >= 0 && segment_state[s] != CLM_SEGMENT_PRESENT)
+    crossings = mark_constraint(points, tri_vertex, tri_neighbor, vertex_triangle, constraint_start,
+                                constraint_adjacent, segment_a[s], segment_b[s], s, segment_state,
+                                split_vertex, crossed_vertex, crossed_triangle, constraint_mark,
+                                max_steps, &pending, &report);
+  volatile __local int scratch[2];
+  reserve_in_group(pending, scratch, &counters[0]);
+  reserve_in_group(crossings, scratch, &counters[1]);
+  reserve_in_group(report, scratch, &counters[2]);
 }
 
 // Does the open segment a-b cross the interior of triangle t?
@@ -290,20 +311,22 @@ __kernel void apply_constraint_flips(__global const int *active, __global const 
                                      volatile __global int *flip_count, const int stamp,
                                      const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  flipped[gid] = 0;
-  const int pl = plan[gid];
-  if (pl < 0)
-    return;
-  const int A = active[gid], exit = pl & 3, rank = pl >> 2;
-  const uint key = ((uint)rank << 29) | (uint)A;
-  if (tri_mark[A] != key || tri_mark[next[gid]] != key ||
-      (previous[gid] >= 0 && tri_mark[previous[gid]] != key))
-    return;
-  flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, A, exit, stamp);
-  flipped[gid] = 1;
-  atomic_inc(flip_count);
+  int flips = 0;
+  if (gid < n) {
+    const int pl = plan[gid];
+    if (pl >= 0) {
+      const int A = active[gid], exit = pl & 3, rank = pl >> 2;
+      const uint key = ((uint)rank << 29) | (uint)A;
+      if (tri_mark[A] == key && tri_mark[next[gid]] == key &&
+          (previous[gid] < 0 || tri_mark[previous[gid]] == key)) {
+        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, A, exit, stamp);
+        flips = 1;
+      }
+    }
+    flipped[gid] = flips;
+  }
+  volatile __local int scratch[2];
+  reserve_in_group(flips, scratch, flip_count);
 }
 
 // Second step of the flips, and the marks of the new triangles.
@@ -350,9 +373,9 @@ __kernel void remark_after_flips(__global const int *active, __global const int 
 // and their neighbours (their next or previous triangle changed), plus the
 // flips that lost a mark. Each enters once (dirty_stamp holds the iteration).
 inline void add_dirty(__global const int *constraint_mark, volatile __global int *dirty_stamp,
-                      __global int *dirty, volatile __global int *dirty_count, int t, int stamp) {
+                      int *found, int *count, int t, int stamp) {
   if (constraint_mark[t] != CLM_NO_CONSTRAINT && atomic_xchg(&dirty_stamp[t], stamp) != stamp)
-    dirty[atomic_inc(dirty_count)] = t;
+    found[(*count)++] = t;
 }
 
 __kernel void collect_dirty(__global const int *active, __global const int *plan,
@@ -361,20 +384,25 @@ __kernel void collect_dirty(__global const int *active, __global const int *plan
                             volatile __global int *dirty_stamp, __global int *dirty,
                             volatile __global int *dirty_count, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || plan[gid] < 0)
-    return;
-  const int A = active[gid];
-  if (!flipped[gid]) {
-    add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count, A, stamp);
-    return;
+  int found[8], count = 0;
+  if (gid < n && plan[gid] >= 0) {
+    const int A = active[gid];
+    if (!flipped[gid]) {
+      add_dirty(constraint_mark, dirty_stamp, found, &count, A, stamp);
+    } else {
+      const int pair[2] = {A, next[gid]};
+      for (int k = 0; k < 2; ++k) {
+        add_dirty(constraint_mark, dirty_stamp, found, &count, pair[k], stamp);
+        for (int e = 0; e < 3; ++e)
+          add_dirty(constraint_mark, dirty_stamp, found, &count,
+                    link_triangle(tri_neighbor[3 * pair[k] + e]), stamp);
+      }
+    }
   }
-  const int pair[2] = {A, next[gid]};
-  for (int k = 0; k < 2; ++k) {
-    add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count, pair[k], stamp);
-    for (int e = 0; e < 3; ++e)
-      add_dirty(constraint_mark, dirty_stamp, dirty, dirty_count,
-                link_triangle(tri_neighbor[3 * pair[k] + e]), stamp);
-  }
+  volatile __local int scratch[2];
+  const int first = reserve_in_group(count, scratch, dirty_count);
+  for (int k = 0; k < count; ++k)
+    dirty[first + k] = found[k];
 }
 
 // Full sweep after the outer loop's marking: every marked slot.

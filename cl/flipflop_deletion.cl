@@ -272,35 +272,39 @@ __kernel void flipflop_apply(__global const int *active, __global const int *ope
                              __global int *point_state, __global int *applied,
                              volatile __global int *flip_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int op = operation[gid], t = active[gid];
-  applied[gid] = -1;
-  if (op == CLM_OP_REMOVE) {
-    int s[4];
-    load_star(star, gid, s);
-    const int smallest = smallest_slot(s);
-    const uint key = 4u * (uint)smallest + 3u;
-    bool owned = true;
-    for (int k = 0; k < 4; ++k)
-      owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
-    // Up to four proposers share this flip: the first to take the mark applies it.
-    if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
-      const int p = proposal[gid];
-      remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
-      applied[gid] = smallest;
-      point_state[p] = CLM_POINT_DELETED;
-      atomic_inc(&flip_counts[2]);
-    }
-  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
-    const int u = link_triangle(proposal[gid]), i = link_edge(proposal[gid]);
-    const uint key = (op == CLM_OP_FLOP ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
-    if (tri_mark[t] == key && tri_mark[u] == key) {
-      flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
-      applied[gid] = t;
-      atomic_inc(&flip_counts[op == CLM_OP_DELAUNAY ? 0 : 1]);
+  int done[3] = {0, 0, 0}; // Delaunay flips, flops, removals by this work-item
+  if (gid < n) {
+    const int op = operation[gid], t = active[gid];
+    applied[gid] = -1;
+    if (op == CLM_OP_REMOVE) {
+      int s[4];
+      load_star(star, gid, s);
+      const int smallest = smallest_slot(s);
+      const uint key = 4u * (uint)smallest + 3u;
+      bool owned = true;
+      for (int k = 0; k < 4; ++k)
+        owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
+      // Up to four proposers share this flip: the first to take the mark applies it.
+      if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
+        const int p = proposal[gid];
+        remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
+        applied[gid] = smallest;
+        point_state[p] = CLM_POINT_DELETED;
+        done[2] = 1;
+      }
+    } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+      const int u = link_triangle(proposal[gid]), i = link_edge(proposal[gid]);
+      const uint key = (op == CLM_OP_FLOP ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
+      if (tri_mark[t] == key && tri_mark[u] == key) {
+        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
+        applied[gid] = t;
+        done[op == CLM_OP_DELAUNAY ? 0 : 1] = 1;
+      }
     }
   }
+  volatile __local int scratch[2];
+  for (int k = 0; k < 3; ++k)
+    reserve_in_group(done[k], scratch, &flip_counts[k]);
 }
 
 // Second step: the outward edges of every applied operation.

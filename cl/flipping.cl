@@ -148,20 +148,21 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
                          __global int *children, __global int *flipped,
                          volatile __global int *flip_count, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int t = active[gid], prop = proposal[gid];
   int did_flip = 0;
-  if (prop >= 0) {
-    const int u = link_triangle(prop), i = link_edge(prop);
-    const uint key = (uint)(3 * t + i);
-    if (tri_mark[t] == key && tri_mark[u] == key) {
-      flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
-      atomic_inc(flip_count);
-      did_flip = 1;
+  if (gid < n) {
+    const int t = active[gid], prop = proposal[gid];
+    if (prop >= 0) {
+      const int u = link_triangle(prop), i = link_edge(prop);
+      const uint key = (uint)(3 * t + i);
+      if (tri_mark[t] == key && tri_mark[u] == key) {
+        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
+        did_flip = 1;
+      }
     }
+    flipped[gid] = did_flip;
   }
-  flipped[gid] = did_flip;
+  volatile __local int scratch[2];
+  reserve_in_group(did_flip, scratch, flip_count);
 }
 
 // Second step: outward edges (1 and 2) of both flipped triangles.

@@ -10,6 +10,17 @@ namespace clmesh {
 namespace {
 const char *kFile = "constraint_marking.cl";
 constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
+
+// A bijection of 32-bit integers that scatters consecutive values (the
+// finaliser of MurmurHash3): the constraints' priority order.
+uint32_t scramble(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x85ebca6bu;
+  x ^= x >> 13;
+  x *= 0xc2b2ae35u;
+  x ^= x >> 16;
+  return x;
+}
 } // namespace
 
 ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
@@ -30,6 +41,15 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, Prefi
       flipped_(device, mesh.triangle_capacity), flip_count_(device, 1),
       dirty_stamp_(device, mesh.triangle_capacity), dirty_count_(device, 1) {
   dirty_stamp_.fill(device_, 0, mesh.triangle_capacity);
+}
+
+std::vector<cl_int> ConstraintInsertion::download_by_segment(const DeviceArray<cl_int> &array) {
+  const std::size_t m = segments_.size();
+  const auto by_priority = array.download(device_, m);
+  std::vector<cl_int> by_segment(m);
+  for (std::size_t d = 0; d < m; ++d)
+    by_segment[priority_order_[d]] = by_priority[d];
+  return by_segment;
 }
 
 std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<Segment> &segments) {
@@ -81,11 +101,27 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   for (std::size_t v = 0; v < n; ++v)
     start[v + 1] += start[v];
   std::vector<cl_int> cursor(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < m; ++i) {
-    adjacent[cursor[segments[i].a]++] = segments[i].b;
-    adjacent[cursor[segments[i].b]++] = segments[i].a;
-    a[i] = segments[i].a;
-    b[i] = segments[i].b;
+  for (const Segment &s : segments) {
+    adjacent[cursor[s.a]++] = s.b;
+    adjacent[cursor[s.b]++] = s.a;
+  }
+  // Marks keep the constraint of smallest device index. Input files list
+  // segments along chains and contours, so neighbouring constraints would
+  // have neighbouring priorities and each would wait for the one beside it:
+  // the device holds them in a scrambled (fixed) order instead.
+  priority_order_.resize(m);
+  for (std::size_t i = 0; i < m; ++i)
+    priority_order_[i] = static_cast<int32_t>(i);
+  std::sort(priority_order_.begin(), priority_order_.end(), [](int32_t x, int32_t y) {
+    return scramble(static_cast<uint32_t>(x)) < scramble(static_cast<uint32_t>(y));
+  });
+  // The marking walks run in input order all the same (neighbouring walks
+  // share the triangles they read): walk_order[i] is segment i's device index.
+  std::vector<cl_int> walk_order(m);
+  for (std::size_t d = 0; d < m; ++d) {
+    a[d] = segments[priority_order_[d]].a;
+    b[d] = segments[priority_order_[d]].b;
+    walk_order[priority_order_[d]] = static_cast<cl_int>(d);
   }
   mesh_.constraint_start.upload(device_, start);
   mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
@@ -94,6 +130,8 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   segment_a_ = DeviceArray<cl_int>(device_, m);
   segment_b_ = DeviceArray<cl_int>(device_, m);
   segment_state_ = DeviceArray<cl_int>(device_, m);
+  walk_order_ = DeviceArray<cl_int>(device_, m);
+  walk_order_.upload(device_, walk_order);
   split_vertex_ = DeviceArray<cl_int>(device_, m);
   crossed_vertex_ = DeviceArray<cl_int>(device_, m);
   crossed_triangle_ = DeviceArray<cl_int>(device_, m);
@@ -112,10 +150,10 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   counters_.fill(device_, 0, 5);
   set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
-           mesh_.constraint_adjacent.buffer(), segment_a_.buffer(), segment_b_.buffer(),
-           segment_state_.buffer(), split_vertex_.buffer(), crossed_vertex_.buffer(),
-           crossed_triangle_.buffer(), constraint_mark_.buffer(), counters_.buffer(),
-           static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
+           mesh_.constraint_adjacent.buffer(), walk_order_.buffer(), segment_a_.buffer(),
+           segment_b_.buffer(), segment_state_.buffer(), split_vertex_.buffer(),
+           crossed_vertex_.buffer(), crossed_triangle_.buffer(), constraint_mark_.buffer(),
+           counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
   launch(device_, mark_, m, kPhase);
   const auto counters = counters_.download(device_, 3);
   if (first)
@@ -123,8 +161,8 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   if (counters[2] == 0)
     return counters[0];
   // Splits and crossings are rare: only then is the segment state read back.
-  const auto state = segment_state_.download(device_, m);
-  const auto vertex = split_vertex_.download(device_, m);
+  const auto state = download_by_segment(segment_state_);
+  const auto vertex = download_by_segment(split_vertex_);
   if (std::find(state.begin(), state.end(), kCrossing) != state.end()) {
     split_crossings(state, vertex, stats, insert_points);
     return -1;
@@ -158,8 +196,8 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
                                           ConstrainedStats &stats,
                                           const PointInserter &insert_points) {
   const std::size_t m = segments_.size();
-  const auto other = crossed_vertex_.download(device_, m);
-  const auto triangle = crossed_triangle_.download(device_, m);
+  const auto other = download_by_segment(crossed_vertex_);
+  const auto triangle = download_by_segment(crossed_triangle_);
   std::map<std::pair<int32_t, int32_t>, std::size_t> piece_of;
   for (std::size_t i = 0; i < m; ++i)
     piece_of[std::minmax(segments_[i].a, segments_[i].b)] = i;

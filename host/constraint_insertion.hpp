@@ -50,6 +50,8 @@ private:
   // Splits crossing segments at new vertices (one split per segment and call).
   void split_crossings(const std::vector<cl_int> &state, const std::vector<cl_int> &vertex,
                        ConstrainedStats &stats, const PointInserter &insert_points);
+  // A per-constraint device array, in the order of segments_.
+  std::vector<cl_int> download_by_segment(const DeviceArray<cl_int> &array);
   // Active list of every marked triangle; returns its length.
   std::size_t collect_marked();
   // One inner iteration over `active` triangles; returns the flips made and
@@ -62,12 +64,13 @@ private:
   cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, plan_, apply_, relink_, remark_,
       collect_dirty_, flag_marked_;
   std::vector<Segment> segments_;
-  std::vector<int32_t> origin_;     // input segment each constraint comes from
-  std::vector<char> split_origin_;  // input segments already counted as split
-  std::vector<Point> added_points_; // vertices added where segments cross
-  DeviceArray<cl_int> segment_a_, segment_b_, segment_state_, split_vertex_, crossed_vertex_,
-      crossed_triangle_, counters_, constraint_mark_, active_, next_active_, keep_, offset_,
-      plan_list_, next_, previous_, flipped_, flip_count_, dirty_stamp_, dirty_count_;
+  std::vector<int32_t> origin_;         // input segment each constraint comes from
+  std::vector<int32_t> priority_order_; // device constraint d is segments_[priority_order_[d]]
+  std::vector<char> split_origin_;      // input segments already counted as split
+  std::vector<Point> added_points_;     // vertices added where segments cross
+  DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
+      crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, active_, next_active_, keep_,
+      offset_, plan_list_, next_, previous_, flipped_, flip_count_, dirty_stamp_, dirty_count_;
 };
 
 } // namespace clmesh

@@ -42,6 +42,9 @@
 #else
 #define CLM_FN static inline
 #endif
+/* The exact stages, reached by few calls, stay out of line: inlined at every call site they
+ * would swell kernels (each predicate call would carry its expansion arrays). */
+#define CLM_COLD static __attribute__((noinline))
 
 /* Returned by the fast checks when the floating-point sign cannot be certified. */
 #define CLM_UNCERTAIN 2
@@ -245,7 +248,7 @@ CLM_FN int clm_orient2d_filter(double ax, double ay, double bx, double by, doubl
 /* Exact check on the original coordinates:
  *   det = (ax*by - ay*bx) + (bx*cy - by*cx) + (cx*ay - cy*ax),
  * each product an exact two-component expansion (no exact differences are assumed). */
-CLM_FN int clm_orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) {
+CLM_COLD int clm_orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) {
   double ab[CLM_LEN_MINOR], bc[CLM_LEN_MINOR], ca[CLM_LEN_MINOR], det[CLM_LEN_ORIENT];
   int abn = clm_minor2(ax, ay, bx, by, ab);
   int bcn = clm_minor2(bx, by, cx, cy, bc);
@@ -309,8 +312,8 @@ CLM_FN int clm_lifted_term(int on, const double *o, double px, double py, double
  *   det = lift(a) O(b,c,d) - lift(b) O(a,c,d) + lift(c) O(a,b,d) - lift(d) O(a,b,c)
  * with O(p,q,r) = M(p,q) + M(q,r) + M(r,p), M(p,q) = px*qy - py*qx, and
  * lift(p) = px*px + py*py, every product formed exactly. */
-CLM_FN int clm_incircle_exact(double ax, double ay, double bx, double by, double cx, double cy,
-                              double dx, double dy) {
+CLM_COLD int clm_incircle_exact(double ax, double ay, double bx, double by, double cx, double cy,
+                                double dx, double dy) {
   double ab[CLM_LEN_MINOR], bc[CLM_LEN_MINOR], cd[CLM_LEN_MINOR], da[CLM_LEN_MINOR];
   double ac[CLM_LEN_MINOR], ca[CLM_LEN_MINOR], bd[CLM_LEN_MINOR], db[CLM_LEN_MINOR];
   double orient[CLM_LEN_ORIENT];

@@ -232,6 +232,8 @@ std::string describe(const Device &device) {
   return device.description().device_name + " (" + device.description().platform_name + ")";
 }
 
+std::size_t max_work_group_size(const Device &device) { return device.max_work_group(); }
+
 Device::Device(cl::Device device, DeviceDescription description)
     : device_(device), description_(std::move(description)) {
   guarded("setup", "creating the context", [&] {

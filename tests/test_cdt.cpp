@@ -570,8 +570,11 @@ TEST_CASE("cdt: random points with non-crossing segments of many lengths") {
     const auto first = clmesh::constrained_delaunay(device(), pslg, options);
     options.delaunay.work_group = 256;
     const auto second = clmesh::constrained_delaunay(device(), pslg, options);
+    options.delaunay.work_group = clmesh::max_work_group_size(device());
+    const auto largest = clmesh::constrained_delaunay(device(), pslg, options);
     CHECK(first.mesh.triangles == second.mesh.triangles);
     CHECK(first.mesh.neighbors == second.mesh.neighbors);
+    CHECK(first.mesh.triangles == largest.mesh.triangles);
   }
 }
 

@@ -221,9 +221,14 @@ TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   const auto second = clmesh::delaunay(device(), points, options);
   options.work_group = 64;
   const auto third = clmesh::delaunay(device(), points, options);
+  // The largest the device allows (PoCL: 4096; private arrays of every
+  // work-item of a group must then fit a worker thread's stack).
+  options.work_group = clmesh::max_work_group_size(device());
+  const auto largest = clmesh::delaunay(device(), points, options);
   CHECK(first.triangles == second.triangles);
   CHECK(first.neighbors == second.neighbors);
   CHECK(first.triangles == third.triangles);
+  CHECK(first.triangles == largest.triangles);
   CHECK(first.stats.flips == third.stats.flips);
   CHECK(first.stats.construction == "voronoi");
   CHECK(first.stats.dropped_sites == second.stats.dropped_sites);

@@ -195,7 +195,11 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     const auto first = clmesh::refine_delaunay(device(), points, options);
     options.delaunay.work_group = 128;
     const auto second = clmesh::refine_delaunay(device(), points, options);
+    options.delaunay.work_group = clmesh::max_work_group_size(device());
+    const auto largest = clmesh::refine_delaunay(device(), points, options);
+    options.delaunay.work_group = 128;
     CHECK(first.mesh.triangles == second.mesh.triangles);
+    CHECK(first.mesh.triangles == largest.mesh.triangles);
     REQUIRE(first.added_points.size() == second.added_points.size());
     for (std::size_t i = 0; i < first.added_points.size(); ++i)
       CHECK((first.added_points[i].x == second.added_points[i].x &&

@@ -29,4 +29,7 @@ std::shared_ptr<Device> open_device(const std::string &spec = "");
 // Human-readable "device name (platform name)".
 std::string describe(const Device &device);
 
+// The largest work-group size the device accepts (DelaunayOptions::work_group).
+std::size_t max_work_group_size(const Device &device);
+
 } // namespace clmesh

@@ -13,6 +13,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "predicates.h"
+#include "priority.h"
 
 #define CLM_INFINITE (-1)
 #define CLM_NO_MARK 0xffffffffu
@@ -191,17 +192,6 @@ inline WalkResult walk_to_point(__global const double2 *points, __global const i
     result.triangle = t;
   }
   return result;
-}
-
-// A bijective mix of 32-bit integers: a deterministic pseudo-random priority,
-// so that conflict-free rounds do not degrade on sorted input.
-inline uint priority_of(uint x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
 }
 
 // Triangles rewritten by one split round or flip pass record their slot's

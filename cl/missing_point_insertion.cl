@@ -67,7 +67,7 @@ __kernel void mark_containers(__global const int *remaining, __global const int 
   if (gid >= n || status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
-  const uint key = priority_of((uint)p);
+  const uint key = clm_priority_of((uint)p);
   atomic_min(&tri_mark[t], key);
   if (edge >= 0)
     atomic_min(&tri_mark[link_triangle(tri_neighbor[3 * t + edge])], key);
@@ -90,7 +90,7 @@ __kernel void select_winners(__global const int *remaining, __global const int *
   int wins = 0;
   if (status[gid] == CLM_PENDING) {
     const int p = remaining[gid], t = location[p], edge = location_edge[p];
-    const uint key = priority_of((uint)p);
+    const uint key = clm_priority_of((uint)p);
     wins = tri_mark[t] == key &&
            (edge < 0 || tri_mark[link_triangle(tri_neighbor[3 * t + edge])] == key);
     if (edge < 0 &&

@@ -1,5 +1,7 @@
 #include "constraint_insertion.hpp"
 
+#include "priority.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -11,16 +13,6 @@ namespace {
 const char *kFile = "constraint_marking.cl";
 constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
 
-// A bijection of 32-bit integers that scatters consecutive values (the
-// finaliser of MurmurHash3): the constraints' priority order.
-uint32_t scramble(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x85ebca6bu;
-  x ^= x >> 13;
-  x *= 0xc2b2ae35u;
-  x ^= x >> 16;
-  return x;
-}
 } // namespace
 
 ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
@@ -113,7 +105,7 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   for (std::size_t i = 0; i < m; ++i)
     priority_order_[i] = static_cast<int32_t>(i);
   std::sort(priority_order_.begin(), priority_order_.end(), [](int32_t x, int32_t y) {
-    return scramble(static_cast<uint32_t>(x)) < scramble(static_cast<uint32_t>(y));
+    return clm_priority_of(static_cast<unsigned>(x)) < clm_priority_of(static_cast<unsigned>(y));
   });
   // The marking walks run in input order all the same (neighbouring walks
   // share the triangles they read): walk_order[i] is segment i's device index.

@@ -101,12 +101,13 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   // segments along chains and contours, so neighbouring constraints would
   // have neighbouring priorities and each would wait for the one beside it:
   // the device holds them in a scrambled (fixed) order instead.
-  priority_order_.resize(m);
+  std::vector<std::pair<unsigned, int32_t>> keyed(m); // a bijection: keys are distinct
   for (std::size_t i = 0; i < m; ++i)
-    priority_order_[i] = static_cast<int32_t>(i);
-  std::sort(priority_order_.begin(), priority_order_.end(), [](int32_t x, int32_t y) {
-    return clm_priority_of(static_cast<unsigned>(x)) < clm_priority_of(static_cast<unsigned>(y));
-  });
+    keyed[i] = {clm_priority_of(static_cast<unsigned>(i)), static_cast<int32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  priority_order_.resize(m);
+  for (std::size_t d = 0; d < m; ++d)
+    priority_order_[d] = keyed[d].second;
   // The marking walks run in input order all the same (neighbouring walks
   // share the triangles they read): walk_order[i] is segment i's device index.
   std::vector<cl_int> walk_order(m);

@@ -84,17 +84,19 @@ __kernel void spread_flood(__global const int *frontier, __global const int *tri
                            __global int *next_frontier, volatile __global int *next_count,
                            const int n) {
   const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int t = frontier[i];
-  for (int e = 0; e < 3; ++e) {
-    const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
-                                 (__global const int *)removed, t, e);
-    if (u < 0)
-      continue;
-    const bool claimed =
-        region < 0 ? atomic_xchg(&removed[u], 1) == 0 : atomic_xchg(&label[u], region) != region;
-    if (claimed)
-      next_frontier[atomic_inc(next_count)] = u;
+  int claimed[3], count = 0;
+  if (i < n) {
+    const int t = frontier[i];
+    for (int e = 0; e < 3; ++e) {
+      const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
+                                   (__global const int *)removed, t, e);
+      if (u >= 0 && (region < 0 ? atomic_xchg(&removed[u], 1) == 0
+                                : atomic_xchg(&label[u], region) != region))
+        claimed[count++] = u;
+    }
   }
+  volatile __local int scratch[2];
+  const int first = reserve_in_group(count, scratch, next_count);
+  for (int k = 0; k < count; ++k)
+    next_frontier[first + k] = claimed[k];
 }

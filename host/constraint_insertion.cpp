@@ -12,7 +12,7 @@ namespace clmesh {
 namespace {
 const char *kFile = "constraint_marking.cl";
 constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
-
+constexpr std::size_t kCounters = 3; // see mark_constraint_triangles
 } // namespace
 
 ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
@@ -25,7 +25,7 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, Prefi
       relink_(device.kernel(kFile, "relink_constraint_flips", kPhase)),
       remark_(device.kernel(kFile, "remark_after_flips", kPhase)),
       collect_dirty_(device.kernel(kFile, "collect_dirty", kPhase)),
-      flag_marked_(device.kernel(kFile, "flag_marked", kPhase)), counters_(device, 5),
+      flag_marked_(device.kernel(kFile, "flag_marked", kPhase)), counters_(device, kCounters),
       constraint_mark_(device, mesh.triangle_capacity), active_(device, mesh.triangle_capacity),
       next_active_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), plan_list_(device, mesh.triangle_capacity),
@@ -105,13 +105,12 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   for (std::size_t i = 0; i < m; ++i)
     keyed[i] = {clm_priority_of(static_cast<unsigned>(i)), static_cast<int32_t>(i)};
   std::sort(keyed.begin(), keyed.end());
-  priority_order_.resize(m);
-  for (std::size_t d = 0; d < m; ++d)
-    priority_order_[d] = keyed[d].second;
   // The marking walks run in input order all the same (neighbouring walks
   // share the triangles they read): walk_order[i] is segment i's device index.
+  priority_order_.resize(m);
   std::vector<cl_int> walk_order(m);
   for (std::size_t d = 0; d < m; ++d) {
+    priority_order_[d] = keyed[d].second;
     a[d] = segments[priority_order_[d]].a;
     b[d] = segments[priority_order_[d]].b;
     walk_order[priority_order_[d]] = static_cast<cl_int>(d);
@@ -140,7 +139,7 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
            static_cast<cl_int>(slots));
   launch(device_, record_vertex_triangles_, slots, kPhase);
   constraint_mark_.fill(device_, 0x7fffffff, slots);
-  counters_.fill(device_, 0, 5);
+  counters_.fill(device_, 0, kCounters);
   set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
            mesh_.constraint_adjacent.buffer(), walk_order_.buffer(), segment_a_.buffer(),
@@ -148,7 +147,7 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
            crossed_vertex_.buffer(), crossed_triangle_.buffer(), constraint_mark_.buffer(),
            counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
   launch(device_, mark_, m, kPhase);
-  const auto counters = counters_.download(device_, 3);
+  const auto counters = counters_.download(device_, kCounters);
   if (first)
     stats.intersections = counters[1];
   if (counters[2] == 0)

@@ -23,34 +23,41 @@ with open("lattice.node", "w") as out:                  # cocircular everywhere
         out.write(f"{i} {i % 20} {i // 20} {i * 0.5} {i % 3}\n")
 PY
 
+# Meshes INPUT.node in a fresh folder DIR with the given switches (-nQC: every
+# run is also checked with exact predicates); fails the test and returns 1
+# when clmesh does.
+mesh_in() {
+  local dir="$1" input="$2" status=0
+  shift 2
+  mkdir "$dir"
+  cp "$work/$input.node" "$dir/"
+  (cd "$dir" && "$bin" -nQC "$@" "$input.node") > "$dir.log" 2>&1 || status=$?
+  if [[ "$status" -ne 0 ]]; then
+    fail "$input with '$*' exited with $status: $(cat "$dir.log")"
+    return 1
+  fi
+}
+
+# The .node, .ele and .neigh files of INPUT in DIR must equal those in REFERENCE.
+same_mesh() {
+  local reference="$1" dir="$2" input="$3" what="$4" ext
+  for ext in node ele neigh; do
+    cmp -s "$reference/$input.1.$ext" "$dir/$input.1.$ext" ||
+      fail "$input.1.$ext differs $what"
+  done
+}
+
 configs=("" "" "--grid 64" "--grid 512" "--work-group 1" "--work-group 128" "--grid 64 --work-group 1"
          "--construction fan")
 
 for input in random lattice; do
-  reference=""
   for index in "${!configs[@]}"; do
     config="${configs[$index]}"
-    dir="$work/$input.$index"
-    mkdir "$dir"
-    cp "$work/$input.node" "$dir/"
-    status=0
-    # -C: every run is also checked with exact predicates.
     # shellcheck disable=SC2086  # config holds separate arguments
-    (cd "$dir" && "$bin" -nQC $config "$input.node") \
-      > "$dir.log" 2>&1 || status=$?
-    if [[ "$status" -ne 0 ]]; then
-      fail "$input with '$config' exited with $status: $(cat "$dir.log")"
-      continue
-    fi
-    if [[ -z "$reference" ]]; then
-      reference="$dir"
-      continue
-    fi
-    for ext in node ele neigh; do
-      if ! cmp -s "$reference/$input.1.$ext" "$dir/$input.1.$ext"; then
-        fail "$input.1.$ext differs between '${configs[0]}' and '$config'"
-      fi
-    done
+    mesh_in "$work/$input.$index" "$input" $config || continue
+    [[ "$index" -eq 0 ]] ||
+      same_mesh "$work/$input.0" "$work/$input.$index" "$input" \
+        "between '${configs[0]}' and '$config'"
   done
 done
 
@@ -61,27 +68,12 @@ for index in "${!refinements[@]}"; do
   refinement="${refinements[$index]}"
   input="${refinement%%:*}"
   switches="${refinement#*:}"
-  reference=""
   for group in 1 128; do
-    dir="$work/refine.$index.$group"
-    mkdir "$dir"
-    cp "$work/$input.node" "$dir/"
-    status=0
     # shellcheck disable=SC2086  # switches holds separate arguments
-    (cd "$dir" && "$bin" -nQC $switches --work-group "$group" "$input.node") \
-      > "$dir.log" 2>&1 || status=$?
-    if [[ "$status" -ne 0 ]]; then
-      fail "$input with '$switches --work-group $group' exited with $status: $(cat "$dir.log")"
-      continue
-    fi
-    if [[ -z "$reference" ]]; then
-      reference="$dir"
-      continue
-    fi
-    for ext in node ele neigh; do
-      cmp -s "$reference/$input.1.$ext" "$dir/$input.1.$ext" ||
-        fail "$input.1.$ext of '$switches' differs between work-group sizes 1 and $group"
-    done
+    mesh_in "$work/refine.$index.$group" "$input" $switches --work-group "$group" || continue
+    [[ "$group" -eq 1 ]] ||
+      same_mesh "$work/refine.$index.1" "$work/refine.$index.$group" "$input" \
+        "of '$switches' between work-group sizes 1 and $group"
   done
 done
 

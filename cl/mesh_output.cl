@@ -76,17 +76,30 @@ __kernel void rename_vertices(__global int *out_vertex, __global const int *orig
     out_vertex[i] = representative[original_id[out_vertex[i]]];
 }
 
-// Canonical order of the output, so that files depend only on the mesh:
-// each triangle starts at its smallest vertex, and triangles are sorted by
-// (first, second, third) vertex with a counting sort on the first vertex
-// followed by a sort of each (small) bucket.
+// device_of_input[original_id[p]] = p: from input numbers back to slots.
+__kernel void invert_numbering(__global const int *original_id, __global int *device_of_input,
+                               const int n) {
+  const int p = get_global_id(0);
+  if (p < n)
+    device_of_input[original_id[p]] = p;
+}
+
+// Canonical order of the output, so that files depend only on the input and
+// not on --grid or the work-group size: each triangle starts at its smallest
+// vertex; triangles are grouped by that vertex, the groups in the order of
+// its device slot (the Hilbert curve, so that the sort reads memory that lies
+// together), and sorted inside a group by their second and third vertices: a
+// counting sort on the first vertex's slot, then a sort of each small bucket.
+// first_slot[t]: the device slot of t's first vertex.
 __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_neighbor,
+                                 __global const int *device_of_input, __global int *first_slot,
                                  const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   const int a = out_vertex[3 * t], b = out_vertex[3 * t + 1], c = out_vertex[3 * t + 2];
   const int r = a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
+  first_slot[t] = device_of_input[r == 0 ? a : (r == 1 ? b : c)];
   if (r == 0)
     return;
   int v[3], m[3];
@@ -100,22 +113,22 @@ __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_nei
   }
 }
 
-__kernel void count_by_first_vertex(__global const int *out_vertex,
+__kernel void count_by_first_vertex(__global const int *first_slot,
                                     volatile __global int *bucket_size, const int n) {
   const int t = get_global_id(0);
   if (t < n)
-    atomic_inc(&bucket_size[out_vertex[3 * t]]);
+    atomic_inc(&bucket_size[first_slot[t]]);
 }
 
 // Places each triangle in its bucket; the order inside a bucket is fixed by
 // sort_buckets, so the atomic cursor never reaches the output.
-__kernel void scatter_by_first_vertex(__global const int *out_vertex,
+__kernel void scatter_by_first_vertex(__global const int *first_slot,
                                       __global const int *bucket_start,
                                       volatile __global int *cursor, __global int *order,
                                       const int n) {
   const int t = get_global_id(0);
   if (t < n) {
-    const int v = out_vertex[3 * t];
+    const int v = first_slot[t];
     order[bucket_start[v] + atomic_inc(&cursor[v])] = t;
   }
 }

@@ -15,6 +15,7 @@ MeshOutput::MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       rename_vertices_(device.kernel(kFile, "rename_vertices", kPhase)),
       fill_identity_(device.kernel(kFile, "fill_identity", kPhase)),
       restore_numbering_(device.kernel(kFile, "restore_input_numbering", kPhase)),
+      invert_numbering_(device.kernel(kFile, "invert_numbering", kPhase)),
       rotate_(device.kernel(kFile, "rotate_to_smallest", kPhase)),
       count_buckets_(device.kernel(kFile, "count_by_first_vertex", kPhase)),
       scatter_buckets_(device.kernel(kFile, "scatter_by_first_vertex", kPhase)),
@@ -63,17 +64,22 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   duplicate_of = input_duplicate_of.download(device_, points);
 
   const auto triangle_count = static_cast<cl_int>(count);
-  set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), triangle_count);
-  launch(device_, rotate_, count, kPhase);
   const DeviceArray<cl_int> &bucket_size = mesh_.location_edge,
                             &bucket_start = mesh_.vertex_triangle;
+  const DeviceArray<cl_int> &device_of_input = bucket_size; // until the buckets are counted
   DeviceArray<cl_int> order(device_, count), position(device_, count);
+  const DeviceArray<cl_int> &first_slot = position; // until the buckets are sorted
+  set_args(invert_numbering_, mesh_.original_id.buffer(), device_of_input.buffer(), point_count);
+  launch(device_, invert_numbering_, points, kPhase);
+  set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), device_of_input.buffer(),
+           first_slot.buffer(), triangle_count);
+  launch(device_, rotate_, count, kPhase);
   bucket_size.fill(device_, 0, points);
-  set_args(count_buckets_, out_vertex.buffer(), bucket_size.buffer(), triangle_count);
+  set_args(count_buckets_, first_slot.buffer(), bucket_size.buffer(), triangle_count);
   launch(device_, count_buckets_, count, kPhase);
   scan_.exclusive_scan(bucket_size, bucket_start, points, kPhase);
   representative.fill(device_, 0, points); // reused as the buckets' cursors
-  set_args(scatter_buckets_, out_vertex.buffer(), bucket_start.buffer(), representative.buffer(),
+  set_args(scatter_buckets_, first_slot.buffer(), bucket_start.buffer(), representative.buffer(),
            order.buffer(), triangle_count);
   launch(device_, scatter_buckets_, count, kPhase);
   set_args(sort_buckets_, out_vertex.buffer(), bucket_start.buffer(), bucket_size.buffer(),

@@ -379,9 +379,18 @@ clmesh::ConstrainedResult cdt_checked(const Pslg &pslg, const clmesh::Constraine
   INFO(problems(report));
   CHECK(report.ok);
   REQUIRE(mesh.duplicate_of.size() == pslg.points.size());
-  bool canonical_order = std::is_sorted(mesh.triangles.begin(), mesh.triangles.end());
-  for (const Triangle &t : mesh.triangles)
+  // Canonical order: each triangle from its smallest vertex, the triangles of
+  // a first vertex together and sorted by their other two vertices.
+  bool canonical_order = true;
+  std::set<int32_t> first_vertices_seen;
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const Triangle &t = mesh.triangles[k];
     canonical_order = canonical_order && t[0] < t[1] && t[0] < t[2];
+    if (k > 0 && mesh.triangles[k - 1][0] == t[0])
+      canonical_order = canonical_order && mesh.triangles[k - 1] < t;
+    else
+      canonical_order = canonical_order && first_vertices_seen.insert(t[0]).second;
+  }
   CHECK(canonical_order);
 #ifdef CLMESH_HAVE_CGAL
   if (with_cgal)

@@ -47,8 +47,10 @@ struct DelaunayStats {
 };
 
 struct DelaunayResult {
-  // Counter-clockwise triangles over input point indices, canonical order:
-  // each starts at its smallest vertex, the list sorted lexicographically.
+  // Counter-clockwise triangles over input point indices, in a canonical
+  // order that depends only on the input: each starts at its smallest vertex;
+  // the triangles of a first vertex come together, sorted by their other two
+  // vertices, and these groups follow the Hilbert curve of the first vertices.
   std::vector<Triangle> triangles;
   // neighbors[t][i]: triangle opposite triangles[t][i], -1 on the convex hull.
   std::vector<std::array<int32_t, 3>> neighbors;

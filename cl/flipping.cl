@@ -2,12 +2,13 @@
 //
 // Works on an active list of triangles (§3.6.2). A pass (1) tests the edges of
 // every active triangle with the floating-point filter and sends the few
-// uncertain ones to a second kernel that runs the exact predicate (§3.6.3),
-// (2) lets each triangle propose its first non-Delaunay edge and mark both
-// sides with atomic minimum of the edge key, (3) flips the edges that own both
-// marks (2-2 flip), (4) relinks neighbours in a second step and (5) collects
-// the flipped and the still-unhappy triangles as the next active list with a
-// prefix sum. Ghost triangles make the hull convex: two ghosts sharing a hull
+// uncertain ones to a second kernel that runs the exact predicate (§3.6.3);
+// each triangle then proposes its first non-Delaunay edge and marks both
+// sides with atomic minimum of the edge key; (2) flips the edges that own both
+// marks (2-2 flip); (3) relinks neighbours in a second step and collects the
+// flipped and the still-unhappy triangles as the next active list. The list
+// is a worklist: which edges flip depends only on the keys, never on the
+// order of its entries. Ghost triangles make the hull convex: two ghosts sharing a hull
 // vertex flip when that vertex is reflex; real-ghost edges never flip.
 #include "common.h"
 
@@ -55,16 +56,35 @@ __kernel void flip_mark_active(__global const int *active, __global int *active_
     active_round[active[gid]] = round;
 }
 
+// The proposal of triangle t (-1 when none): its first flippable edge i (bits:
+// the edges that must flip), keyed 3t + i; both triangles of the edge take
+// atomic minimum of the key.
+inline int propose_flip(__global const int *tri_neighbor, volatile __global uint *tri_mark, int t,
+                        int bits) {
+  if (t < 0 || bits == 0)
+    return -1;
+  const int i = (bits & 1) ? 0 : ((bits & 2) ? 1 : 2);
+  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  const uint key = (uint)(3 * t + i);
+  atomic_min(&tri_mark[t], key);
+  atomic_min(&tri_mark[u], key);
+  return encode_link(u, i);
+}
+
 // flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
 // An edge between two listed triangles is tested once, by the smaller one
-// (thesis §3.3.2, Algorithm 3.1 line 8).
+// (thesis §3.3.2, Algorithm 3.1 line 8). With `propose`, the triangles the
+// filter decided propose at once (proposal[gid]); the others do in
+// flip_check_exact.
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
                               __global const int *constraint_start,
                               __global const int *constraint_adjacent, const int constrained,
                               const int fixed_boundary, __global const int *active_round,
                               const int round, __global int *flags, __global int *exact_list,
-                              volatile __global int *exact_count, const int n) {
+                              volatile __global int *exact_count, const int propose,
+                              volatile __global uint *tri_mark, __global int *proposal,
+                              const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -97,13 +117,17 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
   }
   flags[gid] = bits;
   if (bits & 0x38)
-    exact_list[atomic_inc(exact_count)] = gid;
+    exact_list[atomic_inc(exact_count)] = gid; // proposes after the exact check
+  else if (propose)
+    proposal[gid] = propose_flip(tri_neighbor, tri_mark, t, bits);
 }
 
 // Resolves the uncertain edges with the exact, perturbed in-circle test.
 __kernel void flip_check_exact(__global const int *exact_list, __global const int *active,
                                __global const double2 *points, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global int *flags, const int n) {
+                               __global const int *tri_neighbor, __global int *flags,
+                               const int propose, volatile __global uint *tri_mark,
+                               __global int *proposal, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -118,27 +142,8 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
         bits |= 1 << i;
     }
   flags[index] = bits & 7;
-}
-
-// Each unhappy triangle proposes its first flippable edge, keyed 3t + i, and
-// marks both triangles of that edge with atomic minimum of the key.
-__kernel void flip_propose(__global const int *active, __global const int *flags,
-                           __global const int *tri_neighbor, volatile __global uint *tri_mark,
-                           __global int *proposal, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int t = active[gid], bits = flags[gid] & 7;
-  if (t < 0 || bits == 0) {
-    proposal[gid] = -1;
-    return;
-  }
-  const int i = (bits & 1) ? 0 : ((bits & 2) ? 1 : 2);
-  const int u = link_triangle(tri_neighbor[3 * t + i]);
-  const uint key = (uint)(3 * t + i);
-  atomic_min(&tri_mark[t], key);
-  atomic_min(&tri_mark[u], key);
-  proposal[gid] = encode_link(u, i);
+  if (propose)
+    proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits & 7);
 }
 
 // 2-2 flip of the proposals that own both marks (see flip_edge).
@@ -146,7 +151,7 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
                          __global const uint *tri_mark, __global int *tri_vertex,
                          __global int *tri_neighbor, __global int *modified_stamp,
                          __global int *children, __global int *flipped,
-                         volatile __global int *flip_count, const int stamp, const int n) {
+                         volatile __global int *pass_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
   int did_flip = 0;
   if (gid < n) {
@@ -162,60 +167,48 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
     flipped[gid] = did_flip;
   }
   volatile __local int scratch[2];
-  reserve_in_group(did_flip, scratch, flip_count);
+  reserve_in_group(did_flip, scratch, &pass_counts[0]); // counts the flips
 }
 
-// Second step: outward edges (1 and 2) of both flipped triangles.
-__kernel void flip_relink(__global const int *active, __global const int *proposal,
-                          __global const int *flipped, __global const int *tri_vertex,
-                          __global int *tri_neighbor, __global const int *modified_stamp,
-                          __global const int *children, const int stamp, const int n) {
+// Second step: relinks the outward edges (1 and 2) of both flipped
+// triangles, clears the pass's marks, and lists for the next pass both sides
+// of each flip and each triangle whose proposal lost (a triangle flipped by a
+// neighbour is listed by that neighbour; a happy one leaves). Listed
+// triangles get active_round = next_round. pass_counts[1]: the next list's
+// length.
+__kernel void flip_relink_and_collect(__global const int *active, __global const int *proposal,
+                                      __global const int *flipped, __global const int *tri_vertex,
+                                      __global int *tri_neighbor,
+                                      __global const int *modified_stamp,
+                                      __global const int *children, __global uint *tri_mark,
+                                      const int stamp, __global int *next_active,
+                                      __global int *active_round, const int next_round,
+                                      volatile __global int *pass_counts, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || !flipped[gid])
-    return;
-  const int t = active[gid], u = link_triangle(proposal[gid]);
-  for (int e = 1; e < 3; ++e) {
-    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
-    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
+  int listed = 0, t = -1, u = -1;
+  if (gid < n && proposal[gid] >= 0) {
+    t = active[gid];
+    u = link_triangle(proposal[gid]);
+    if (flipped[gid]) {
+      for (int e = 1; e < 3; ++e) {
+        relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
+        relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
+      }
+      listed = 2;
+    } else if (modified_stamp[t] != stamp) {
+      listed = 1;
+    }
+    tri_mark[t] = CLM_NO_MARK;
+    tri_mark[u] = CLM_NO_MARK;
   }
-}
-
-// How many entries each active triangle passes to the next list: both sides
-// of its flip, itself when its proposal lost, nothing when it is happy or was
-// flipped by a neighbour (which passes it on).
-__kernel void flip_count_next(__global const int *active, __global const int *proposal,
-                              __global const int *flipped, __global const int *modified_stamp,
-                              __global int *count, const int stamp, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int t = active[gid], prop = proposal[gid];
-  int next = 0;
-  if (flipped[gid])
-    next = 2;
-  else if (prop >= 0 && modified_stamp[t] != stamp)
-    next = 1;
-  count[gid] = next;
-}
-
-// Clears this pass's marks (after every kernel that reads them).
-__kernel void flip_clear_marks(__global const int *active, __global const int *proposal,
-                               __global uint *tri_mark, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n || proposal[gid] < 0)
-    return;
-  tri_mark[active[gid]] = CLM_NO_MARK;
-  tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
-}
-
-__kernel void flip_gather_next(__global const int *active, __global const int *proposal,
-                               __global const int *flipped, __global const int *count,
-                               __global const int *offset, __global int *next_active, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n || count[gid] == 0)
-    return;
-  const int o = offset[gid];
-  next_active[o] = active[gid];
-  if (flipped[gid])
-    next_active[o + 1] = link_triangle(proposal[gid]);
+  volatile __local int scratch[2];
+  const int first = reserve_in_group(listed, scratch, &pass_counts[1]);
+  if (listed > 0) {
+    next_active[first] = t;
+    active_round[t] = next_round;
+  }
+  if (listed > 1) {
+    next_active[first + 1] = u;
+    active_round[u] = next_round;
+  }
 }

@@ -8,46 +8,49 @@ namespace {
 const char *kFile = "flipping.cl";
 }
 
-Flipping::Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan)
-    : device_(device), mesh_(mesh), scan_(scan),
-      mark_active_(device.kernel(kFile, "flip_mark_active", kPhase)),
+Flipping::Flipping(Device &device, DeviceMesh &mesh)
+    : device_(device), mesh_(mesh), mark_active_(device.kernel(kFile, "flip_mark_active", kPhase)),
       check_fast_(device.kernel(kFile, "flip_check_fast", kPhase)),
       check_exact_(device.kernel(kFile, "flip_check_exact", kPhase)),
-      propose_(device.kernel(kFile, "flip_propose", kPhase)),
       apply_(device.kernel(kFile, "flip_apply", kPhase)),
-      relink_(device.kernel(kFile, "flip_relink", kPhase)),
-      count_next_(device.kernel(kFile, "flip_count_next", kPhase)),
-      clear_marks_(device.kernel(kFile, "flip_clear_marks", kPhase)),
-      gather_next_(device.kernel(kFile, "flip_gather_next", kPhase)),
+      relink_and_collect_(device.kernel(kFile, "flip_relink_and_collect", kPhase)),
       active_(device, mesh.list_capacity), next_active_(device, mesh.list_capacity),
       flags_(device, mesh.list_capacity), exact_list_(device, mesh.list_capacity),
       proposal_(device, mesh.list_capacity), flipped_(device, mesh.list_capacity),
-      count_(device, mesh.list_capacity), offset_(device, mesh.list_capacity),
-      exact_count_(device, 1), flip_count_(device, 1),
+      exact_count_(device, 1), pass_counts_(device, 2),
       active_round_(device, mesh.triangle_capacity) {
-  flip_count_.fill(device_, 0, 1);
   active_round_.fill(device_, 0, mesh.triangle_capacity);
+}
+
+void Flipping::mark_active(const DeviceArray<cl_int> &active, std::size_t n) {
+  set_args(mark_active_, active.buffer(), active_round_.buffer(), ++round_, static_cast<cl_int>(n));
+  launch(device_, mark_active_, n, kPhase);
 }
 
 void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
                      const DeviceArray<cl_int> &flags, FlipCounts &counts) {
+  mark_active(active, n);
+  test_edges(active, n, flags, counts, false);
+}
+
+void Flipping::test_edges(const DeviceArray<cl_int> &active, std::size_t n,
+                          const DeviceArray<cl_int> &flags, FlipCounts &counts, bool propose) {
   const auto items = static_cast<cl_int>(n);
+  const auto proposing = static_cast<cl_int>(propose);
   exact_count_.fill(device_, 0, 1);
-  const cl_int round = ++round_;
-  set_args(mark_active_, active.buffer(), active_round_.buffer(), round, items);
-  launch(device_, mark_active_, n, kPhase);
   set_args(check_fast_, active.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
            mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),
-           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round, flags.buffer(),
-           exact_list_.buffer(), exact_count_.buffer(), items);
+           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_, flags.buffer(),
+           exact_list_.buffer(), exact_count_.buffer(), proposing, mesh_.tri_mark.buffer(),
+           proposal_.buffer(), items);
   launch(device_, check_fast_, n, kPhase);
   const int uncertain = exact_count_.read(device_, 0);
   if (uncertain > 0) {
     counts.exact_checks += uncertain;
     set_args(check_exact_, exact_list_.buffer(), active.buffer(), mesh_.points.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags.buffer(),
-             static_cast<cl_int>(uncertain));
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags.buffer(), proposing,
+             mesh_.tri_mark.buffer(), proposal_.buffer(), static_cast<cl_int>(uncertain));
     launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
   }
 }
@@ -59,37 +62,29 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
   guarded(kPhase, "copying the active list", [&] {
     device_.queue().enqueueCopyBuffer(active.buffer(), active_.buffer(), 0, 0, n * sizeof(cl_int));
   });
+  mark_active(active_, n); // later lists are marked as they are collected
   for (long pass = 0; n > 0; ++pass) {
     if (pass == max_passes)
       return false;
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
-    check(active_, n, flags_, counts);
-    set_args(propose_, active_.buffer(), flags_.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.tri_mark.buffer(), proposal_.buffer(), items);
-    launch(device_, propose_, n, kPhase);
+    pass_counts_.fill(device_, 0, 2);
+    test_edges(active_, n, flags_, counts, true);
     set_args(apply_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(),
              mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
-             mesh_.children.buffer(), flipped_.buffer(), flip_count_.buffer(), pass_stamp, items);
+             mesh_.children.buffer(), flipped_.buffer(), pass_counts_.buffer(), pass_stamp, items);
     launch(device_, apply_, n, kPhase);
-    set_args(relink_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
+    set_args(relink_and_collect_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
              mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
-             mesh_.children.buffer(), pass_stamp, items);
-    launch(device_, relink_, n, kPhase);
-    set_args(count_next_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
-             mesh_.modified_stamp.buffer(), count_.buffer(), pass_stamp, items);
-    launch(device_, count_next_, n, kPhase);
-    set_args(clear_marks_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(), items);
-    launch(device_, clear_marks_, n, kPhase);
-    const int next = scan_.exclusive_scan(count_, offset_, n, kPhase);
-    set_args(gather_next_, active_.buffer(), proposal_.buffer(), flipped_.buffer(), count_.buffer(),
-             offset_.buffer(), next_active_.buffer(), items);
-    launch(device_, gather_next_, n, kPhase);
-    counts.flips += flip_count_.read(device_, 0);
-    flip_count_.fill(device_, 0, 1);
+             mesh_.children.buffer(), mesh_.tri_mark.buffer(), pass_stamp, next_active_.buffer(),
+             active_round_.buffer(), round_ + 1, pass_counts_.buffer(), items);
+    launch(device_, relink_and_collect_, n, kPhase);
+    const std::vector<cl_int> pass_counts = pass_counts_.download(device_, 2);
+    ++round_;
+    counts.flips += pass_counts[0];
     ++counts.passes;
     std::swap(active_, next_active_);
-    n = static_cast<std::size_t>(next);
+    n = static_cast<std::size_t>(pass_counts[1]);
   }
   return true;
 }

@@ -16,7 +16,7 @@ class Flipping {
 public:
   static constexpr const char *kPhase = "flipping";
 
-  Flipping(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+  Flipping(Device &device, DeviceMesh &mesh);
 
   // Flips until every edge of the triangles reachable from `active` (n
   // entries, -1 entries ignored) is locally Delaunay. `stamp` numbers each
@@ -37,14 +37,19 @@ public:
   bool fixed_boundary() const { return fixed_boundary_; }
 
 private:
+  // Lists `active` as this round's (active_round_ = ++round_).
+  void mark_active(const DeviceArray<cl_int> &active, std::size_t n);
+  // check() on a list marked for round_; with `propose`, each triangle also
+  // proposes its first flippable edge (proposal_, marks in tri_mark).
+  void test_edges(const DeviceArray<cl_int> &active, std::size_t n,
+                  const DeviceArray<cl_int> &flags, FlipCounts &counts, bool propose);
+
   Device &device_;
   DeviceMesh &mesh_;
-  PrefixScan &scan_;
   bool fixed_boundary_ = false;
-  cl::Kernel mark_active_, check_fast_, check_exact_, propose_, apply_, relink_, count_next_,
-      clear_marks_, gather_next_;
-  DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, count_,
-      offset_, exact_count_, flip_count_;
+  cl::Kernel mark_active_, check_fast_, check_exact_, apply_, relink_and_collect_;
+  DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, exact_count_;
+  DeviceArray<cl_int> pass_counts_;  // of a pass: {flips, entries of the next list}
   DeviceArray<cl_int> active_round_; // per triangle: the last check that listed it
   cl_int round_ = 0;
 };

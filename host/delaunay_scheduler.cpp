@@ -104,25 +104,29 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   }
   const double span = std::max(max_x - min_x, max_y - min_y);
   const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
-  std::vector<uint32_t> key(points.size());
+  // (key, index) pairs, sorted by three stable counting passes of 11 bits
+  // over the key (the index in the low half keeps ties in input order).
+  std::vector<uint64_t> entry(points.size()), buffer(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - min_x) * scale));
     const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - min_y) * scale));
-    key[i] = hilbert_index(qx, qy);
+    entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
   }
-  // Two stable counting-sort passes of 16 bits each.
-  std::vector<int32_t> order(points.size()), buffer(points.size());
-  std::iota(order.begin(), order.end(), 0);
-  for (int shift = 0; shift < 32; shift += 16) {
-    std::vector<std::size_t> start(65537, 0);
-    for (const int32_t i : order)
-      ++start[((key[i] >> shift) & 0xffff) + 1];
-    for (std::size_t b = 1; b < start.size(); ++b)
+  constexpr int kDigitBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+  for (int shift = 32; shift < 64; shift += kDigitBits) {
+    std::vector<std::size_t> start(kBuckets + 1, 0);
+    for (const uint64_t e : entry)
+      ++start[((e >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t b = 1; b <= kBuckets; ++b)
       start[b] += start[b - 1];
-    for (const int32_t i : order)
-      buffer[start[(key[i] >> shift) & 0xffff]++] = i;
-    order.swap(buffer);
+    for (const uint64_t e : entry)
+      buffer[start[(e >> shift) & (kBuckets - 1)]++] = e;
+    entry.swap(buffer);
   }
+  std::vector<int32_t> order(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    order[k] = static_cast<int32_t>(entry[k] & 0xffffffffu);
   return order;
 }
 

@@ -2,8 +2,8 @@
 // banding algorithm (thesis §4.1.2, ref. [CTMT10]: Cao, Tang, Mohamed, Tan,
 // "Parallel Banding Algorithm to compute exact distance transform with the
 // GPU", I3D 2010). Points are mapped to a grid x grid texture; a pixel shared
-// by several points keeps the smallest index as its site and the others become
-// missing points. Then (1) every column is swept to find each pixel's nearest
+// by several points keeps the one nearest its centre as its site and the
+// others become missing points. Then (1) every column is swept to find each pixel's nearest
 // site in that column, (2) every row builds the stack of its proximate sites
 // (those whose Voronoi region meets the row) from the column results, and (3)
 // colours its pixels by walking that stack. Ties are broken the same way on
@@ -12,22 +12,49 @@
 
 #define CLM_NO_SITE (-1)
 
-// Pixel of each point, and atomic minimum of point index per pixel (points
-// left out take none; site_state may be absent: use_state == 0).
+// Pixel of a point, and how far the point lies from the pixel's centre (its
+// squared distance in pixel units, in fixed point).
+inline int pixel_and_centre_distance(double2 q, double min_x, double min_y, double scale, int grid,
+                                     int *pixel) {
+  const double fx = (q.x - min_x) * scale, fy = (q.y - min_y) * scale;
+  const int x = min((int)fx, grid - 1), y = min((int)fy, grid - 1);
+  *pixel = y * grid + x;
+  const double dx = fx - (x + 0.5), dy = fy - (y + 0.5);
+  return (int)(min(dx * dx + dy * dy, 64.0) * (double)(1 << 24));
+}
+
+// Pixel of each point, and atomic minimum per pixel of the distance of its
+// points to its centre (points left out take no pixel; site_state may be
+// absent: use_state == 0). best_distance starts at INT_MAX.
 __kernel void map_points_to_pixels(__global const double2 *points, __global const int *site_state,
                                    const int use_state, __global int *pixel_of,
-                                   volatile __global int *site_of_pixel, const double min_x,
+                                   volatile __global int *best_distance, const double min_x,
                                    const double min_y, const double scale, const int grid,
                                    const int n) {
   const int p = get_global_id(0);
   if (p >= n)
     return;
-  const double2 q = points[p];
-  const int x = min((int)((q.x - min_x) * scale), grid - 1);
-  const int y = min((int)((q.y - min_y) * scale), grid - 1);
-  pixel_of[p] = y * grid + x;
+  int pixel;
+  const int distance = pixel_and_centre_distance(points[p], min_x, min_y, scale, grid, &pixel);
+  pixel_of[p] = pixel;
   if (!use_state || site_state[p] == CLM_SITE)
-    atomic_min(&site_of_pixel[y * grid + x], p);
+    atomic_min(&best_distance[pixel], distance);
+}
+
+// A pixel's site is the point nearest its centre (the smallest index among
+// equals), so that the digital diagram is close to the real one and few
+// triangles turn over when the sites move back (Phase 3).
+__kernel void claim_pixels(__global const double2 *points, __global const int *site_state,
+                           const int use_state, __global const int *best_distance,
+                           volatile __global int *site_of_pixel, const double min_x,
+                           const double min_y, const double scale, const int grid, const int n) {
+  const int p = get_global_id(0);
+  if (p >= n || (use_state && site_state[p] != CLM_SITE))
+    return;
+  int pixel;
+  const int distance = pixel_and_centre_distance(points[p], min_x, min_y, scale, grid, &pixel);
+  if (distance == best_distance[pixel])
+    atomic_min(&site_of_pixel[pixel], p);
 }
 
 // site_of_pixel starts at INT_MAX; empty pixels become CLM_NO_SITE.

@@ -12,6 +12,7 @@ const char *kFile = "voronoi_banding.cl";
 VoronoiBanding::VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &scan)
     : device_(device), mesh_(mesh), scan_(scan),
       map_points_(device.kernel(kFile, "map_points_to_pixels", kPhase)),
+      claim_pixels_(device.kernel(kFile, "claim_pixels", kPhase)),
       clear_empty_(device.kernel(kFile, "clear_empty_pixels", kPhase)),
       count_missing_(device.kernel(kFile, "count_missing_points", kPhase)),
       column_sweep_(device.kernel(kFile, "column_sweep", kPhase)),
@@ -48,12 +49,20 @@ std::size_t VoronoiBanding::run(int grid, Point min, double span,
   const DeviceArray<cl_int> &site_of_pixel = site_of_pixel_, &column_site_row = column_site_row_,
                             &stack_x = stack_x_, &stack_y = stack_y_, &pixel_of = pixel_of_,
                             &missing = missing_, &missing_offset = missing_offset_;
+  const DeviceArray<cl_int> &best_distance = column_site_row; // until the column sweep
+  best_distance.fill(device_, 0x7fffffff, pixels);
   site_of_pixel.fill(device_, 0x7fffffff, pixels);
   const double scale = span > 0 ? grid / span : 0.0;
-  set_args(map_points_, mesh_.points.buffer(), site_state ? site_state->buffer() : missing.buffer(),
-           static_cast<cl_int>(site_state != nullptr), pixel_of.buffer(), site_of_pixel.buffer(),
-           min.x, min.y, scale, static_cast<cl_int>(grid), static_cast<cl_int>(n));
+  const cl::Buffer &state = site_state ? site_state->buffer() : missing.buffer();
+  const auto use_state = static_cast<cl_int>(site_state != nullptr);
+  set_args(map_points_, mesh_.points.buffer(), state, use_state, pixel_of.buffer(),
+           best_distance.buffer(), min.x, min.y, scale, static_cast<cl_int>(grid),
+           static_cast<cl_int>(n));
   launch(device_, map_points_, n, kPhase);
+  set_args(claim_pixels_, mesh_.points.buffer(), state, use_state, best_distance.buffer(),
+           site_of_pixel.buffer(), min.x, min.y, scale, static_cast<cl_int>(grid),
+           static_cast<cl_int>(n));
+  launch(device_, claim_pixels_, n, kPhase);
   set_args(clear_empty_, site_of_pixel.buffer(), static_cast<cl_int>(pixels));
   launch(device_, clear_empty_, pixels, kPhase);
   set_args(count_missing_, pixel_of.buffer(), site_of_pixel.buffer(), missing.buffer(),

@@ -39,7 +39,8 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  cl::Kernel map_points_, clear_empty_, count_missing_, column_sweep_, row_colour_, renumber_;
+  cl::Kernel map_points_, claim_pixels_, clear_empty_, count_missing_, column_sweep_, row_colour_,
+      renumber_;
   int grid_ = 0;
   DeviceArray<cl_int> site_of_pixel_, column_site_row_, stack_x_, stack_y_, voronoi_, pixel_of_,
       missing_, missing_offset_;

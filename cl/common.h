@@ -90,6 +90,15 @@ inline int reserve_in_group(int count, volatile __local int *scratch,
   return scratch[1] + offset;
 }
 
+// Appends this work-item's items[0 .. count) to a worklist whose length is
+// *length (reserve_in_group: every work-item of the group must call it).
+inline void append_in_group(const int *items, int count, __global int *list,
+                            volatile __global int *length, volatile __local int *scratch) {
+  const int first = reserve_in_group(count, scratch, length);
+  for (int k = 0; k < count; ++k)
+    list[first + k] = items[k];
+}
+
 inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
 
 inline bool is_ghost(VertexTriple tri) {

@@ -400,9 +400,7 @@ __kernel void collect_dirty(__global const int *active, __global const int *plan
     }
   }
   volatile __local int scratch[2];
-  const int first = reserve_in_group(count, scratch, dirty_count);
-  for (int k = 0; k < count; ++k)
-    dirty[first + k] = found[k];
+  append_in_group(found, count, dirty, dirty_count, scratch);
 }
 
 // Full sweep after the outer loop's marking: every marked slot.

@@ -96,7 +96,5 @@ __kernel void spread_flood(__global const int *frontier, __global const int *tri
     }
   }
   volatile __local int scratch[2];
-  const int first = reserve_in_group(count, scratch, next_count);
-  for (int k = 0; k < count; ++k)
-    next_frontier[first + k] = claimed[k];
+  append_in_group(claimed, count, next_frontier, next_count, scratch);
 }

@@ -8,8 +8,9 @@
 // marks (2-2 flip); (3) relinks neighbours in a second step and collects the
 // flipped and the still-unhappy triangles as the next active list. The list
 // is a worklist: which edges flip depends only on the keys, never on the
-// order of its entries. Ghost triangles make the hull convex: two ghosts sharing a hull
-// vertex flip when that vertex is reflex; real-ghost edges never flip.
+// order of its entries. Ghost triangles make the hull convex: two ghosts
+// sharing a hull vertex flip when that vertex is reflex; real-ghost edges
+// never flip.
 #include "common.h"
 
 #define CLM_FLIP 1
@@ -185,30 +186,24 @@ __kernel void flip_relink_and_collect(__global const int *active, __global const
                                       __global int *active_round, const int next_round,
                                       volatile __global int *pass_counts, const int n) {
   const int gid = get_global_id(0);
-  int listed = 0, t = -1, u = -1;
+  int listed[2], count = 0;
   if (gid < n && proposal[gid] >= 0) {
-    t = active[gid];
-    u = link_triangle(proposal[gid]);
+    const int t = active[gid], u = link_triangle(proposal[gid]);
     if (flipped[gid]) {
       for (int e = 1; e < 3; ++e) {
         relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
         relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
       }
-      listed = 2;
+      listed[count++] = t;
+      listed[count++] = u;
     } else if (modified_stamp[t] != stamp) {
-      listed = 1;
+      listed[count++] = t;
     }
     tri_mark[t] = CLM_NO_MARK;
     tri_mark[u] = CLM_NO_MARK;
   }
+  for (int k = 0; k < count; ++k)
+    active_round[listed[k]] = next_round;
   volatile __local int scratch[2];
-  const int first = reserve_in_group(listed, scratch, &pass_counts[1]);
-  if (listed > 0) {
-    next_active[first] = t;
-    active_round[t] = next_round;
-  }
-  if (listed > 1) {
-    next_active[first + 1] = u;
-    active_round[u] = next_round;
-  }
+  append_in_group(listed, count, next_active, &pass_counts[1], scratch);
 }

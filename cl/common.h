@@ -248,10 +248,9 @@ inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighb
 
 // 2-2 flip of edge i of t: t = (c,a,b), u = (d,b,a) across edge a-b become
 // t = (a,d,c), u = (b,c,d); edge 0 of both is the new diagonal c-d, edges 1
-// and 2 face outwards (relinked afterwards with relink_edge).
-inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
-                      __global int *modified_stamp, __global int *children, int t, int i,
-                      int stamp) {
+// and 2 face outwards and keep the links of the old triangles (the outer
+// neighbours' links back are the caller's). Returns u.
+inline int flip_pair(__global int *tri_vertex, __global int *tri_neighbor, int t, int i) {
   const int link = tri_neighbor[3 * t + i];
   const int u = link_triangle(link), j = link_edge(link);
   const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
@@ -261,6 +260,15 @@ inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
   const int u_opp_b = tri_neighbor[3 * u + next3(j)], u_opp_a = tri_neighbor[3 * u + prev3(j)];
   store_triangle(tri_vertex, tri_neighbor, t, a, d, c, encode_link(u, 0), t_opp_b, u_opp_b);
   store_triangle(tri_vertex, tri_neighbor, u, b, c, d, encode_link(t, 0), u_opp_a, t_opp_a);
+  return u;
+}
+
+// flip_pair for a parallel pass: the outer neighbours are relinked afterwards
+// with relink_edge.
+inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
+                      __global int *modified_stamp, __global int *children, int t, int i,
+                      int stamp) {
+  const int u = flip_pair(tri_vertex, tri_neighbor, t, i);
   record_children(modified_stamp, children, t, stamp, t, u, -1);
   record_children(modified_stamp, children, u, stamp, u, t, -1);
 }

@@ -3,20 +3,26 @@
 //
 // Outer loop: one work-item per constraint a-b finds, in the triangle fan of
 // a, the triangle the constraint leaves a through, then walks along it to b
-// and marks every triangle it crosses with atomic minimum of its index. (The
-// device index is the constraint's priority: the host numbers constraints in
-// a scrambled order so that neighbouring input segments do not wait for one
-// another; the walks still run in input order, walk_order, for locality.) A
-// vertex lying exactly on the constraint, or a crossed edge that is itself a
-// constraint, is reported to the host (split the constraint there / refuse
-// crossing constraints). Inner loop: one work-item per marked triangle A
-// classifies the pair (A, C) with C the next triangle along its constraint
-// (zero, single, double intersection or concave), decides whether it may
-// flip (case 1: zero or single; case 2: double after a double, when B, A, C
-// form a convex polygon; case 3: double after a concave pair that the flip
-// makes convex, B being the previous triangle), marks A, C (and B) with atomic
-// minimum of a key weighted by the case, and flips the pairs that kept every
-// mark. New triangles are re-marked if the constraint still crosses them.
+// and marks every triangle it crosses with atomic minimum of its index (with
+// the edges it enters and leaves through in the low bits). (The device index
+// is the constraint's priority: the host numbers constraints in a scrambled
+// order so that neighbouring input segments do not wait for one another; the
+// walks still run in input order, walk_order, for locality.) A vertex lying
+// exactly on the constraint, or a crossed edge that is itself a constraint,
+// is reported to the host (split the constraint there / split both at their
+// crossing). Inner loop: the thesis's flips, classified as it does: the pair
+// (A, C), C the next triangle along A's constraint, is zero, single, double
+// intersection or concave, and may flip in case 1 (zero or single), case 2
+// (double after a double, when B, A, C form a convex polygon) or case 3
+// (double after a concave pair that the flip makes convex), B being the
+// previous triangle. The thesis gives every triangle a work-item and resolves
+// conflicts by marking A, C and B with atomic minimum; here the marked
+// triangles are cut into runs (consecutive triangles with the same mark), one
+// work-item flips along each run, and the links between runs are mended in a
+// second step (see find_run_starts). A constraint of smallest index owns all
+// the triangles it crosses, so each outer iteration inserts it (thesis Claim
+// 4.4.1) and the loop ends; every flip is one of the thesis's cases, so the
+// flips inside a run end too (Claim 4.4.2).
 #include "common.h"
 
 #define CLM_SEGMENT_PENDING 0
@@ -65,6 +71,80 @@ inline bool ahead(__global const double2 *points, int a, int b, int v) {
   return (pv.x - pa.x) * (pb.x - pa.x) + (pv.y - pa.y) * (pb.y - pa.y) > 0;
 }
 
+// A triangle's mark: the constraint crossing it with the smallest index s,
+// and the edges s enters and leaves it through (CLM_NO_EDGE at a and b).
+#define CLM_NO_EDGE 3
+inline int mark_of(int s, int entry, int exit) { return (s << 4) | (entry << 2) | exit; }
+inline int mark_constraint_index(int mark) { return mark >> 4; }
+inline int mark_entry(int mark) { return (mark >> 2) & 3; }
+inline int mark_exit(int mark) { return mark & 3; }
+
+// Where constraint a-b leaves a: the triangle t of a's fan whose edge k
+// opposite a it crosses (CLM_FAN_EXIT), or b is a neighbour of a
+// (CLM_FAN_PRESENT), or a fan vertex *on lies on a-b (CLM_FAN_ON_SEGMENT; y is
+// checked too: the next triangle of the fan may be a ghost), or none was found
+// (CLM_FAN_LOST, a bug).
+#define CLM_FAN_EXIT 0
+#define CLM_FAN_PRESENT 1
+#define CLM_FAN_ON_SEGMENT 2
+#define CLM_FAN_LOST 3
+
+inline int leave_endpoint(__global const double2 *points, __global const int *tri_vertex,
+                          __global const int *tri_neighbor, __global const int *vertex_triangle,
+                          int a, int b, int max_steps, int *t_out, int *k_out, int *on) {
+  const int first = vertex_triangle[a];
+  int t = first, k = index_in(tri_vertex, t, a);
+  for (int step = 0; step < max_steps; ++step) {
+    const int x = tri_vertex[3 * t + next3(k)], y = tri_vertex[3 * t + prev3(k)];
+    if (x == b || y == b)
+      return CLM_FAN_PRESENT;
+    const int ox = x >= 0 ? orient_vertices(points, a, x, b) : 0;
+    const int oy = y >= 0 ? orient_vertices(points, a, y, b) : 0;
+    *on = (x >= 0 && ox == 0 && ahead(points, a, b, x))   ? x
+          : (y >= 0 && oy == 0 && ahead(points, a, b, y)) ? y
+                                                          : -1;
+    if (*on >= 0)
+      return CLM_FAN_ON_SEGMENT;
+    if (x >= 0 && y >= 0 && ox > 0 && oy < 0) {
+      *t_out = t;
+      *k_out = k;
+      return CLM_FAN_EXIT;
+    }
+    t = link_triangle(tri_neighbor[3 * t + next3(k)]); // counter-clockwise around a
+    k = index_in(tri_vertex, t, a);
+    if (t == first)
+      break;
+  }
+  return CLM_FAN_LOST;
+}
+
+// One step of the walk along a-b: from triangle *t, whose edge *e a-b
+// crosses, into the triangle u beyond it, entered through its edge *entry.
+// Returns 1 when u holds b (*t = u), -1 when u's third vertex *on lies on
+// a-b, else 0 with *t = u and *e the edge a-b leaves u through.
+inline int walk_step(__global const double2 *points, __global const int *tri_vertex,
+                     __global const int *tri_neighbor, int a, int b, int *t, int *e, int *entry,
+                     int *on) {
+  const int link = tri_neighbor[3 * *t + *e];
+  const int u = link_triangle(link), j = link_edge(link);
+  const int z = tri_vertex[3 * u + j];
+  *entry = j;
+  if (z == b) {
+    *t = u;
+    return 1;
+  }
+  const int oz = orient_vertices(points, a, b, z);
+  if (oz == 0) {
+    *on = z;
+    return -1;
+  }
+  // u = (z, q, p): leave through z-q (opposite p) when z is on p's side.
+  const int p = tri_vertex[3 * *t + next3(*e)];
+  *e = oz == orient_vertices(points, a, b, p) ? prev3(j) : next3(j);
+  *t = u;
+  return 0;
+}
+
 // Walks constraint s (see the header) and marks the triangles it crosses;
 // returns how many it marked. *pending: set when s is not yet in the mesh
 // and can be walked; *report: set when the host must look at its state.
@@ -76,48 +156,23 @@ inline int mark_constraint(__global const double2 *points, __global const int *t
                            __global int *crossed_vertex, __global int *crossed_triangle,
                            volatile __global int *constraint_mark, int max_steps, int *pending,
                            int *report) {
-  // The triangle of a's fan whose cone holds the direction a -> b.
-  const int first = vertex_triangle[a];
-  int t = first, k = index_in(tri_vertex, t, a), exit_triangle = -1;
-  for (int step = 0; step < max_steps; ++step) {
-    const int x = tri_vertex[3 * t + next3(k)], y = tri_vertex[3 * t + prev3(k)];
-    if (x == b || y == b) {
-      segment_state[s] = CLM_SEGMENT_PRESENT;
-      return 0;
-    }
-    // A fan vertex on a-b splits the segment there (y is checked too: the
-    // next triangle of the fan may be a ghost).
-    const int ox = x >= 0 ? orient_vertices(points, a, x, b) : 0;
-    const int oy = y >= 0 ? orient_vertices(points, a, y, b) : 0;
-    const int on_segment = (x >= 0 && ox == 0 && ahead(points, a, b, x))   ? x
-                           : (y >= 0 && oy == 0 && ahead(points, a, b, y)) ? y
-                                                                           : -1;
-    if (on_segment >= 0) {
-      segment_state[s] = CLM_SEGMENT_SPLIT;
-      split_vertex[s] = on_segment;
-      *report = 1;
-      return 0;
-    }
-    if (x >= 0 && y >= 0 && ox > 0 && oy < 0) {
-      exit_triangle = t;
-      break;
-    }
-    t = link_triangle(tri_neighbor[3 * t + next3(k)]); // counter-clockwise around a
-    k = index_in(tri_vertex, t, a);
-    if (t == first)
-      break;
+  int t, e, on;
+  const int fan = leave_endpoint(points, tri_vertex, tri_neighbor, vertex_triangle, a, b, max_steps,
+                                 &t, &e, &on);
+  if (fan == CLM_FAN_PRESENT) {
+    segment_state[s] = CLM_SEGMENT_PRESENT;
+    return 0;
   }
-  if (exit_triangle < 0) {
-    segment_state[s] = CLM_SEGMENT_LOST;
+  if (fan != CLM_FAN_EXIT) {
+    segment_state[s] = fan == CLM_FAN_ON_SEGMENT ? CLM_SEGMENT_SPLIT : CLM_SEGMENT_LOST;
+    split_vertex[s] = on;
     *report = 1;
     return 0;
   }
   *pending = 1;
-  // Walk along a-b, crossing edge e of t each step.
-  t = exit_triangle;
-  int e = k;
+  int entry = CLM_NO_EDGE;
   for (int step = 0; step < max_steps; ++step) {
-    atomic_min(&constraint_mark[t], s);
+    atomic_min(&constraint_mark[t], mark_of(s, entry, e));
     const int p = tri_vertex[3 * t + next3(e)], q = tri_vertex[3 * t + prev3(e)];
     if (is_constraint(constraint_start, constraint_adjacent, p, q)) {
       segment_state[s] = CLM_SEGMENT_CROSSING;
@@ -127,23 +182,17 @@ inline int mark_constraint(__global const double2 *points, __global const int *t
       *report = 1;
       return step + 1;
     }
-    const int link = tri_neighbor[3 * t + e];
-    const int u = link_triangle(link), j = link_edge(link);
-    const int z = tri_vertex[3 * u + j];
-    if (z == b) {
-      atomic_min(&constraint_mark[u], s);
+    const int next = walk_step(points, tri_vertex, tri_neighbor, a, b, &t, &e, &entry, &on);
+    if (next > 0) {
+      atomic_min(&constraint_mark[t], mark_of(s, entry, CLM_NO_EDGE));
       return step + 2;
     }
-    const int oz = orient_vertices(points, a, b, z);
-    if (oz == 0) {
-      segment_state[s] = CLM_SEGMENT_SPLIT; // z lies on a-b
-      split_vertex[s] = z;
+    if (next < 0) {
+      segment_state[s] = CLM_SEGMENT_SPLIT; // on lies on a-b
+      split_vertex[s] = on;
       *report = 1;
       return step + 1;
     }
-    // u = (z, q, p): leave through z-q (opposite p) when z is on p's side.
-    e = oz == orient_vertices(points, a, b, p) ? prev3(j) : next3(j);
-    t = u;
   }
   segment_state[s] = CLM_SEGMENT_LOST;
   *report = 1;
@@ -244,168 +293,214 @@ inline int apex_across(__global const int *tri_vertex, __global const int *tri_n
   return tri_vertex[3 * link_triangle(link) + link_edge(link)];
 }
 
-// Decides each active triangle A's flip and marks the triangles it involves:
-// plan[gid] = A's exit edge | (case << 2), -1 for none; next[gid] = C;
-// previous[gid] = B for cases 2 and 3, else -1.
-__kernel void plan_constraint_flips(__global const int *active, __global const double2 *points,
-                                    __global const int *tri_vertex,
-                                    __global const int *tri_neighbor,
-                                    __global const int *constraint_mark,
-                                    __global const int *segment_a, __global const int *segment_b,
-                                    volatile __global uint *tri_mark, __global int *plan,
-                                    __global int *next, __global int *previous, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  plan[gid] = -1;
-  const int A = active[gid], s = constraint_mark[A];
-  if (s == CLM_NO_CONSTRAINT)
-    return;
-  const int a = segment_a[s], b = segment_b[s];
-  int entry, exit;
-  crossing_edges(points, tri_vertex, A, a, b, &entry, &exit);
-  if (exit < 0)
-    return;
-  const int C = link_triangle(tri_neighbor[3 * A + exit]);
-  if (constraint_mark[C] != s)
-    return;
+// The thesis's case (0: case 1, 1: case 2, 2: case 3; -1: not flippable) of
+// the pair (A, C) crossing edge `exit` of A, with B the previous triangle
+// across A's edge `entry` (-1: none, or not ours).
+inline int flip_case(__global const double2 *points, __global const int *tri_vertex,
+                     __global const int *tri_neighbor, int A, int entry, int exit, int B, int a,
+                     int b) {
   const int p = tri_vertex[3 * A + next3(exit)], q = tri_vertex[3 * A + prev3(exit)];
   const int x = tri_vertex[3 * A + exit], y = apex_across(tri_vertex, tri_neighbor, A, exit);
   const int ac = pair_configuration(points, p, q, x, y, a, b);
-  int rank = -1, B = -1;
-  if (ac == CLM_PAIR_ZERO || ac == CLM_PAIR_SINGLE) {
-    rank = 0; // case 1
-  } else if (ac == CLM_PAIR_DOUBLE && entry >= 0) {
-    B = link_triangle(tri_neighbor[3 * A + entry]);
-    if (constraint_mark[B] == s) {
-      // The pair (B, A) now, and (B, A') once (A, C) is flipped: the entry
-      // edge r-w stays, A's apex across it becomes y.
-      const int r = tri_vertex[3 * A + next3(entry)], w = tri_vertex[3 * A + prev3(entry)];
-      const int bx = apex_across(tri_vertex, tri_neighbor, A, entry);
-      const int before = pair_configuration(points, w, r, bx, tri_vertex[3 * A + entry], a, b);
-      const int after = pair_configuration(points, w, r, bx, y, a, b);
-      if (before == CLM_PAIR_DOUBLE && (after == CLM_PAIR_SINGLE || after == CLM_PAIR_ZERO))
-        rank = 1; // case 2
-      else if (before == CLM_PAIR_CONCAVE && after != CLM_PAIR_CONCAVE)
-        rank = 2; // case 3
-    }
-  }
-  if (rank < 0)
-    return;
-  const uint key = ((uint)rank << 29) | (uint)A;
-  atomic_min(&tri_mark[A], key);
-  atomic_min(&tri_mark[C], key);
-  if (rank > 0)
-    atomic_min(&tri_mark[B], key);
-  plan[gid] = exit | (rank << 2);
-  next[gid] = C;
-  previous[gid] = rank > 0 ? B : -1;
+  if (ac == CLM_PAIR_ZERO || ac == CLM_PAIR_SINGLE)
+    return 0;
+  if (ac != CLM_PAIR_DOUBLE || B < 0)
+    return -1;
+  // The pair (B, A) now, and (B, A') once (A, C) is flipped: the entry edge
+  // r-w stays, A's apex across it becomes y.
+  const int r = tri_vertex[3 * A + next3(entry)], w = tri_vertex[3 * A + prev3(entry)];
+  const int bx = apex_across(tri_vertex, tri_neighbor, A, entry);
+  const int before = pair_configuration(points, w, r, bx, tri_vertex[3 * A + entry], a, b);
+  const int after = pair_configuration(points, w, r, bx, y, a, b);
+  if (before == CLM_PAIR_DOUBLE && (after == CLM_PAIR_SINGLE || after == CLM_PAIR_ZERO))
+    return 1;
+  if (before == CLM_PAIR_CONCAVE && after != CLM_PAIR_CONCAVE)
+    return 2;
+  return -1;
 }
 
-// Flips the planned pairs that kept every mark (A and C, and B for cases 2, 3).
-__kernel void apply_constraint_flips(__global const int *active, __global const int *plan,
-                                     __global const int *next, __global const int *previous,
-                                     __global const uint *tri_mark, __global int *tri_vertex,
-                                     __global int *tri_neighbor, __global int *modified_stamp,
-                                     __global int *children, __global int *flipped,
-                                     volatile __global int *flip_count, const int stamp,
-                                     const int n) {
+// Inner loop, by runs. A run is a maximal chain of consecutive triangles
+// along constraint s that all carry s's mark; every marked triangle lies in
+// exactly one run, so runs are disjoint and one work-item may flip inside its
+// run with no further marking (the thesis marks A, C and B because its
+// work-items are triangles). A run starts at the triangle holding a, or at one
+// entered from a triangle without s's mark; the list of runs may come in any
+// order (a run's flips do not depend on it).
+__kernel void find_run_starts(__global const int *constraint_mark, __global const int *tri_neighbor,
+                              __global int *run_start, volatile __global int *run_count,
+                              const int n) {
+  const int t = get_global_id(0);
+  int starts = 0;
+  if (t < n && constraint_mark[t] != CLM_NO_CONSTRAINT) {
+    const int mark = constraint_mark[t], entry = mark_entry(mark);
+    starts = entry == CLM_NO_EDGE ||
+             mark_constraint_index(constraint_mark[link_triangle(tri_neighbor[3 * t + entry])]) !=
+                 mark_constraint_index(mark);
+  }
+  volatile __local int scratch[2];
+  append_in_group(&t, starts, run_start, run_count, scratch);
+}
+
+// run_of[t] = the run's first triangle, for every triangle of the run.
+__kernel void claim_runs(__global const int *run_start, __global const int *tri_neighbor,
+                         __global const int *constraint_mark, __global int *run_of,
+                         const int max_steps, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  const int first = run_start[gid], s = mark_constraint_index(constraint_mark[first]);
+  int t = first;
+  for (int step = 0; step < max_steps; ++step) {
+    run_of[t] = first;
+    const int exit = mark_exit(constraint_mark[t]);
+    if (exit == CLM_NO_EDGE)
+      return;
+    t = link_triangle(tri_neighbor[3 * t + exit]);
+    if (mark_constraint_index(constraint_mark[t]) != s)
+      return;
+  }
+}
+
+// After a flip inside run `run`, links the outer neighbours back to the new
+// triangles t and u where nobody else can be rewriting them (triangles of this
+// run, and triangles of no run); the edges facing another run are logged for
+// relink_run_boundaries. Returns false when the log is full (no flip is made).
+inline bool log_room(__global const int *tri_neighbor, __global const int *run_of, int t, int i,
+                     int run, __global int *boundary_log, volatile __global int *log_count,
+                     int log_capacity, int *first) {
+  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  int foreign = 0;
+  for (int e = 0; e < 3; ++e)
+    if (e != i) {
+      const int x = link_triangle(tri_neighbor[3 * t + e]);
+      foreign += run_of[x] >= 0 && run_of[x] != run;
+    }
+  const int j = link_edge(tri_neighbor[3 * t + i]);
+  for (int e = 0; e < 3; ++e)
+    if (e != j) {
+      const int x = link_triangle(tri_neighbor[3 * u + e]);
+      foreign += run_of[x] >= 0 && run_of[x] != run;
+    }
+  if (foreign == 0)
+    return true;
+  *first = atomic_add(log_count, foreign);
+  if (*first + foreign <= log_capacity)
+    return true;
+  for (int k = *first; k < log_capacity; ++k)
+    boundary_log[k] = -1; // reserved but unused
+  return false;
+}
+
+inline void link_outer_edges(__global int *tri_neighbor, __global const int *run_of, int run, int t,
+                             __global int *boundary_log, int *next_entry) {
+  for (int e = 1; e < 3; ++e) {
+    const int link = tri_neighbor[3 * t + e], x = link_triangle(link);
+    if (run_of[x] < 0 || run_of[x] == run)
+      tri_neighbor[3 * x + link_edge(link)] = encode_link(t, e);
+    else
+      boundary_log[(*next_entry)++] = encode_link(t, e);
+  }
+}
+
+// One work-item per run walks it from its first triangle A and flips (A, C),
+// C the next triangle, whenever the thesis's cases allow (case 1, else case 2
+// or 3 with B the previous triangle, when B is in the run); after a flip it
+// steps back to B, whose pair has changed, and otherwise goes on to C. When
+// the walk leaves the run, no pair of the run is flippable.
+__kernel void flip_along_runs(__global const int *run_start, __global const double2 *points,
+                              __global int *tri_vertex, __global int *tri_neighbor,
+                              __global const int *constraint_mark, __global const int *segment_a,
+                              __global const int *segment_b, __global const int *run_of,
+                              __global int *boundary_log, volatile __global int *log_count,
+                              volatile __global int *flip_count, const int log_capacity,
+                              const int max_steps, const int n) {
   const int gid = get_global_id(0);
   int flips = 0;
   if (gid < n) {
-    const int pl = plan[gid];
-    if (pl >= 0) {
-      const int A = active[gid], exit = pl & 3, rank = pl >> 2;
-      const uint key = ((uint)rank << 29) | (uint)A;
-      if (tri_mark[A] == key && tri_mark[next[gid]] == key &&
-          (previous[gid] < 0 || tri_mark[previous[gid]] == key)) {
-        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, A, exit, stamp);
-        flips = 1;
+    const int run = run_start[gid], s = mark_constraint_index(constraint_mark[run]);
+    const int a = segment_a[s], b = segment_b[s];
+    int A = run;
+    for (int step = 0; step < max_steps; ++step) {
+      int entry, exit;
+      crossing_edges(points, tri_vertex, A, a, b, &entry, &exit);
+      if (exit < 0)
+        break; // A holds b
+      const int C = link_triangle(tri_neighbor[3 * A + exit]);
+      if (run_of[C] != run)
+        break; // the run ends
+      int B = entry >= 0 ? link_triangle(tri_neighbor[3 * A + entry]) : -1;
+      if (B >= 0 && run_of[B] != run)
+        B = -1;
+      if (flip_case(points, tri_vertex, tri_neighbor, A, entry, exit, B, a, b) < 0) {
+        A = C;
+        continue;
+      }
+      int entry_index = 0;
+      if (!log_room(tri_neighbor, run_of, A, exit, run, boundary_log, log_count, log_capacity,
+                    &entry_index))
+        break; // the rest waits for the next outer iteration
+      // The entry edge (opposite A's vertex after or before the exit edge)
+      // ends up in A's slot or in C's (see flip_pair).
+      const int entered = entry == prev3(exit) ? A : C;
+      flip_pair(tri_vertex, tri_neighbor, A, exit);
+      link_outer_edges(tri_neighbor, run_of, run, A, boundary_log, &entry_index);
+      link_outer_edges(tri_neighbor, run_of, run, C, boundary_log, &entry_index);
+      ++flips;
+      if (B >= 0 || entry >= 0) {
+        A = B >= 0 ? B : entered;
+      } else if (!segment_crosses(points, tri_vertex, A, a, b)) {
+        // Both new triangles hold a: go on with the one a-b leaves through.
+        if (!segment_crosses(points, tri_vertex, C, a, b))
+          break; // a-b is the new diagonal
+        A = C;
       }
     }
-    flipped[gid] = flips;
   }
   volatile __local int scratch[2];
   reserve_in_group(flips, scratch, flip_count);
 }
 
-// Second step of the flips, and the marks of the new triangles.
-__kernel void relink_constraint_flips(__global const int *active, __global const int *next,
-                                      __global const int *flipped, __global const int *tri_vertex,
-                                      __global int *tri_neighbor,
-                                      __global const int *modified_stamp,
-                                      __global const int *children, const int stamp, const int n) {
+// Second step: an edge between two runs may have moved on both sides. Each
+// logged edge p-q (triangle t, edge e) links to where its twin q-p was before
+// the pass; if the twin is still there, both are linked at once, otherwise the
+// two sides meet in a hash table keyed by the edge (open addressing).
+inline uint edge_hash(int p, int q) {
+  const uint lo = (uint)min(p, q), hi = (uint)max(p, q);
+  return (lo * 0x9E3779B1u) ^ (hi * 0x85EBCA77u) ^ (hi >> 15);
+}
+
+inline bool holds_edge(__global const int *tri_vertex, int t, int e, int from, int to) {
+  return tri_vertex[3 * t + next3(e)] == from && tri_vertex[3 * t + prev3(e)] == to;
+}
+
+__kernel void relink_run_boundaries(__global const int *boundary_log,
+                                    __global const int *tri_vertex, __global int *tri_neighbor,
+                                    __global const int *run_of, volatile __global int *edge_table,
+                                    const uint table_mask, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || !flipped[gid])
+  if (gid >= n)
     return;
-  const int A = active[gid], C = next[gid];
-  for (int e = 1; e < 3; ++e) {
-    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, A, e);
-    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, C, e);
-  }
-}
-
-// Clears this iteration's marks and re-marks the flipped triangles.
-__kernel void remark_after_flips(__global const int *active, __global const int *plan,
-                                 __global const int *next, __global const int *previous,
-                                 __global const int *flipped, __global const double2 *points,
-                                 __global const int *tri_vertex, __global int *constraint_mark,
-                                 __global uint *tri_mark, __global const int *segment_a,
-                                 __global const int *segment_b, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n || plan[gid] < 0)
+  const int code = boundary_log[gid];
+  if (code < 0)
     return;
-  const int A = active[gid], C = next[gid];
-  tri_mark[A] = CLM_NO_MARK;
-  tri_mark[C] = CLM_NO_MARK;
-  if (previous[gid] >= 0)
-    tri_mark[previous[gid]] = CLM_NO_MARK;
-  if (flipped[gid]) {
-    const int s = constraint_mark[A];
-    const int a = segment_a[s], b = segment_b[s];
-    constraint_mark[A] = segment_crosses(points, tri_vertex, A, a, b) ? s : CLM_NO_CONSTRAINT;
-    constraint_mark[C] = segment_crosses(points, tri_vertex, C, a, b) ? s : CLM_NO_CONSTRAINT;
+  const int t = link_triangle(code), e = link_edge(code);
+  const int link = tri_neighbor[3 * t + e], x = link_triangle(link), j = link_edge(link);
+  if (run_of[x] < 0 || run_of[x] == run_of[t])
+    return; // the entry is stale: another flip moved a different edge here
+  const int p = tri_vertex[3 * t + next3(e)], q = tri_vertex[3 * t + prev3(e)];
+  if (holds_edge(tri_vertex, x, j, q, p)) {
+    tri_neighbor[3 * x + j] = code;
+    return;
   }
-}
-
-// The triangles to classify again in the next inner iteration: only a flip
-// can change a pair's configuration, so those are both triangles of each flip
-// and their neighbours (their next or previous triangle changed), plus the
-// flips that lost a mark. Each enters once (dirty_stamp holds the iteration).
-inline void add_dirty(__global const int *constraint_mark, volatile __global int *dirty_stamp,
-                      int *found, int *count, int t, int stamp) {
-  if (constraint_mark[t] != CLM_NO_CONSTRAINT && atomic_xchg(&dirty_stamp[t], stamp) != stamp)
-    found[(*count)++] = t;
-}
-
-__kernel void collect_dirty(__global const int *active, __global const int *plan,
-                            __global const int *next, __global const int *flipped,
-                            __global const int *tri_neighbor, __global const int *constraint_mark,
-                            volatile __global int *dirty_stamp, __global int *dirty,
-                            volatile __global int *dirty_count, const int stamp, const int n) {
-  const int gid = get_global_id(0);
-  int found[8], count = 0;
-  if (gid < n && plan[gid] >= 0) {
-    const int A = active[gid];
-    if (!flipped[gid]) {
-      add_dirty(constraint_mark, dirty_stamp, found, &count, A, stamp);
-    } else {
-      const int pair[2] = {A, next[gid]};
-      for (int k = 0; k < 2; ++k) {
-        add_dirty(constraint_mark, dirty_stamp, found, &count, pair[k], stamp);
-        for (int e = 0; e < 3; ++e)
-          add_dirty(constraint_mark, dirty_stamp, found, &count,
-                    link_triangle(tri_neighbor[3 * pair[k] + e]), stamp);
-      }
+  for (uint slot = edge_hash(p, q) & table_mask;; slot = (slot + 1) & table_mask) {
+    const int other = atomic_cmpxchg(&edge_table[slot], -1, code);
+    if (other == -1 || other == code)
+      return; // inserted: the twin will find it (or this entry is a duplicate)
+    const int y = link_triangle(other), f = link_edge(other);
+    if (holds_edge(tri_vertex, y, f, q, p)) {
+      tri_neighbor[3 * t + e] = other;
+      tri_neighbor[3 * y + f] = code;
+      return;
     }
   }
-  volatile __local int scratch[2];
-  append_in_group(found, count, dirty, dirty_count, scratch);
-}
-
-// Full sweep after the outer loop's marking: every marked slot.
-__kernel void flag_marked(__global const int *constraint_mark, __global int *keep, const int n) {
-  const int t = get_global_id(0);
-  if (t < n)
-    keep[t] = constraint_mark[t] != CLM_NO_CONSTRAINT;
 }

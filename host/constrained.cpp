@@ -64,14 +64,13 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
   }
   std::vector<Segment> constraints; // as they stand in the mesh, device numbering
   {
-    ConstraintInsertion insertion(device, scheduler.mesh(), scheduler.scan());
+    ConstraintInsertion insertion(device, scheduler.mesh());
     segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
     stats.segments = static_cast<long>(segments.size());
     insertion.set_constraints(segments);
-    insertion.run(scheduler.stamp(), stats,
-                  [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
-                    return scheduler.insert_points(added, near);
-                  });
+    insertion.run(stats, [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
+      return scheduler.insert_points(added, near);
+    });
     result.added_points = insertion.added_points();
     constraints = insertion.segments();
     scheduler.timer().charge(ConstraintInsertion::kPhase);

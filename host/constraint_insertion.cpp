@@ -15,25 +15,19 @@ constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
 constexpr std::size_t kCounters = 3; // see mark_constraint_triangles
 } // namespace
 
-ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
-    : device_(device), mesh_(mesh), scan_(scan),
+ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
+    : device_(device), mesh_(mesh),
       resolve_duplicates_(device.kernel(kFile, "resolve_duplicate_endpoints", kPhase)),
       record_vertex_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
       mark_(device.kernel(kFile, "mark_constraint_triangles", kPhase)),
-      plan_(device.kernel(kFile, "plan_constraint_flips", kPhase)),
-      apply_(device.kernel(kFile, "apply_constraint_flips", kPhase)),
-      relink_(device.kernel(kFile, "relink_constraint_flips", kPhase)),
-      remark_(device.kernel(kFile, "remark_after_flips", kPhase)),
-      collect_dirty_(device.kernel(kFile, "collect_dirty", kPhase)),
-      flag_marked_(device.kernel(kFile, "flag_marked", kPhase)), counters_(device, kCounters),
-      constraint_mark_(device, mesh.triangle_capacity), active_(device, mesh.triangle_capacity),
-      next_active_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
-      offset_(device, mesh.triangle_capacity), plan_list_(device, mesh.triangle_capacity),
-      next_(device, mesh.triangle_capacity), previous_(device, mesh.triangle_capacity),
-      flipped_(device, mesh.triangle_capacity), flip_count_(device, 1),
-      dirty_stamp_(device, mesh.triangle_capacity), dirty_count_(device, 1) {
-  dirty_stamp_.fill(device_, 0, mesh.triangle_capacity);
-}
+      find_run_starts_(device.kernel(kFile, "find_run_starts", kPhase)),
+      claim_runs_(device.kernel(kFile, "claim_runs", kPhase)),
+      flip_along_runs_(device.kernel(kFile, "flip_along_runs", kPhase)),
+      relink_run_boundaries_(device.kernel(kFile, "relink_run_boundaries", kPhase)),
+      counters_(device, kCounters), constraint_mark_(device, mesh.triangle_capacity),
+      run_start_(device, mesh.triangle_capacity), run_of_(device, mesh.triangle_capacity),
+      boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity), run_count_(device, 1),
+      log_count_(device, 1), flip_count_(device, 1) {}
 
 std::vector<cl_int> ConstraintInsertion::download_by_segment(const DeviceArray<cl_int> &array) {
   const std::size_t m = segments_.size();
@@ -256,47 +250,43 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   set_constraints(pieces);
 }
 
-std::size_t ConstraintInsertion::collect_marked() {
+long ConstraintInsertion::flip_runs() {
   const std::size_t slots = mesh_.triangle_count;
-  set_args(flag_marked_, constraint_mark_.buffer(), keep_.buffer(), static_cast<cl_int>(slots));
-  launch(device_, flag_marked_, slots, kPhase);
-  return static_cast<std::size_t>(scan_.compact_indices(keep_, offset_, active_, slots, kPhase));
-}
-
-long ConstraintInsertion::inner_iteration(std::size_t &active, int stamp) {
-  const auto n = static_cast<cl_int>(active);
-  flip_count_.fill(device_, 0, 1);
-  set_args(plan_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+  const auto max_steps = static_cast<cl_int>(4 * slots + 64);
+  for (auto *counter : {&run_count_, &log_count_, &flip_count_})
+    counter->fill(device_, 0, 1);
+  run_of_.fill(device_, -1, slots);
+  set_args(find_run_starts_, constraint_mark_.buffer(), mesh_.tri_neighbor.buffer(),
+           run_start_.buffer(), run_count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, find_run_starts_, slots, kPhase);
+  const auto runs = static_cast<std::size_t>(run_count_.read(device_, 0));
+  set_args(claim_runs_, run_start_.buffer(), mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(),
+           run_of_.buffer(), max_steps, static_cast<cl_int>(runs));
+  launch(device_, claim_runs_, runs, kPhase);
+  const auto log_capacity = static_cast<cl_int>(boundary_log_.size());
+  set_args(flip_along_runs_, run_start_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
-           segment_b_.buffer(), mesh_.tri_mark.buffer(), plan_list_.buffer(), next_.buffer(),
-           previous_.buffer(), n);
-  launch(device_, plan_, active, kPhase);
-  set_args(apply_, active_.buffer(), plan_list_.buffer(), next_.buffer(), previous_.buffer(),
-           mesh_.tri_mark.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), flipped_.buffer(),
-           flip_count_.buffer(), static_cast<cl_int>(stamp), n);
-  launch(device_, apply_, active, kPhase);
-  set_args(relink_, active_.buffer(), next_.buffer(), flipped_.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
-           static_cast<cl_int>(stamp), n);
-  launch(device_, relink_, active, kPhase);
-  set_args(remark_, active_.buffer(), plan_list_.buffer(), next_.buffer(), previous_.buffer(),
-           flipped_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           constraint_mark_.buffer(), mesh_.tri_mark.buffer(), segment_a_.buffer(),
-           segment_b_.buffer(), n);
-  launch(device_, remark_, active, kPhase);
-  dirty_count_.fill(device_, 0, 1);
-  set_args(collect_dirty_, active_.buffer(), plan_list_.buffer(), next_.buffer(), flipped_.buffer(),
-           mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), dirty_stamp_.buffer(),
-           next_active_.buffer(), dirty_count_.buffer(), static_cast<cl_int>(stamp), n);
-  launch(device_, collect_dirty_, active, kPhase);
-  active = static_cast<std::size_t>(dirty_count_.read(device_, 0));
-  std::swap(active_, next_active_);
+           segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), log_count_.buffer(),
+           flip_count_.buffer(), log_capacity, max_steps, static_cast<cl_int>(runs));
+  launch(device_, flip_along_runs_, runs, kPhase);
+  const std::size_t logged = std::min<std::size_t>(
+      static_cast<std::size_t>(log_count_.read(device_, 0)), boundary_log_.size());
+  if (logged > 0) {
+    std::size_t table = 1;
+    while (table < 2 * logged)
+      table *= 2;
+    if (edge_table_.size() < table)
+      edge_table_ = DeviceArray<cl_int>(device_, table);
+    edge_table_.fill(device_, -1, table);
+    set_args(relink_run_boundaries_, boundary_log_.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), run_of_.buffer(), edge_table_.buffer(),
+             static_cast<cl_uint>(table - 1), static_cast<cl_int>(logged));
+    launch(device_, relink_run_boundaries_, logged, kPhase);
+  }
   return flip_count_.read(device_, 0);
 }
 
-void ConstraintInsertion::run(int &stamp, ConstrainedStats &stats,
-                              const PointInserter &insert_points) {
+void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &insert_points) {
   bool first = true;
   // Each outer iteration either inserts a segment, splits one, or flips; the
   // bound only turns a bug into an error instead of a hang.
@@ -309,15 +299,8 @@ void ConstraintInsertion::run(int &stamp, ConstrainedStats &stats,
     if (pending == 0)
       return;
     ++stats.outer_iterations;
-    std::size_t active = collect_marked();
-    long flips = 0;
-    for (int inner = 0; inner < kInnerIterations && active > 0; ++inner) {
-      const long made = inner_iteration(active, stamp++);
-      ++stats.inner_iterations;
-      flips += made;
-      if (made == 0)
-        break;
-    }
+    const long flips = flip_runs();
+    ++stats.inner_iterations;
     stats.constraint_flips += flips;
     if (flips == 0)
       throw InternalError("constraint insertion made no progress");

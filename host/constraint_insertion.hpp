@@ -2,7 +2,7 @@
 // (thesis §4.3, Algorithms 4.1 and 4.2). Kernels: cl/constraint_marking.cl.
 #pragma once
 
-#include "prefix_scan.hpp"
+#include "device_mesh.hpp"
 
 #include "clmesh/constrained.hpp"
 
@@ -15,11 +15,12 @@ namespace clmesh {
 class ConstraintInsertion {
 public:
   static constexpr const char *kPhase = "constraint_insertion";
-  // Inner loop passes per outer iteration; each classifies only the triangles
-  // around the previous pass's flips, so passes are cheap.
-  static constexpr int kInnerIterations = 8;
+  // Room in the log of edges between runs, per triangle slot (a flip logs at
+  // most four; when the log is full, the remaining flips wait for the next
+  // outer iteration).
+  static constexpr std::size_t kLogPerTriangle = 2;
 
-  ConstraintInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+  ConstraintInsertion(Device &device, DeviceMesh &mesh);
 
   // Maps segment endpoints that are duplicate points to the kept point.
   std::vector<Segment> resolve_duplicates(const std::vector<Segment> &segments);
@@ -37,7 +38,7 @@ public:
   // segments that cross are both split at a new vertex at their intersection
   // (rounded to the nearest double), as Triangle does. segments() then holds
   // the pieces, added_points() the new vertices.
-  void run(int &stamp, ConstrainedStats &stats, const PointInserter &insert_points);
+  void run(ConstrainedStats &stats, const PointInserter &insert_points);
 
   const std::vector<Point> &added_points() const { return added_points_; }
 
@@ -52,25 +53,23 @@ private:
                        ConstrainedStats &stats, const PointInserter &insert_points);
   // A per-constraint device array, in the order of segments_.
   std::vector<cl_int> download_by_segment(const DeviceArray<cl_int> &array);
-  // Active list of every marked triangle; returns its length.
-  std::size_t collect_marked();
-  // One inner iteration over `active` triangles; returns the flips made and
-  // leaves the still-marked triangles in active_.
-  long inner_iteration(std::size_t &active, int stamp);
+  // The inner loop: splits the marked triangles into runs along their
+  // constraints, flips inside every run, then relinks the edges between runs;
+  // returns the flips made.
+  long flip_runs();
 
   Device &device_;
   DeviceMesh &mesh_;
-  PrefixScan &scan_;
-  cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, plan_, apply_, relink_, remark_,
-      collect_dirty_, flag_marked_;
+  cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, find_run_starts_, claim_runs_,
+      flip_along_runs_, relink_run_boundaries_;
   std::vector<Segment> segments_;
   std::vector<int32_t> origin_;         // input segment each constraint comes from
   std::vector<int32_t> priority_order_; // device constraint d is segments_[priority_order_[d]]
   std::vector<char> split_origin_;      // input segments already counted as split
   std::vector<Point> added_points_;     // vertices added where segments cross
   DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
-      crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, active_, next_active_, keep_,
-      offset_, plan_list_, next_, previous_, flipped_, flip_count_, dirty_stamp_, dirty_count_;
+      crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, run_start_, run_of_,
+      boundary_log_, edge_table_, run_count_, log_count_, flip_count_;
 };
 
 } // namespace clmesh

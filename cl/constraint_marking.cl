@@ -412,7 +412,8 @@ __kernel void flip_along_runs(__global const int *run_start, __global const doub
                               __global const int *constraint_mark, __global const int *segment_a,
                               __global const int *segment_b, __global const int *run_of,
                               __global int *boundary_log, volatile __global int *log_count,
-                              volatile __global int *flip_count, const int log_capacity,
+                              volatile __global int *flip_count, __global int *touched,
+                              __global int *vertex_triangle, const int log_capacity,
                               const int max_steps, const int n) {
   const int gid = get_global_id(0);
   int flips = 0;
@@ -445,6 +446,12 @@ __kernel void flip_along_runs(__global const int *run_start, __global const doub
       flip_pair(tri_vertex, tri_neighbor, A, exit);
       link_outer_edges(tri_neighbor, run_of, run, A, boundary_log, &entry_index);
       link_outer_edges(tri_neighbor, run_of, run, C, boundary_log, &entry_index);
+      touched[A] = touched[C] = 1;
+      // A = (a, d, c) and C = (b, c, d) (see flip_pair): each region's last
+      // write for a vertex names a triangle that still holds it.
+      for (int k = 0; k < 3; ++k)
+        vertex_triangle[tri_vertex[3 * A + k]] = A;
+      vertex_triangle[tri_vertex[3 * C]] = C;
       ++flips;
       if (B >= 0 || entry >= 0) {
         A = B >= 0 ? B : entered;

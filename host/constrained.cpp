@@ -8,8 +8,6 @@
 #include "exterior_removal.hpp"
 
 #include <algorithm>
-#include <map>
-#include <set>
 
 namespace clmesh {
 
@@ -18,15 +16,14 @@ namespace {
 // Drops zero-length and repeated segments (first occurrence kept, its marker too).
 std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
                                        ConstrainedStats &stats) {
-  std::set<std::pair<int32_t, int32_t>> seen;
+  const std::vector<char> first = first_occurrences(segments);
   std::vector<Segment> kept;
-  for (const Segment &s : segments) {
-    const auto key = std::minmax(s.a, s.b);
-    if (s.a == s.b || !seen.insert(key).second) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    if (segments[i].a == segments[i].b || !first[i]) {
       ++stats.dropped_segments;
       continue;
     }
-    kept.push_back(s);
+    kept.push_back(segments[i]);
   }
   return kept;
 }
@@ -63,6 +60,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     s.b = scheduler.device_point(s.b);
   }
   std::vector<Segment> constraints; // as they stand in the mesh, device numbering
+  DeviceArray<cl_int> touched;      // slots the insertion flipped
   {
     ConstraintInsertion insertion(device, scheduler.mesh());
     segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
@@ -73,11 +71,12 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     });
     result.added_points = insertion.added_points();
     constraints = insertion.segments();
+    touched = insertion.take_touched();
     scheduler.timer().charge(ConstraintInsertion::kPhase);
   } // its device lists are released here; the constraints stay in the mesh
 
   FlipCounts flips;
-  scheduler.flip_all(flips, "constrained_flipping");
+  scheduler.flip_flagged(touched, flips, "constrained_flipping");
   stats.delaunay_flips = flips.flips;
 
   ExteriorRemoval removal(device, scheduler.mesh());
@@ -112,21 +111,20 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     const int32_t input = original[device_point];
     return duplicate_of[input] >= 0 ? duplicate_of[input] : input;
   };
-  std::set<std::pair<int32_t, int32_t>> present;
-  for (const Segment &s : constraints) {
-    Segment out{input_point(s.a), input_point(s.b), s.marker};
-    present.insert(std::minmax(out.a, out.b));
-    result.segments.push_back(out);
-  }
+  for (const Segment &s : constraints)
+    result.segments.push_back({input_point(s.a), input_point(s.b), s.marker});
   if (options.keep_convex_hull) {
+    // Hull edges that are not constraints already.
+    std::vector<Segment> all = result.segments;
     const auto &mesh = result.mesh;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
       for (int i = 0; i < 3; ++i)
-        if (mesh.neighbors[t][i] < 0) {
-          const int32_t a = mesh.triangles[t][(i + 1) % 3], b = mesh.triangles[t][(i + 2) % 3];
-          if (present.insert(std::minmax(a, b)).second)
-            result.segments.push_back({a, b, 1});
-        }
+        if (mesh.neighbors[t][i] < 0)
+          all.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+    const std::vector<char> first = first_occurrences(all);
+    for (std::size_t k = result.segments.size(); k < all.size(); ++k)
+      if (first[k])
+        result.segments.push_back(all[k]);
   }
   return result;
 }

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
+#include <numeric>
 #include <utility>
 
 namespace clmesh {
@@ -26,8 +26,21 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
       relink_run_boundaries_(device.kernel(kFile, "relink_run_boundaries", kPhase)),
       counters_(device, kCounters), constraint_mark_(device, mesh.triangle_capacity),
       run_start_(device, mesh.triangle_capacity), run_of_(device, mesh.triangle_capacity),
-      boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity), run_count_(device, 1),
-      log_count_(device, 1), flip_count_(device, 1) {}
+      boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity),
+      touched_(device, mesh.triangle_capacity), run_count_(device, 1), log_count_(device, 1),
+      flip_count_(device, 1) {}
+
+std::vector<char> first_occurrences(const std::vector<Segment> &segments) {
+  // Sorting (edge, position) pairs: a std::set of 100k edges costs ten times more.
+  std::vector<std::pair<std::pair<int32_t, int32_t>, std::size_t>> keyed(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    keyed[i] = {std::minmax(segments[i].a, segments[i].b), i};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<char> first(segments.size(), 0);
+  for (std::size_t k = 0; k < keyed.size(); ++k)
+    first[keyed[k].second] = k == 0 || keyed[k].first != keyed[k - 1].first;
+  return first;
+}
 
 std::vector<cl_int> ConstraintInsertion::download_by_segment(const DeviceArray<cl_int> &array) {
   const std::size_t m = segments_.size();
@@ -65,12 +78,12 @@ std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<S
 
 void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   // Overlapping collinear segments split at each other's vertices repeat pieces.
-  std::set<std::pair<int32_t, int32_t>> seen;
+  const std::vector<char> distinct = first_occurrences(pieces);
   std::vector<Segment> segments;
   std::vector<int32_t> origin;
   const bool first = origin_.empty();
   for (std::size_t i = 0; i < pieces.size(); ++i)
-    if (seen.insert(std::minmax(pieces[i].a, pieces[i].b)).second) {
+    if (distinct[i]) {
       segments.push_back(pieces[i]);
       origin.push_back(first ? static_cast<int32_t>(i) : origin_[i]);
     }
@@ -99,16 +112,25 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   for (std::size_t i = 0; i < m; ++i)
     keyed[i] = {clm_priority_of(static_cast<unsigned>(i)), static_cast<int32_t>(i)};
   std::sort(keyed.begin(), keyed.end());
-  // The marking walks run in input order all the same (neighbouring walks
-  // share the triangles they read): walk_order[i] is segment i's device index.
+  // The marking walks run in the order of the segments' first endpoints (the
+  // device numbers points along a Hilbert curve), so that neighbouring walks
+  // read the same triangles: walk_order[k] is the device index of the k-th.
   priority_order_.resize(m);
-  std::vector<cl_int> walk_order(m);
+  std::vector<cl_int> device_index(m);
   for (std::size_t d = 0; d < m; ++d) {
     priority_order_[d] = keyed[d].second;
     a[d] = segments[priority_order_[d]].a;
     b[d] = segments[priority_order_[d]].b;
-    walk_order[priority_order_[d]] = static_cast<cl_int>(d);
+    device_index[priority_order_[d]] = static_cast<cl_int>(d);
   }
+  std::vector<cl_int> walk_order(m);
+  std::iota(walk_order.begin(), walk_order.end(), 0);
+  std::sort(walk_order.begin(), walk_order.end(), [&](cl_int i, cl_int j) {
+    return std::make_pair(segments[i].a, segments[i].b) <
+           std::make_pair(segments[j].a, segments[j].b);
+  });
+  for (cl_int &i : walk_order)
+    i = device_index[i];
   mesh_.constraint_start.upload(device_, start);
   mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
   mesh_.constraint_adjacent.upload(device_, adjacent);
@@ -129,9 +151,13 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
 long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
                                const PointInserter &insert_points) {
   const std::size_t slots = mesh_.triangle_count, m = segments_.size();
-  set_args(record_vertex_triangles_, mesh_.tri_vertex.buffer(), mesh_.vertex_triangle.buffer(),
-           static_cast<cl_int>(slots));
-  launch(device_, record_vertex_triangles_, slots, kPhase);
+  if (!vertex_triangles_recorded_) {
+    // Afterwards the flips keep vertex_triangle up to date.
+    set_args(record_vertex_triangles_, mesh_.tri_vertex.buffer(), mesh_.vertex_triangle.buffer(),
+             static_cast<cl_int>(slots));
+    launch(device_, record_vertex_triangles_, slots, kPhase);
+    vertex_triangles_recorded_ = true;
+  }
   constraint_mark_.fill(device_, 0x7fffffff, slots);
   counters_.fill(device_, 0, kCounters);
   set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
@@ -221,6 +247,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
     crossings.emplace_back(s, piece);
   }
   const std::vector<int32_t> added = insert_points(where, near);
+  vertex_triangles_recorded_ = false;
   added_points_.insert(added_points_.end(), where.begin(), where.end());
   stats.crossings += static_cast<long>(crossings.size());
   std::vector<Segment> pieces;
@@ -267,7 +294,8 @@ long ConstraintInsertion::flip_runs() {
   set_args(flip_along_runs_, run_start_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
            segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), log_count_.buffer(),
-           flip_count_.buffer(), log_capacity, max_steps, static_cast<cl_int>(runs));
+           flip_count_.buffer(), touched_.buffer(), mesh_.vertex_triangle.buffer(), log_capacity,
+           max_steps, static_cast<cl_int>(runs));
   launch(device_, flip_along_runs_, runs, kPhase);
   const std::size_t logged = std::min<std::size_t>(
       static_cast<std::size_t>(log_count_.read(device_, 0)), boundary_log_.size());
@@ -287,6 +315,7 @@ long ConstraintInsertion::flip_runs() {
 }
 
 void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &insert_points) {
+  touched_.fill(device_, 0, touched_.size());
   bool first = true;
   // Each outer iteration either inserts a segment, splits one, or flips; the
   // bound only turns a bug into an error instead of a hang.

@@ -12,6 +12,9 @@
 
 namespace clmesh {
 
+// first[i] = 1 unless segments[i] repeats an earlier segment (either direction).
+std::vector<char> first_occurrences(const std::vector<Segment> &segments);
+
 class ConstraintInsertion {
 public:
   static constexpr const char *kPhase = "constraint_insertion";
@@ -44,6 +47,10 @@ public:
 
   const std::vector<Segment> &segments() const { return segments_; }
 
+  // Per triangle slot: 1 where run() flipped (only there may an edge not be
+  // locally Delaunay afterwards); moved out.
+  DeviceArray<cl_int> take_touched() { return std::move(touched_); }
+
 private:
   // One outer iteration's marking; returns the segments still to insert, or
   // -1 when segments were split at vertices (the marking must be redone).
@@ -63,13 +70,14 @@ private:
   cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, find_run_starts_, claim_runs_,
       flip_along_runs_, relink_run_boundaries_;
   std::vector<Segment> segments_;
-  std::vector<int32_t> origin_;         // input segment each constraint comes from
-  std::vector<int32_t> priority_order_; // device constraint d is segments_[priority_order_[d]]
-  std::vector<char> split_origin_;      // input segments already counted as split
-  std::vector<Point> added_points_;     // vertices added where segments cross
+  std::vector<int32_t> origin_;            // input segment each constraint comes from
+  std::vector<int32_t> priority_order_;    // device constraint d is segments_[priority_order_[d]]
+  std::vector<char> split_origin_;         // input segments already counted as split
+  std::vector<Point> added_points_;        // vertices added where segments cross
+  bool vertex_triangles_recorded_ = false; // mesh_.vertex_triangle is up to date
   DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
       crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, run_start_, run_of_,
-      boundary_log_, edge_table_, run_count_, log_count_, flip_count_;
+      boundary_log_, edge_table_, touched_, run_count_, log_count_, flip_count_;
 };
 
 } // namespace clmesh

@@ -533,6 +533,16 @@ bool DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase, l
   return done;
 }
 
+void DelaunayScheduler::flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts,
+                                     const std::string &phase) {
+  const std::size_t slots = mesh_->triangle_count;
+  DeviceArray<cl_int> offsets(device_, slots), active(device_, slots);
+  const auto n =
+      static_cast<std::size_t>(scan_->compact_indices(flags, offsets, active, slots, phase));
+  flipping_->run(active, n, stamp_, counts);
+  timer_->charge(phase);
+}
+
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
                                  const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   flipping_.reset(); // its lists are not needed any more: room for the output's

@@ -66,6 +66,10 @@ public:
   bool flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase,
                 long max_passes = -1);
 
+  // Flips the triangles whose slot is flagged (flags[t] != 0) until every
+  // edge they reach is locally (constrained) Delaunay.
+  void flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts, const std::string &phase);
+
   // Downloads the real triangles not flagged in `removed` (per slot), with
   // the per-slot `label` of each in `labels` when given.
   void download(DelaunayResult &result, const DeviceArray<cl_int> *removed = nullptr,

@@ -63,7 +63,13 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 // Sets kernel arguments in order.
 template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...args) {
   cl_uint index = 0;
-  (kernel.setArg(index++, args), ...);
+  try {
+    (kernel.setArg(index++, args), ...);
+  } catch (const cl::Error &error) {
+    throw OpenCLError(error.err(),
+                      std::string(error.what()) + " (argument " + std::to_string(index - 1) + ")",
+                      "setting kernel arguments", kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
+  }
 }
 
 // Runs `body`, turning a cl::Error into an OpenCLError for `phase`.

@@ -621,6 +621,39 @@ TEST_CASE("cdt: long segments crossing thousands of triangles") {
   CHECK(result.stats.split_segments == 0);
 }
 
+TEST_CASE("cdt: dense parallel chains (runs of many constraints side by side)") {
+  // 20k points cut into 1400 horizontal strips a tenth of a point spacing high, each joined by
+  // an x-monotone chain of two segments (the benchmark's 'long' PSLG, smaller): every crossed
+  // triangle is crossed by about ten constraints, so the inner loop's runs are short and
+  // border on one another, and most of their edges are relinked across runs.
+  Pslg pslg;
+  pslg.points = fixtures::uniform(20000, 41);
+  const int strips = 1400;
+  std::vector<std::vector<int32_t>> strip(strips);
+  for (int32_t i = 0; i < static_cast<int32_t>(pslg.points.size()); ++i)
+    strip[std::min(strips - 1, static_cast<int>(pslg.points[i].y * strips))].push_back(i);
+  for (auto &ids : strip) {
+    if (ids.size() < 3)
+      continue;
+    std::sort(ids.begin(), ids.end(),
+              [&](int32_t a, int32_t b) { return lex_less(pslg.points[a], pslg.points[b]); });
+    const std::size_t middle = ids.size() / 2;
+    pslg.segments.push_back({ids.front(), ids[middle], 5});
+    pslg.segments.push_back({ids[middle], ids.back(), 5});
+  }
+  auto options = whole_hull_options();
+  const auto result = cdt_checked(pslg, options);
+  MESSAGE(pslg.segments.size() << " segments, intersections " << result.stats.intersections
+                               << ", constraint flips " << result.stats.constraint_flips
+                               << ", outer iterations " << result.stats.outer_iterations);
+  CHECK(result.stats.intersections > 20 * static_cast<long>(pslg.segments.size()));
+  CHECK(result.stats.split_segments == 0);
+  options.delaunay.work_group = 1;
+  const auto single = clmesh::constrained_delaunay(device(), pslg, options);
+  CHECK(single.mesh.triangles == result.mesh.triangles);
+  CHECK(single.mesh.neighbors == result.mesh.neighbors);
+}
+
 TEST_CASE("cdt: small PSLGs") {
   SUBCASE("a square with either diagonal") {
     const std::vector<Point> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};

@@ -89,6 +89,8 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
     }
   if (first)
     split_origin_.assign(pieces.size(), 0);
+  if (segments.size() >= (std::size_t{1} << 27))
+    throw InputError("segments", 0, "more than 2^27 segments (a triangle's mark holds 27 bits)");
   segments_ = segments;
   origin_ = origin;
   const std::size_t n = mesh_.point_capacity, m = segments.size();

@@ -7,7 +7,8 @@
 // the edges it enters and leaves through in the low bits). (The device index
 // is the constraint's priority: the host numbers constraints in a scrambled
 // order so that neighbouring input segments do not wait for one another; the
-// walks still run in input order, walk_order, for locality.) A vertex lying
+// walks run in walk_order, along the Hilbert curve of their first endpoints,
+// for locality.) A vertex lying
 // exactly on the constraint, or a crossed edge that is itself a constraint,
 // is reported to the host (split the constraint there / split both at their
 // crossing). Inner loop: the thesis's flips, classified as it does: the pair
@@ -325,9 +326,10 @@ inline int flip_case(__global const double2 *points, __global const int *tri_ver
 // run with no further marking (the thesis marks A, C and B because its
 // work-items are triangles). A run starts at the triangle holding a, or at one
 // entered from a triangle without s's mark; the list of runs may come in any
-// order (a run's flips do not depend on it).
+// order (a run's flips do not depend on it). run_counters: [0] runs, [1]
+// boundary log entries, [2] flips.
 __kernel void find_run_starts(__global const int *constraint_mark, __global const int *tri_neighbor,
-                              __global int *run_start, volatile __global int *run_count,
+                              __global int *run_start, volatile __global int *run_counters,
                               const int n) {
   const int t = get_global_id(0);
   int starts = 0;
@@ -338,7 +340,7 @@ __kernel void find_run_starts(__global const int *constraint_mark, __global cons
                  mark_constraint_index(mark);
   }
   volatile __local int scratch[2];
-  append_in_group(&t, starts, run_start, run_count, scratch);
+  append_in_group(&t, starts, run_start, &run_counters[0], scratch);
 }
 
 // run_of[t] = the run's first triangle, for every triangle of the run.
@@ -361,26 +363,28 @@ __kernel void claim_runs(__global const int *run_start, __global const int *tri_
   }
 }
 
-// After a flip inside run `run`, links the outer neighbours back to the new
-// triangles t and u where nobody else can be rewriting them (triangles of this
-// run, and triangles of no run); the edges facing another run are logged for
-// relink_run_boundaries. Returns false when the log is full (no flip is made).
+// Is the triangle across edge e of t in a run other than `run`? Nobody else
+// rewrites the triangles of `run` or of no run, so their links back may be
+// written at once; an edge facing another run waits for
+// relink_run_boundaries.
+inline bool faces_other_run(__global const int *tri_neighbor, __global const int *run_of, int t,
+                            int e, int run) {
+  const int x = link_triangle(tri_neighbor[3 * t + e]);
+  return run_of[x] >= 0 && run_of[x] != run;
+}
+
+// Reserves the log entries of the flip of edge i of t: one per outer edge
+// facing another run (*first: the first entry). Returns false when the log
+// is full (the flip is not made).
 inline bool log_room(__global const int *tri_neighbor, __global const int *run_of, int t, int i,
                      int run, __global int *boundary_log, volatile __global int *log_count,
                      int log_capacity, int *first) {
-  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  const int link = tri_neighbor[3 * t + i];
+  const int u = link_triangle(link), j = link_edge(link);
   int foreign = 0;
   for (int e = 0; e < 3; ++e)
-    if (e != i) {
-      const int x = link_triangle(tri_neighbor[3 * t + e]);
-      foreign += run_of[x] >= 0 && run_of[x] != run;
-    }
-  const int j = link_edge(tri_neighbor[3 * t + i]);
-  for (int e = 0; e < 3; ++e)
-    if (e != j) {
-      const int x = link_triangle(tri_neighbor[3 * u + e]);
-      foreign += run_of[x] >= 0 && run_of[x] != run;
-    }
+    foreign += (e != i && faces_other_run(tri_neighbor, run_of, t, e, run)) +
+               (e != j && faces_other_run(tri_neighbor, run_of, u, e, run));
   if (foreign == 0)
     return true;
   *first = atomic_add(log_count, foreign);
@@ -391,14 +395,17 @@ inline bool log_room(__global const int *tri_neighbor, __global const int *run_o
   return false;
 }
 
+// After a flip, links the outer neighbours of the new triangle t back to it,
+// or logs the edges that face another run.
 inline void link_outer_edges(__global int *tri_neighbor, __global const int *run_of, int run, int t,
                              __global int *boundary_log, int *next_entry) {
   for (int e = 1; e < 3; ++e) {
-    const int link = tri_neighbor[3 * t + e], x = link_triangle(link);
-    if (run_of[x] < 0 || run_of[x] == run)
-      tri_neighbor[3 * x + link_edge(link)] = encode_link(t, e);
-    else
+    if (faces_other_run(tri_neighbor, run_of, t, e, run)) {
       boundary_log[(*next_entry)++] = encode_link(t, e);
+    } else {
+      const int link = tri_neighbor[3 * t + e];
+      tri_neighbor[3 * link_triangle(link) + link_edge(link)] = encode_link(t, e);
+    }
   }
 }
 
@@ -411,10 +418,9 @@ __kernel void flip_along_runs(__global const int *run_start, __global const doub
                               __global int *tri_vertex, __global int *tri_neighbor,
                               __global const int *constraint_mark, __global const int *segment_a,
                               __global const int *segment_b, __global const int *run_of,
-                              __global int *boundary_log, volatile __global int *log_count,
-                              volatile __global int *flip_count, __global int *touched,
-                              __global int *vertex_triangle, const int log_capacity,
-                              const int max_steps, const int n) {
+                              __global int *boundary_log, volatile __global int *run_counters,
+                              __global int *touched, __global int *vertex_triangle,
+                              const int log_capacity, const int max_steps, const int n) {
   const int gid = get_global_id(0);
   int flips = 0;
   if (gid < n) {
@@ -437,8 +443,8 @@ __kernel void flip_along_runs(__global const int *run_start, __global const doub
         continue;
       }
       int entry_index = 0;
-      if (!log_room(tri_neighbor, run_of, A, exit, run, boundary_log, log_count, log_capacity,
-                    &entry_index))
+      if (!log_room(tri_neighbor, run_of, A, exit, run, boundary_log, &run_counters[1],
+                    log_capacity, &entry_index))
         break; // the rest waits for the next outer iteration
       // The entry edge (opposite A's vertex after or before the exit edge)
       // ends up in A's slot or in C's (see flip_pair).
@@ -464,7 +470,7 @@ __kernel void flip_along_runs(__global const int *run_start, __global const doub
     }
   }
   volatile __local int scratch[2];
-  reserve_in_group(flips, scratch, flip_count);
+  reserve_in_group(flips, scratch, &run_counters[2]);
 }
 
 // Second step: an edge between two runs may have moved on both sides. Each

@@ -887,7 +887,7 @@ void print_verbose(const Input &input, const clmesh::ConstrainedResult &result,
     std::printf("    Segment crossings (new vertices): %ld\n", c.crossings);
     std::printf("    Segment-triangle intersections: %ld\n", c.intersections);
     std::printf("    Constraint flips: %ld\n", c.constraint_flips);
-    std::printf("    Outer / inner iterations: %ld / %ld\n", c.outer_iterations,
+    std::printf("    Outer iterations / runs flipped along: %ld / %ld\n", c.outer_iterations,
                 c.inner_iterations);
     std::printf("    Constrained Delaunay flips: %ld\n", c.delaunay_flips);
     std::printf("    Triangles eaten (exterior and holes): %ld\n\n", c.eaten_triangles);

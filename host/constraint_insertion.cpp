@@ -12,7 +12,8 @@ namespace clmesh {
 namespace {
 const char *kFile = "constraint_marking.cl";
 constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
-constexpr std::size_t kCounters = 3; // see mark_constraint_triangles
+constexpr std::size_t kCounters = 3;    // see mark_constraint_triangles
+constexpr std::size_t kRunCounters = 3; // see find_run_starts
 } // namespace
 
 ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
@@ -27,8 +28,7 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
       counters_(device, kCounters), constraint_mark_(device, mesh.triangle_capacity),
       run_start_(device, mesh.triangle_capacity), run_of_(device, mesh.triangle_capacity),
       boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity),
-      touched_(device, mesh.triangle_capacity), run_count_(device, 1), log_count_(device, 1),
-      flip_count_(device, 1) {}
+      touched_(device, mesh.triangle_capacity), run_counters_(device, kRunCounters) {}
 
 std::vector<char> first_occurrences(const std::vector<Segment> &segments) {
   // Sorting (edge, position) pairs: a std::set of 100k edges costs ten times more.
@@ -279,28 +279,28 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   set_constraints(pieces);
 }
 
-long ConstraintInsertion::flip_runs() {
+ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
   const std::size_t slots = mesh_.triangle_count;
   const auto max_steps = static_cast<cl_int>(4 * slots + 64);
-  for (auto *counter : {&run_count_, &log_count_, &flip_count_})
-    counter->fill(device_, 0, 1);
+  run_counters_.fill(device_, 0, kRunCounters);
   run_of_.fill(device_, -1, slots);
   set_args(find_run_starts_, constraint_mark_.buffer(), mesh_.tri_neighbor.buffer(),
-           run_start_.buffer(), run_count_.buffer(), static_cast<cl_int>(slots));
+           run_start_.buffer(), run_counters_.buffer(), static_cast<cl_int>(slots));
   launch(device_, find_run_starts_, slots, kPhase);
-  const auto runs = static_cast<std::size_t>(run_count_.read(device_, 0));
+  const auto runs = static_cast<std::size_t>(run_counters_.read(device_, 0));
   set_args(claim_runs_, run_start_.buffer(), mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(),
            run_of_.buffer(), max_steps, static_cast<cl_int>(runs));
   launch(device_, claim_runs_, runs, kPhase);
   const auto log_capacity = static_cast<cl_int>(boundary_log_.size());
   set_args(flip_along_runs_, run_start_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
-           segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), log_count_.buffer(),
-           flip_count_.buffer(), touched_.buffer(), mesh_.vertex_triangle.buffer(), log_capacity,
-           max_steps, static_cast<cl_int>(runs));
+           segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), run_counters_.buffer(),
+           touched_.buffer(), mesh_.vertex_triangle.buffer(), log_capacity, max_steps,
+           static_cast<cl_int>(runs));
   launch(device_, flip_along_runs_, runs, kPhase);
-  const std::size_t logged = std::min<std::size_t>(
-      static_cast<std::size_t>(log_count_.read(device_, 0)), boundary_log_.size());
+  const auto counts = run_counters_.download(device_, kRunCounters);
+  const std::size_t logged =
+      std::min<std::size_t>(static_cast<std::size_t>(counts[1]), boundary_log_.size());
   if (logged > 0) {
     std::size_t table = 1;
     while (table < 2 * logged)
@@ -313,7 +313,7 @@ long ConstraintInsertion::flip_runs() {
              static_cast<cl_uint>(table - 1), static_cast<cl_int>(logged));
     launch(device_, relink_run_boundaries_, logged, kPhase);
   }
-  return flip_count_.read(device_, 0);
+  return {static_cast<long>(runs), counts[2]};
 }
 
 void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &insert_points) {
@@ -330,10 +330,10 @@ void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &inse
     if (pending == 0)
       return;
     ++stats.outer_iterations;
-    const long flips = flip_runs();
-    ++stats.inner_iterations;
-    stats.constraint_flips += flips;
-    if (flips == 0)
+    const RunPass pass = flip_runs();
+    stats.inner_iterations += pass.runs;
+    stats.constraint_flips += pass.flips;
+    if (pass.flips == 0)
       throw InternalError("constraint insertion made no progress");
   }
   throw InternalError("constraint insertion did not finish");

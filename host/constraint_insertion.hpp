@@ -61,9 +61,11 @@ private:
   // A per-constraint device array, in the order of segments_.
   std::vector<cl_int> download_by_segment(const DeviceArray<cl_int> &array);
   // The inner loop: splits the marked triangles into runs along their
-  // constraints, flips inside every run, then relinks the edges between runs;
-  // returns the flips made.
-  long flip_runs();
+  // constraints, flips inside every run, then relinks the edges between runs.
+  struct RunPass {
+    long runs, flips;
+  };
+  RunPass flip_runs();
 
   Device &device_;
   DeviceMesh &mesh_;
@@ -77,7 +79,7 @@ private:
   bool vertex_triangles_recorded_ = false; // mesh_.vertex_triangle is up to date
   DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
       crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, run_start_, run_of_,
-      boundary_log_, edge_table_, touched_, run_count_, log_count_, flip_count_;
+      boundary_log_, edge_table_, touched_, run_counters_;
 };
 
 } // namespace clmesh

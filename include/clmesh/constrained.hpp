@@ -42,10 +42,10 @@ struct ConstrainedStats {
   long crossings = 0;        // segment-segment crossings, each a new vertex
   long intersections = 0;    // constraint-triangle intersections found by the first marking
   long constraint_flips = 0; // flips of the constraint-insertion phase
-  long outer_iterations = 0;
-  long inner_iterations = 0;
-  long delaunay_flips = 0;  // flips of the final constrained Delaunay flipping
-  long eaten_triangles = 0; // triangles removed as exterior or hole
+  long outer_iterations = 0; // markings that led to flips
+  long inner_iterations = 0; // runs flipped along (the inner loop's work-items), all iterations
+  long delaunay_flips = 0;   // flips of the final constrained Delaunay flipping
+  long eaten_triangles = 0;  // triangles removed as exterior or hole
 };
 
 struct ConstrainedResult {

@@ -285,4 +285,38 @@ inline bool is_constraint(__global const int *constraint_start,
   return false;
 }
 
+// The verdicts of the edge tests of Delaunay flipping (CLM_UNCERTAIN, from
+// predicates.h: the floating-point filter could not tell).
+#define CLM_KEEP 0
+#define CLM_FLIP 1
+
+// Must the edge a-b between triangles (c,a,b) and (d,b,a) flip? Ghost edges
+// are decided with the exact orientation test: two ghosts sharing a hull
+// vertex flip when that vertex is reflex, real-ghost edges never do, and with
+// fixed_boundary (refinement) no ghost edge flips. Constraints never flip
+// (constrained: whether the mesh has any; thesis §4.2 step 3). Real edges take
+// the in-circle test: the floating-point filter, which may answer
+// CLM_UNCERTAIN, or with `exact` the exact, perturbed predicate, which never
+// does (thesis §3.6.3: the uncertain ones go to a second kernel).
+inline int edge_must_flip(__global const double2 *points, __global const int *constraint_start,
+                          __global const int *constraint_adjacent, int constrained,
+                          int fixed_boundary, int c, int a, int b, int d, int exact) {
+  if (fixed_boundary && (a == CLM_INFINITE || b == CLM_INFINITE))
+    return CLM_KEEP;     // refinement: the boundary stays as split, convex or not
+  if (a == CLM_INFINITE) // ghost-ghost edge at hull vertex b: flip if b is reflex
+    return orient_vertices(points, d, b, c) > 0 ? CLM_FLIP : CLM_KEEP;
+  if (b == CLM_INFINITE)
+    return orient_vertices(points, c, a, d) > 0 ? CLM_FLIP : CLM_KEEP;
+  if (c == CLM_INFINITE || d == CLM_INFINITE)
+    return CLM_KEEP; // a hull edge: the hull only grows
+  if (constrained && is_constraint(constraint_start, constraint_adjacent, a, b))
+    return CLM_KEEP;
+  const double2 pc = points[c], pa = points[a], pb = points[b], pd = points[d];
+  const int inside = exact ? clm_incircle_sos_exact(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y)
+                           : clm_incircle_filter(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y);
+  if (inside == CLM_UNCERTAIN)
+    return CLM_UNCERTAIN;
+  return inside > 0 ? CLM_FLIP : CLM_KEEP;
+}
+
 #endif

@@ -3,9 +3,10 @@
 //
 // After the Steiner points of an iteration are inserted, Delaunay flips and
 // the deletion of redundant points run together over an active list of
-// triangles. A pass (1) reuses the flipping phase's filter and exact kernels
-// to find the non-locally-Delaunay edges, (2) lets each active triangle
-// propose one operation (Algorithm 3.1): a non-Delaunay flip ("flop") that
+// triangles. A pass (1) lets each active triangle propose one operation
+// (Algorithm 3.1), testing its edges with the flipping phase's in-circle
+// test (common.h; the filter, then a second kernel with the exact predicate
+// for the few triangles it could not decide, §3.6.3): a non-Delaunay flip ("flop") that
 // lowers the degree of a redundant vertex, a 3-1 flip that deletes a
 // redundant vertex of degree 3 (or a 4-2 flip one of degree 4 lying on the
 // segment between two of its neighbours, where no flop is possible), or a
@@ -144,32 +145,32 @@ inline int redundant_one(__global const int *point_state, __global const uint *p
   return max(c, d);
 }
 
-// Algorithm 3.1 for one active triangle: operation[gid], the 2-2 flip's edge
-// in proposal[gid] (encode_link(neighbour, edge)) or, for a 3-1 flip, the
-// deleted point in proposal[gid] and its triangles in star[4 gid ..].
-// flags[gid]: bit i = edge i is not locally Delaunay (flipping.cl's checks).
+// Algorithm 3.1 for the active triangle t = active[gid]: operation[gid], the
+// 2-2 flip's edge in proposal[gid] (encode_link(neighbour, edge)) or, for a
+// 3-1 flip, the deleted point in proposal[gid] and its triangles in
+// star[4 gid ..]. The in-circle tests run here, edge by edge as the
+// proposal needs them: the floating-point filter, or with `exact` the exact
+// predicate. Returns false, having written nothing, when the filter could
+// not tell an edge it needed (then the exact kernel proposes for t).
 // any_redundant: whether any point is redundant now.
-__kernel void flipflop_propose(__global const int *active, __global const int *flags,
-                               __global const double2 *points, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global const int *point_state,
-                               __global const double *insertion_radius2,
-                               __global const uint *point_priority, const int orthogonal_test,
-                               const int any_redundant, __global int *redundant_mark,
-                               __global int *redundant_anchor, volatile __global int *marked_count,
-                               volatile __global uint *tri_mark, __global int *operation,
-                               __global int *proposal, __global int *star, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  operation[gid] = CLM_OP_NONE;
+inline bool propose_operation(const int gid, const int exact, __global const int *active,
+                              __global const double2 *points, __global const int *tri_vertex,
+                              __global const int *tri_neighbor,
+                              __global const int *constraint_start,
+                              __global const int *constraint_adjacent, const int constrained,
+                              __global const int *point_state,
+                              __global const double *insertion_radius2,
+                              __global const uint *point_priority, const int orthogonal_test,
+                              const int any_redundant, __global int *redundant_mark,
+                              __global int *redundant_anchor, volatile __global int *marked_count,
+                              volatile __global uint *tri_mark, __global int *operation,
+                              __global int *proposal, __global int *star) {
   const int t = active[gid];
   if (t < 0)
-    return;
+    return true;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_dead(tri) || is_ghost(tri))
-    return;
-  if (!any_redundant && (flags[gid] & 7) == 0)
-    return;               // nothing to flip, nothing to delete
+    return true;
   int own = CLM_NO_POINT; // the smallest redundant vertex of t
   for (int i = 0; i < 3 && any_redundant; ++i)
     if (point_state[tri.v[i]] == CLM_POINT_REDUNDANT)
@@ -199,15 +200,20 @@ __kernel void flipflop_propose(__global const int *active, __global const int *f
         }
         operation[gid] = CLM_OP_REMOVE;
         proposal[gid] = smallest;
-        return;
+        return true;
       }
       // A flop must leave both new triangles counter-clockwise.
       if (d < 0 || is_ghost(load_vertices(tri_vertex, u)) ||
           orient_vertices(points, a, d, c) <= 0 || orient_vertices(points, b, c, d) <= 0)
         continue;
       flop = true;
-    } else if (!(flags[gid] & (1 << i))) {
-      continue;
+    } else {
+      const int verdict = edge_must_flip(points, constraint_start, constraint_adjacent, constrained,
+                                         1, c, a, b, d, exact);
+      if (verdict == CLM_UNCERTAIN)
+        return false;
+      if (verdict == CLM_KEEP)
+        continue;
     }
     if (dependent_pair(points, point_state, insertion_radius2, orthogonal_test, c, d)) {
       const int r = redundant_one(point_state, point_priority, c, d);
@@ -215,15 +221,58 @@ __kernel void flipflop_propose(__global const int *active, __global const int *f
       redundant_anchor[r] = r == c ? t : u; // a triangle of its star
       atomic_inc(marked_count);
       operation[gid] = CLM_OP_MARKED;
-      return;
+      return true;
     }
     const uint key = (flop ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
     atomic_min(&tri_mark[t], key);
     atomic_min(&tri_mark[u], key);
     operation[gid] = flop ? CLM_OP_FLOP : CLM_OP_DELAUNAY;
     proposal[gid] = encode_link(u, i);
-    return;
+    return true;
   }
+  return true;
+}
+
+// The proposals decided by the filter; the others are listed in exact_list.
+__kernel void flipflop_propose(
+    __global const int *active, __global const double2 *points, __global const int *tri_vertex,
+    __global const int *tri_neighbor, __global const int *constraint_start,
+    __global const int *constraint_adjacent, const int constrained, __global const int *point_state,
+    __global const double *insertion_radius2, __global const uint *point_priority,
+    const int orthogonal_test, const int any_redundant, __global int *redundant_mark,
+    __global int *redundant_anchor, volatile __global int *marked_count,
+    volatile __global uint *tri_mark, __global int *operation, __global int *proposal,
+    __global int *star, __global int *exact_list, volatile __global int *exact_count, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  operation[gid] = CLM_OP_NONE;
+  if (!propose_operation(gid, 0, active, points, tri_vertex, tri_neighbor, constraint_start,
+                         constraint_adjacent, constrained, point_state, insertion_radius2,
+                         point_priority, orthogonal_test, any_redundant, redundant_mark,
+                         redundant_anchor, marked_count, tri_mark, operation, proposal, star))
+    exact_list[atomic_inc(exact_count)] = gid; // a worklist: its order reaches nothing
+}
+
+// The proposals of the triangles the filter left undecided.
+__kernel void
+flipflop_propose_exact(__global const int *exact_list, __global const int *active,
+                       __global const double2 *points, __global const int *tri_vertex,
+                       __global const int *tri_neighbor, __global const int *constraint_start,
+                       __global const int *constraint_adjacent, const int constrained,
+                       __global const int *point_state, __global const double *insertion_radius2,
+                       __global const uint *point_priority, const int orthogonal_test,
+                       const int any_redundant, __global int *redundant_mark,
+                       __global int *redundant_anchor, volatile __global int *marked_count,
+                       volatile __global uint *tri_mark, __global int *operation,
+                       __global int *proposal, __global int *star, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  propose_operation(exact_list[k], 1, active, points, tri_vertex, tri_neighbor, constraint_start,
+                    constraint_adjacent, constrained, point_state, insertion_radius2,
+                    point_priority, orthogonal_test, any_redundant, redundant_mark,
+                    redundant_anchor, marked_count, tri_mark, operation, proposal, star);
 }
 
 // Deletes p from its star (a small star, see small_star and removable). 3-1:

@@ -13,42 +13,6 @@
 // never flip.
 #include "common.h"
 
-#define CLM_FLIP 1
-#define CLM_KEEP 0
-
-// Must the edge a-b between triangles (c,a,b) and (d,b,a) flip? Real-real
-// edges that are not constraints are left to the in-circle test (*real_edge
-// set, CLM_KEEP returned); ghost edges are decided here with the exact
-// orientation test. constrained: whether the mesh has constraints at all.
-inline int ghost_edge_must_flip(__global const double2 *points,
-                                __global const int *constraint_start,
-                                __global const int *constraint_adjacent, int constrained,
-                                int fixed_boundary, int c, int a, int b, int d, int *real_edge) {
-  *real_edge = 0;
-  if (fixed_boundary && (a == CLM_INFINITE || b == CLM_INFINITE))
-    return CLM_KEEP;     // refinement: the boundary stays as split, convex or not
-  if (a == CLM_INFINITE) // ghost-ghost edge at hull vertex b: flip if b is reflex
-    return orient_vertices(points, d, b, c) > 0 ? CLM_FLIP : CLM_KEEP;
-  if (b == CLM_INFINITE)
-    return orient_vertices(points, c, a, d) > 0 ? CLM_FLIP : CLM_KEEP;
-  if (c == CLM_INFINITE || d == CLM_INFINITE)
-    return CLM_KEEP; // a hull edge: the hull only grows
-  if (constrained && is_constraint(constraint_start, constraint_adjacent, a, b))
-    return CLM_KEEP; // constrained Delaunay: constraints never flip (thesis §4.2 step 3)
-  *real_edge = 1;
-  return CLM_KEEP;
-}
-
-// The four points of the in-circle test of edge i of a real triangle t.
-inline void edge_quad(__global const double2 *points, __global const int *tri_vertex,
-                      __global const int *tri_neighbor, int t, int i, double2 *quad) {
-  const int link = tri_neighbor[3 * t + i];
-  quad[0] = points[tri_vertex[3 * t + i]];
-  quad[1] = points[tri_vertex[3 * t + next3(i)]];
-  quad[2] = points[tri_vertex[3 * t + prev3(i)]];
-  quad[3] = points[tri_vertex[3 * link_triangle(link) + link_edge(link)]];
-}
-
 // active_round[t] = round for the triangles of this pass's list.
 __kernel void flip_mark_active(__global const int *active, __global int *active_round,
                                const int round, const int n) {
@@ -74,18 +38,16 @@ inline int propose_flip(__global const int *tri_neighbor, volatile __global uint
 
 // flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
 // An edge between two listed triangles is tested once, by the smaller one
-// (thesis §3.3.2, Algorithm 3.1 line 8). With `propose`, the triangles the
-// filter decided propose at once (proposal[gid]); the others do in
-// flip_check_exact.
+// (thesis §3.3.2, Algorithm 3.1 line 8). The triangles the filter decided
+// propose at once (proposal[gid]); the others do in flip_check_exact.
 __kernel void flip_check_fast(__global const int *active, __global const double2 *points,
                               __global const int *tri_vertex, __global const int *tri_neighbor,
                               __global const int *constraint_start,
                               __global const int *constraint_adjacent, const int constrained,
                               const int fixed_boundary, __global const int *active_round,
                               const int round, __global int *flags, __global int *exact_list,
-                              volatile __global int *exact_count, const int propose,
-                              volatile __global uint *tri_mark, __global int *proposal,
-                              const int n) {
+                              volatile __global int *exact_count, volatile __global uint *tri_mark,
+                              __global int *proposal, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -93,23 +55,13 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
   int bits = 0;
   const VertexTriple tri = t >= 0 ? load_vertices(tri_vertex, t) : (VertexTriple){{CLM_DEAD}};
   if (t >= 0 && !is_dead(tri)) {
-    double2 p[3];
-    for (int i = 0; i < 3; ++i)
-      p[i] = tri.v[i] >= 0 ? points[tri.v[i]] : (double2)(0, 0);
     for (int i = 0; i < 3; ++i) {
       const int link = tri_neighbor[3 * t + i], u = link_triangle(link);
       if (u < t && active_round[u] == round)
         continue;
-      const int d = tri_vertex[3 * u + link_edge(link)];
-      int real_edge;
-      int verdict = ghost_edge_must_flip(points, constraint_start, constraint_adjacent, constrained,
+      const int verdict = edge_must_flip(points, constraint_start, constraint_adjacent, constrained,
                                          fixed_boundary, tri.v[i], tri.v[next3(i)], tri.v[prev3(i)],
-                                         d, &real_edge);
-      if (real_edge) {
-        const double2 c = p[i], a = p[next3(i)], b = p[prev3(i)], q = points[d];
-        const int inside = clm_incircle_filter(c.x, c.y, a.x, a.y, b.x, b.y, q.x, q.y);
-        verdict = inside == CLM_UNCERTAIN ? CLM_UNCERTAIN : (inside > 0 ? CLM_FLIP : CLM_KEEP);
-      }
+                                         tri_vertex[3 * u + link_edge(link)], 0);
       if (verdict == CLM_FLIP)
         bits |= 1 << i;
       else if (verdict == CLM_UNCERTAIN)
@@ -119,7 +71,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
   flags[gid] = bits;
   if (bits & 0x38)
     exact_list[atomic_inc(exact_count)] = gid; // proposes after the exact check
-  else if (propose)
+  else
     proposal[gid] = propose_flip(tri_neighbor, tri_mark, t, bits);
 }
 
@@ -127,8 +79,8 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
 __kernel void flip_check_exact(__global const int *exact_list, __global const int *active,
                                __global const double2 *points, __global const int *tri_vertex,
                                __global const int *tri_neighbor, __global int *flags,
-                               const int propose, volatile __global uint *tri_mark,
-                               __global int *proposal, const int n) {
+                               volatile __global uint *tri_mark, __global int *proposal,
+                               const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -136,15 +88,16 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
   int bits = flags[index];
   for (int i = 0; i < 3; ++i)
     if (bits & (8 << i)) {
-      double2 q[4];
-      edge_quad(points, tri_vertex, tri_neighbor, t, i, q);
-      if (clm_incircle_sos_exact(q[0].x, q[0].y, q[1].x, q[1].y, q[2].x, q[2].y, q[3].x, q[3].y) >
-          0)
+      const int link = tri_neighbor[3 * t + i];
+      const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
+                b = tri_vertex[3 * t + prev3(i)],
+                d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+      // Only real edges that are not constraints were uncertain.
+      if (edge_must_flip(points, 0, 0, 0, 0, c, a, b, d, 1) == CLM_FLIP)
         bits |= 1 << i;
     }
   flags[index] = bits & 7;
-  if (propose)
-    proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits & 7);
+  proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits & 7);
 }
 
 // 2-2 flip of the proposals that own both marks (see flip_edge).

@@ -16,15 +16,15 @@
 #include "common.h"
 #include "refinement.h"
 
-// Marks the hull vertices whose hull angle is below the minimum angle
-// (cos_bound: its cosine): no refinement can mend the angle every triangle
-// there has at them (Triangle leaves those too). Run once, on the convex
-// hull of the Delaunay triangulation, ghost by ghost.
-__kernel void flag_acute_hull_vertices(__global const double2 *points,
-                                       __global const int *tri_vertex,
-                                       __global const int *tri_neighbor, const double cos_bound,
-                                       __global int *point_state, volatile __global int *flagged,
-                                       const int n) {
+// Marks the hull vertices (CLM_POINT_HULL), and among them those whose hull
+// angle is below the minimum angle (CLM_POINT_ACUTE_HULL; cos_bound: its
+// cosine; none when acute_bound is 0): no refinement can mend the angle
+// every triangle there has at them (Triangle leaves those too). Run once, on
+// the convex hull of the Delaunay triangulation, ghost by ghost.
+__kernel void flag_hull_vertices(__global const double2 *points, __global const int *tri_vertex,
+                                 __global const int *tri_neighbor, const int acute_bound,
+                                 const double cos_bound, __global int *point_state,
+                                 volatile __global int *flagged, const int n) {
   const int g = get_global_id(0);
   if (g >= n)
     return;
@@ -40,7 +40,8 @@ __kernel void flag_acute_hull_vertices(__global const double2 *points,
   const int j = following.v[0] == b ? 0 : (following.v[1] == b ? 1 : 2);
   const int c =
       following.v[next3(j)] == CLM_INFINITE ? following.v[prev3(j)] : following.v[next3(j)];
-  if (a < 0 || c < 0 || a == c)
+  point_state[b] = CLM_POINT_HULL;
+  if (!acute_bound || a < 0 || c < 0 || a == c)
     return;
   const double2 u = points[a] - points[b], w = points[c] - points[b];
   const double dot = u.x * w.x + u.y * w.y;
@@ -160,14 +161,19 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
   priority[k] = slot_priority[gid];
 }
 
-// Locates candidate k walking from its bad triangle. A candidate that ends in a
-// ghost triangle, or inside the diametral lens of a hull edge of its
-// container, becomes that hull edge's midpoint, inserted on that edge whatever
-// the rounding of the midpoint (as Triangle splits a segment). split_edge[k]:
-// the edge of container[k] the candidate lies on (the hull edge of a
-// midpoint), or -1 inside; container[k] = -1 when it falls on a vertex.
+// Locates candidate k walking from its bad triangle, or from the container
+// found for it by the last search (last_container[origin], kept when neither
+// triangle was rewritten since: modified_stamp below located_stamp, the
+// stamp of that search). A candidate that ends in a ghost triangle, or
+// inside the diametral lens of a hull edge of its container, becomes that
+// hull edge's midpoint, inserted on that edge whatever the rounding of the
+// midpoint (as Triangle splits a segment). split_edge[k]: the edge of
+// container[k] the candidate lies on (the hull edge of a midpoint), or -1
+// inside; container[k] = -1 when it falls on a vertex.
 __kernel void locate_candidates(__global const double2 *points, __global const int *tri_vertex,
-                                __global const int *tri_neighbor, __global double2 *candidate,
+                                __global const int *tri_neighbor, __global const int *point_state,
+                                __global const int *modified_stamp, __global int *last_container,
+                                const int located_stamp, __global double2 *candidate,
                                 __global int *container, __global int *split_edge,
                                 __global const int *origin, const double lens, const int max_steps,
                                 const int n) {
@@ -175,8 +181,12 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
   if (k >= n)
     return;
   const double2 c = candidate[k];
-  const WalkResult walk = walk_to_point(points, tri_vertex, tri_neighbor, origin[k], c, max_steps);
-  int t = walk.outcome == CLM_WALK_LOST ? origin[k] : walk.triangle;
+  const int bad = origin[k], known = last_container[bad];
+  const bool unchanged =
+      modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;
+  const WalkResult walk =
+      walk_to_point(points, tri_vertex, tri_neighbor, unchanged ? known : bad, c, max_steps);
+  int t = walk.outcome == CLM_WALK_LOST ? bad : walk.triangle;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   int hull_edge = -1;
   if (is_ghost(tri)) {
@@ -184,19 +194,23 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
     const int link = tri_neighbor[3 * t + g];
     t = link_triangle(link); // the real triangle on that hull edge
     hull_edge = link_edge(link);
-  } else {
+  } else if (on_hull(point_state[tri.v[0]]) || on_hull(point_state[tri.v[1]]) ||
+             on_hull(point_state[tri.v[2]])) {
     // A hull edge of the container or of a neighbour whose diametral lens
-    // holds c is encroached: it is split instead.
+    // holds c is encroached: it is split instead. (Every such edge has a
+    // vertex of the container: none is near a container without one.)
     for (int r = -1; r < 3 && hull_edge < 0; ++r) {
       const int s = r < 0 ? t : link_triangle(tri_neighbor[3 * t + r]);
       if (is_ghost(load_vertices(tri_vertex, s)))
         continue;
       for (int i = 0; i < 3 && hull_edge < 0; ++i) {
+        const int a = tri_vertex[3 * s + next3(i)], b = tri_vertex[3 * s + prev3(i)];
+        if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
+          continue;
         const int u = link_triangle(tri_neighbor[3 * s + i]);
         if (!is_ghost(load_vertices(tri_vertex, u)))
           continue;
-        if (in_lens(points[tri_vertex[3 * s + next3(i)]], points[tri_vertex[3 * s + prev3(i)]], c,
-                    lens)) {
+        if (in_lens(points[a], points[b], c, lens)) {
           hull_edge = i;
           t = s;
         }
@@ -216,6 +230,7 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
   }
   const bool located = (walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0) && splits_cleanly;
   container[k] = located ? t : -1;
+  last_container[bad] = located ? t : -1;
   split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;
 }
 

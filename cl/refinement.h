@@ -12,6 +12,13 @@
 #define CLM_POINT_DELETED 5      // deleted: its slot is free
 #define CLM_POINT_MIDPOINT 6     // hull midpoint inserted in an earlier iteration
 #define CLM_POINT_ACUTE_HULL 7   // input point at a hull angle below the minimum angle
+#define CLM_POINT_HULL 8         // any other input point on the hull
+
+// Hull vertices stay on the hull: the boundary is fixed during refinement.
+inline bool on_hull(int state) {
+  return state == CLM_POINT_HULL || state == CLM_POINT_ACUTE_HULL || state == CLM_POINT_MIDPOINT ||
+         state == CLM_POINT_NEW_MIDPOINT;
+}
 
 inline bool is_new_point(int state) {
   return state == CLM_POINT_NEW || state == CLM_POINT_NEW_MIDPOINT;

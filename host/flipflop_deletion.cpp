@@ -13,12 +13,12 @@ constexpr long kMaxPasses = 100000;
 } // namespace
 
 FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
-                                   Flipping &flipping, bool orthogonal_test, double lens)
-    : device_(device), mesh_(mesh), scan_(scan), flipping_(flipping),
-      orthogonal_test_(orthogonal_test ? 1 : 0), lens_(lens),
-      mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
+                                   bool orthogonal_test, double lens)
+    : device_(device), mesh_(mesh), scan_(scan), orthogonal_test_(orthogonal_test ? 1 : 0),
+      lens_(lens), mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
+      propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),
       apply_(device.kernel(kFile, "flipflop_apply", kPhase)),
       relink_(device.kernel(kFile, "flipflop_relink", kPhase)),
       count_next_(device.kernel(kFile, "flipflop_count_next", kPhase)),
@@ -34,14 +34,15 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
       active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
-      flags_(device, mesh.list_capacity), operation_(device, mesh.list_capacity),
+      exact_list_(device, mesh.list_capacity), operation_(device, mesh.list_capacity),
       proposal_(device, mesh.list_capacity), star_(device, 4 * mesh.list_capacity),
       applied_(device, mesh.list_capacity), count_(device, 2 * mesh.list_capacity),
       offset_(device, 2 * mesh.list_capacity), redundant_mark_(device, mesh.point_capacity),
       redundant_anchor_(device, mesh.point_capacity), star_size_(device, mesh.point_capacity),
       star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
       encroach_claim_(device, mesh.point_capacity), marked_count_(device, 1),
-      flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1), kept_(device, 1) {
+      exact_count_(device, 1), flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1),
+      kept_(device, 1) {
   redundant_mark_.fill(device_, 0, mesh.point_capacity);
   encroach_claim_.fill(device_, 0x7fffffff, mesh.point_capacity);
   failures_.fill(device_, 0, 1);
@@ -90,7 +91,6 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
              static_cast<cl_int>(tracked_n_));
     launch(device_, clear_claims_, tracked_n_, kPhase);
   }
-  FlipCounts checks;
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   for (long pass = 0; n > 0; ++pass) {
     if (pass == kMaxPasses)
@@ -98,15 +98,8 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
                           " passes");
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
-    flipping_.check(active_, n, flags_, checks);
     marked_count_.fill(device_, 0, 1);
-    set_args(propose_, active_.buffer(), flags_.buffer(), mesh_.points.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.point_state.buffer(),
-             mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), orthogonal_test_,
-             static_cast<cl_int>(redundant_left_ && pass > 0), redundant_mark_.buffer(),
-             redundant_anchor_.buffer(), marked_count_.buffer(), mesh_.tri_mark.buffer(),
-             operation_.buffer(), proposal_.buffer(), star_.buffer(), items);
-    launch(device_, propose_, n, kPhase);
+    counts.exact_checks += propose(items, static_cast<cl_int>(redundant_left_ && pass > 0));
     set_args(apply_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
              mesh_.tri_mark.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
              mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
@@ -149,7 +142,6 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
   counts.delaunay_flips += flips[0];
   counts.non_delaunay_flips += flips[1] + flips[2];
   counts.deleted += flips[2]; // each removal deletes one point
-  counts.exact_checks += checks.exact_checks;
   midpoints_.fill(device_, 0, 1);
   if (m > 0) {
     set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
@@ -158,6 +150,34 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
   }
   counts.midpoints += midpoints_.read(device_, 0);
   counts.kept_redundant += kept_.read(device_, 0);
+}
+
+// Every active triangle proposes its operation: the filter's kernel, then the
+// exact one for the triangles it could not decide. Returns how many those were.
+long FlipflopDeletion::propose(cl_int items, cl_int any_redundant) {
+  const auto constrained = static_cast<cl_int>(mesh_.has_constraints);
+  exact_count_.fill(device_, 0, 1);
+  set_args(propose_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
+           mesh_.constraint_adjacent.buffer(), constrained, mesh_.point_state.buffer(),
+           mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), orthogonal_test_,
+           any_redundant, redundant_mark_.buffer(), redundant_anchor_.buffer(),
+           marked_count_.buffer(), mesh_.tri_mark.buffer(), operation_.buffer(), proposal_.buffer(),
+           star_.buffer(), exact_list_.buffer(), exact_count_.buffer(), items);
+  launch(device_, propose_, static_cast<std::size_t>(items), kPhase);
+  const int uncertain = exact_count_.read(device_, 0);
+  if (uncertain > 0) {
+    set_args(propose_exact_, exact_list_.buffer(), active_.buffer(), mesh_.points.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), constrained,
+             mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
+             mesh_.point_priority.buffer(), orthogonal_test_, any_redundant,
+             redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
+             mesh_.tri_mark.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+             static_cast<cl_int>(uncertain));
+    launch(device_, propose_exact_, static_cast<std::size_t>(uncertain), kPhase);
+  }
+  return uncertain;
 }
 
 // Marked points become redundant, and the stars of the redundant ones join the

@@ -29,8 +29,8 @@ public:
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
   // lens: Triangle's encroachment test of hull edges (offcenter_insertion.cl).
-  FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan, Flipping &flipping,
-                   bool orthogonal_test, double lens);
+  FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test,
+                   double lens);
 
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
@@ -48,23 +48,24 @@ public:
   std::vector<Point> steiner_points(std::size_t first);
 
 private:
+  long propose(cl_int items, cl_int any_redundant);
   void find_stars(int stamp, std::size_t next, std::size_t *n);
 
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  Flipping &flipping_;
   cl_int orthogonal_test_;
   double lens_;
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
-  cl::Kernel mark_encroaching_, clear_claims_, propose_, apply_, relink_, count_next_, gather_next_,
-      clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_;
-  DeviceArray<cl_int> active_, next_active_, flags_, operation_, proposal_, star_, applied_, count_,
-      offset_;
+  cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
+      count_next_, gather_next_, clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_,
+      flag_deleted_, number_;
+  DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
+      count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
       encroach_claim_;
-  DeviceArray<cl_int> marked_count_, flip_counts_, failures_, midpoints_, kept_;
+  DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_;
 };
 
 } // namespace clmesh

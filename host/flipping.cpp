@@ -27,29 +27,21 @@ void Flipping::mark_active(const DeviceArray<cl_int> &active, std::size_t n) {
   launch(device_, mark_active_, n, kPhase);
 }
 
-void Flipping::check(const DeviceArray<cl_int> &active, std::size_t n,
-                     const DeviceArray<cl_int> &flags, FlipCounts &counts) {
-  mark_active(active, n);
-  test_edges(active, n, flags, counts, false);
-}
-
-void Flipping::test_edges(const DeviceArray<cl_int> &active, std::size_t n,
-                          const DeviceArray<cl_int> &flags, FlipCounts &counts, bool propose) {
+void Flipping::propose(std::size_t n, FlipCounts &counts) {
   const auto items = static_cast<cl_int>(n);
-  const auto proposing = static_cast<cl_int>(propose);
   exact_count_.fill(device_, 0, 1);
-  set_args(check_fast_, active.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+  set_args(check_fast_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
            mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),
-           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_, flags.buffer(),
-           exact_list_.buffer(), exact_count_.buffer(), proposing, mesh_.tri_mark.buffer(),
-           proposal_.buffer(), items);
+           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_, flags_.buffer(),
+           exact_list_.buffer(), exact_count_.buffer(), mesh_.tri_mark.buffer(), proposal_.buffer(),
+           items);
   launch(device_, check_fast_, n, kPhase);
   const int uncertain = exact_count_.read(device_, 0);
   if (uncertain > 0) {
     counts.exact_checks += uncertain;
-    set_args(check_exact_, exact_list_.buffer(), active.buffer(), mesh_.points.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags.buffer(), proposing,
+    set_args(check_exact_, exact_list_.buffer(), active_.buffer(), mesh_.points.buffer(),
+             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags_.buffer(),
              mesh_.tri_mark.buffer(), proposal_.buffer(), static_cast<cl_int>(uncertain));
     launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
   }
@@ -69,7 +61,7 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     pass_counts_.fill(device_, 0, 2);
-    test_edges(active_, n, flags_, counts, true);
+    propose(n, counts);
     set_args(apply_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(),
              mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
              mesh_.children.buffer(), flipped_.buffer(), pass_counts_.buffer(), pass_stamp, items);

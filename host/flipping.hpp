@@ -25,12 +25,6 @@ public:
   bool run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts,
            long max_passes = -1);
 
-  // The first step of a pass, shared with flip-flop: flags[k] bit i set when
-  // edge i of triangle active[k] is not locally Delaunay (the filter, then
-  // the exact predicate on the uncertain ones). flags holds n entries.
-  void check(const DeviceArray<cl_int> &active, std::size_t n, const DeviceArray<cl_int> &flags,
-             FlipCounts &counts);
-
   // During refinement the boundary is fixed: split hull edges stay as they
   // are (a rounded midpoint may leave it a hair from convex), as in Triangle.
   void set_fixed_boundary(bool fixed) { fixed_boundary_ = fixed; }
@@ -39,10 +33,11 @@ public:
 private:
   // Lists `active` as this round's (active_round_ = ++round_).
   void mark_active(const DeviceArray<cl_int> &active, std::size_t n);
-  // check() on a list marked for round_; with `propose`, each triangle also
-  // proposes its first flippable edge (proposal_, marks in tri_mark).
-  void test_edges(const DeviceArray<cl_int> &active, std::size_t n,
-                  const DeviceArray<cl_int> &flags, FlipCounts &counts, bool propose);
+  // flags_[k] bit i set when edge i of triangle active_[k] (n entries,
+  // marked for round_) is not locally Delaunay: the filter, then the exact
+  // predicate on the uncertain ones; each triangle proposes its first
+  // flippable edge (proposal_, marks in tri_mark).
+  void propose(std::size_t n, FlipCounts &counts);
 
   Device &device_;
   DeviceMesh &mesh_;

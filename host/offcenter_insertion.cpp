@@ -12,7 +12,7 @@ const char *kFile = "offcenter_insertion.cl";
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area)
     : device_(device), mesh_(mesh), max_area_(max_area),
-      flag_acute_(device.kernel(kFile, "flag_acute_hull_vertices", kPhase)),
+      flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
@@ -27,8 +27,10 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
       listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
-      slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity) {
+      slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
+      last_container_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
+  last_container_.fill(device_, -1, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
@@ -41,16 +43,14 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
 }
 
-std::size_t OffcenterInsertion::flag_acute_hull_vertices() {
-  if (ratio_bound_squared_ <= 0)
-    return 0; // no angle bound
+std::size_t OffcenterInsertion::flag_hull_vertices() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> flagged(device_, 1);
   flagged.fill(device_, 0, 1);
-  set_args(flag_acute_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), cos_bound_, mesh_.point_state.buffer(), flagged.buffer(),
-           static_cast<cl_int>(slots));
-  launch(device_, flag_acute_, slots, kPhase);
+  set_args(flag_hull_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_,
+           mesh_.point_state.buffer(), flagged.buffer(), static_cast<cl_int>(slots));
+  launch(device_, flag_hull_, slots, kPhase);
   return static_cast<std::size_t>(flagged.read(device_, 0));
 }
 
@@ -65,7 +65,8 @@ std::size_t OffcenterInsertion::count_unfixable() {
   return static_cast<std::size_t>(count.read(device_, 0));
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed) {
+std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed,
+                                     int stamp) {
   // The first search sweeps every slot; the later ones only the last bad
   // triangles and the changed ones, without duplicates.
   const bool use_list = searched_ && changed != nullptr;
@@ -97,9 +98,11 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   launch(device_, gather_bad_, entries, kPhase);
   const auto n = static_cast<cl_int>(bad_);
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin_.buffer(), lens_,
-           static_cast<cl_int>(mesh_.triangle_count + 8), n);
+           mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
+           located_stamp_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
+           origin_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
+  located_stamp_ = stamp;
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, bad_, kPhase);

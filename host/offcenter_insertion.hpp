@@ -29,13 +29,15 @@ public:
   // Returns the number of bad triangles.
   // The first search examines every slot; a later one the bad triangles of
   // the last search and the triangles listed in `changed` (rewritten since,
-  // duplicates allowed; every slot when null).
-  std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed);
+  // duplicates allowed; every slot when null). `stamp`: the mesh's next
+  // modification stamp; a triangle rewritten later has a larger one.
+  std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
 
-  // Once, on the Delaunay triangulation: flags the input points at hull angles
-  // below the minimum angle. Bad triangles whose smallest angle is at one of
-  // them cannot be mended and are left alone; count_unfixable() counts them.
-  std::size_t flag_acute_hull_vertices(); // returns how many
+  // Once, on the Delaunay triangulation: flags the hull vertices, and among
+  // them the input points at hull angles below the minimum angle. Bad
+  // triangles whose smallest angle is at one of those cannot be mended and are
+  // left alone; count_unfixable() counts them.
+  std::size_t flag_hull_vertices(); // returns how many are acute
   std::size_t count_unfixable();
 
   // Appends the survivors to the mesh's points (free slots first, then from
@@ -51,7 +53,7 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
-  cl::Kernel flag_acute_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
+  cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;
   bool searched_ = false;     // the first search examines every slot
@@ -62,6 +64,10 @@ private:
   DeviceArray<cl_int> listed_; // the triangles of a search after the first
   DeviceArray<cl_double2> slot_candidate_;
   DeviceArray<cl_uint> slot_priority_, priority_;
+  // Per bad triangle: where the last search located its candidate (-1: not
+  // located), valid while neither triangle is rewritten: a walk of one step.
+  DeviceArray<cl_int> last_container_;
+  cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
 };
 
 } // namespace clmesh

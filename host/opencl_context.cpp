@@ -311,18 +311,26 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
     throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
   if (profile) {
-    // CLMESH_PROFILE=1: per-kernel seconds on stderr at exit (development aid).
-    static std::map<std::string, std::pair<double, long>> totals;
+    // CLMESH_PROFILE=1: per-kernel seconds, launches and work-items on
+    // stderr at exit (development aid).
+    struct Total {
+      double seconds = 0;
+      long launches = 0;
+      double items = 0;
+    };
+    static std::map<std::string, Total> totals;
     static struct Report {
       ~Report() {
-        for (const auto &[name, entry] : totals)
-          std::fprintf(stderr, "%-32s %9.4f s %7ld launches\n", name.c_str(), entry.first,
-                       entry.second);
+        for (const auto &[name, total] : totals)
+          std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
+                       total.seconds, total.launches, total.items);
       }
     } report;
-    auto &entry = totals[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
-    entry.first += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ++entry.second;
+    Total &total = totals[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
+    total.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++total.launches;
+    total.items += static_cast<double>(items);
   }
 }
 

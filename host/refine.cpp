@@ -39,7 +39,7 @@ struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle, options.max_area),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
-        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scheduler.flipping(),
+        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.algorithm == RefineAlgorithm::qmv, offcenter.lens()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
@@ -72,7 +72,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   mesh.enable_refinement(device);
   scheduler.flipping().set_fixed_boundary(true);
   auto steps = std::make_unique<RefinementSteps>(scheduler, options);
-  const std::size_t acute_hull_vertices = steps->offcenter.flag_acute_hull_vertices();
+  const std::size_t acute_hull_vertices = steps->offcenter.flag_hull_vertices();
   RefineStats &stats = result.stats;
   FlipflopCounts flips;
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
@@ -92,7 +92,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
   for (long iteration = 0;; ++iteration) {
-    const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed);
+    const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed, scheduler.stamp());
     changed.size = 0;
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     stats.remaining_bad = static_cast<long>(bad);

@@ -632,6 +632,120 @@ __kernel void flag_dead_triangles(__global const int *tri_vertex, __global int *
     keep[t] = tri_vertex[3 * t] == CLM_DEAD;
 }
 
+// Compaction (thesis §3.6.1 collects the empty slots; here the live
+// triangles also move into spatial order, so that a triangle's neighbours
+// share its cache lines: the refinement's kernels are bound by those random
+// accesses on a CPU). The live triangles are counted per cell of a Z-order
+// curve over the bounding box (cells_per_side = 2^bits, scale: cells per
+// unit), scattered to their cells, sorted by slot inside each cell, and
+// moved there.
+inline uint spread_bits(uint x) { // bit i of x to bit 2i
+  x &= 0xffffu;
+  x = (x | (x << 8)) & 0x00ff00ffu;
+  x = (x | (x << 4)) & 0x0f0f0f0fu;
+  x = (x | (x << 2)) & 0x33333333u;
+  return (x | (x << 1)) & 0x55555555u;
+}
+
+inline int cell_coordinate(double x, double low, double scale, int bits) {
+  return clamp((int)((x - low) * scale), 0, (1 << bits) - 1);
+}
+
+__kernel void count_triangle_cells(__global const double2 *points, __global const int *tri_vertex,
+                                   const double2 low, const double scale, const int bits,
+                                   __global int *cell, volatile __global int *cell_size,
+                                   const int n) {
+  const int t = get_global_id(0);
+  if (t >= n)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_dead(tri)) {
+    cell[t] = -1;
+    return;
+  }
+  double2 sum = (double2)(0, 0); // of the real vertices (two for a ghost)
+  int real = 0;
+  for (int i = 0; i < 3; ++i)
+    if (tri.v[i] >= 0) {
+      sum += points[tri.v[i]];
+      ++real;
+    }
+  const double2 centre = sum / (double)real;
+  const int c = (int)(spread_bits((uint)cell_coordinate(centre.x, low.x, scale, bits)) |
+                      (spread_bits((uint)cell_coordinate(centre.y, low.y, scale, bits)) << 1));
+  cell[t] = c;
+  atomic_inc(&cell_size[c]);
+}
+
+// The order inside a cell is fixed by sort_cells: the cursor never reaches the mesh.
+__kernel void scatter_to_cells(__global const int *cell, __global const int *cell_start,
+                               volatile __global int *cursor, __global int *order, const int n) {
+  const int t = get_global_id(0);
+  if (t < n && cell[t] >= 0)
+    order[cell_start[cell[t]] + atomic_inc(&cursor[cell[t]])] = t;
+}
+
+// Sorts a[0 .. size) ascending: insertion sort when short, else heap sort
+// (a crowded cell must not cost its size squared).
+inline void sort_ascending(__global int *a, int size) {
+  if (size <= 32) {
+    for (int i = 1; i < size; ++i) {
+      const int x = a[i];
+      int j = i - 1;
+      for (; j >= 0 && a[j] > x; --j)
+        a[j + 1] = a[j];
+      a[j + 1] = x;
+    }
+    return;
+  }
+  for (int end = size; end > 1; --end) {
+    // Heapify once, then move the largest to the end each round.
+    for (int root = (end == size ? end / 2 - 1 : 0); root >= 0; --root) {
+      int r = root;
+      const int x = a[r];
+      for (int child = 2 * r + 1; child < end; child = 2 * r + 1) {
+        if (child + 1 < end && a[child] < a[child + 1])
+          ++child;
+        if (a[child] <= x)
+          break;
+        a[r] = a[child];
+        r = child;
+      }
+      a[r] = x;
+    }
+    const int top = a[0];
+    a[0] = a[end - 1];
+    a[end - 1] = top;
+  }
+}
+
+// new_slot[old] for the triangles of each cell, in slot order.
+__kernel void sort_cells(__global const int *cell_start, __global const int *cell_size,
+                         __global int *order, __global int *new_slot, const int cells) {
+  const int c = get_global_id(0);
+  if (c >= cells)
+    return;
+  const int start = cell_start[c], size = cell_size[c];
+  sort_ascending(order + start, size);
+  for (int i = 0; i < size; ++i)
+    new_slot[order[start + i]] = start + i;
+}
+
+__kernel void move_triangles(__global const int *order, __global const int *new_slot,
+                             __global const int *tri_vertex, __global const int *tri_neighbor,
+                             __global int *moved_vertex, __global int *moved_neighbor,
+                             const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int t = order[k];
+  for (int i = 0; i < 3; ++i) {
+    const int link = tri_neighbor[3 * t + i];
+    moved_vertex[3 * k + i] = tri_vertex[3 * t + i];
+    moved_neighbor[3 * k + i] = encode_link(new_slot[link_triangle(link)], link_edge(link));
+  }
+}
+
 // Final numbering: the surviving Steiner points follow the input points in
 // slot order (offset: exclusive scan of the survivors among slots first ..);
 // the deleted ones take the numbers after them (they are in no triangle).

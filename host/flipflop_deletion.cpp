@@ -31,6 +31,10 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       flag_dead_(device.kernel(kFile, "flag_dead_triangles", kPhase)),
       flag_deleted_(device.kernel(kFile, "flag_deleted_points", kPhase)),
       number_(device.kernel(kFile, "number_steiner_points", kPhase)),
+      count_cells_(device.kernel(kFile, "count_triangle_cells", kPhase)),
+      scatter_cells_(device.kernel(kFile, "scatter_to_cells", kPhase)),
+      sort_cells_(device.kernel(kFile, "sort_cells", kPhase)),
+      move_triangles_(device.kernel(kFile, "move_triangles", kPhase)),
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
       active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
@@ -230,6 +234,49 @@ void FlipflopDeletion::collect_free_slots() {
   points.first = 0;
   points.count = static_cast<std::size_t>(
       scan_.compact_indices(count_, offset_, points.slots, point_slots, kPhase));
+}
+
+void FlipflopDeletion::compact_triangles(Point low, double side) {
+  const std::size_t slots = mesh_.triangle_count;
+  // About eight triangles per cell.
+  int bits = 1;
+  while (bits < 15 && (std::size_t{1} << (2 * bits)) * 8 < slots)
+    ++bits;
+  const std::size_t cells = std::size_t{1} << (2 * bits);
+  const double scale = side > 0 ? static_cast<double>(std::size_t{1} << bits) / side : 0.0;
+  // The marks (none are set between iterations) hold the cells, the stamps
+  // the new slots, the children the moved vertices: all are reset after.
+  const DeviceArray<cl_int> &cell = mesh_.tri_mark, &new_slot = mesh_.modified_stamp;
+  DeviceArray<cl_int> cell_size(device_, cells), cell_start(device_, cells), cursor(device_, cells);
+  cell_size.fill(device_, 0, cells);
+  cursor.fill(device_, 0, cells);
+  const auto items = static_cast<cl_int>(slots);
+  set_args(count_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           cl_double2{{low.x, low.y}}, scale, static_cast<cl_int>(bits), cell.buffer(),
+           cell_size.buffer(), items);
+  launch(device_, count_cells_, slots, kPhase);
+  const auto live =
+      static_cast<std::size_t>(scan_.exclusive_scan(cell_size, cell_start, cells, kPhase));
+  DeviceArray<cl_int> order(device_, live);
+  set_args(scatter_cells_, cell.buffer(), cell_start.buffer(), cursor.buffer(), order.buffer(),
+           items);
+  launch(device_, scatter_cells_, slots, kPhase);
+  set_args(sort_cells_, cell_start.buffer(), cell_size.buffer(), order.buffer(), new_slot.buffer(),
+           static_cast<cl_int>(cells));
+  launch(device_, sort_cells_, cells, kPhase);
+  {
+    DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity);
+    set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), mesh_.children.buffer(), moved_neighbor.buffer(),
+             static_cast<cl_int>(live));
+    launch(device_, move_triangles_, live, kPhase);
+    std::swap(mesh_.tri_vertex, mesh_.children);
+    std::swap(mesh_.tri_neighbor, moved_neighbor);
+  }
+  mesh_.tri_mark.fill(device_, -1, mesh_.triangle_capacity); // no mark
+  mesh_.modified_stamp.fill(device_, 0, mesh_.triangle_capacity);
+  mesh_.triangle_count = live;
+  mesh_.free_triangles.first = mesh_.free_triangles.count = 0;
 }
 
 std::vector<Point> FlipflopDeletion::steiner_points(std::size_t first) {

@@ -41,6 +41,11 @@ public:
 
   // Collects the empty triangle and point slots into the mesh's free lists.
   void collect_free_slots();
+  // Moves the live triangles to the front, in the order of a Z-order curve
+  // over the square of side `side` from `low` (the points' bounding box), and
+  // empties the triangle free list. Every slot number changes: lists of
+  // triangles kept elsewhere are void.
+  void compact_triangles(Point low, double side);
 
   // Numbers the surviving Steiner points (slots first ..) after the input
   // points in slot order, the deleted ones after them, and returns the
@@ -60,7 +65,7 @@ private:
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
       count_next_, gather_next_, clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_,
-      flag_deleted_, number_;
+      flag_deleted_, number_, count_cells_, scatter_cells_, sort_cells_, move_triangles_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,

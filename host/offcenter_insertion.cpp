@@ -119,6 +119,12 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   return bad_;
 }
 
+void OffcenterInsertion::forget_triangles() {
+  searched_ = false;
+  bad_ = 0;
+  last_container_.fill(device_, -1, last_container_.size());
+}
+
 std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
                                        const DeviceArray<cl_int> &new_points, InsertionLog &log,
                                        std::size_t *wanted) {

@@ -32,6 +32,8 @@ public:
   // duplicates allowed; every slot when null). `stamp`: the mesh's next
   // modification stamp; a triangle rewritten later has a larger one.
   std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
+  // After the triangles moved: the next search examines every slot again.
+  void forget_triangles();
 
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad

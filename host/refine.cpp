@@ -91,7 +91,26 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // small hull angles; the bound on iterations turns anything else into
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
+  // The square around the points, for the spatial order of the triangles.
+  Point low{points[0].x, points[0].y};
+  double side = 0;
+  for (const Point &p : points) {
+    low.x = std::min(low.x, p.x);
+    low.y = std::min(low.y, p.y);
+  }
+  for (const Point &p : points)
+    side = std::max({side, p.x - low.x, p.y - low.y});
+  // Triangles move into spatial order whenever their slots grew by half.
+  std::size_t compacted_slots = 0;
   for (long iteration = 0;; ++iteration) {
+    if (mesh.triangle_count >= compacted_slots + compacted_slots / 2) {
+      steps->flipflop.compact_triangles(low, side);
+      steps->offcenter.forget_triangles();
+      changed.size = 0;
+      deleted_since_collection = false;
+      compacted_slots = mesh.triangle_count;
+      scheduler.timer().charge(FlipflopDeletion::kPhase);
+    }
     const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed, scheduler.stamp());
     changed.size = 0;
     scheduler.timer().charge(OffcenterInsertion::kPhase);

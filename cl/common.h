@@ -290,14 +290,25 @@ inline bool is_constraint(__global const int *constraint_start,
 #define CLM_KEEP 0
 #define CLM_FLIP 1
 
+// The in-circle test of the real edge a-b between (c,a,b) and (d,b,a): the
+// floating-point filter, which may answer CLM_UNCERTAIN, or with `exact` the
+// exact, perturbed predicate, which never does (thesis §3.6.3: the uncertain
+// ones go to a second kernel).
+inline int incircle_verdict(__global const double2 *points, int c, int a, int b, int d, int exact) {
+  const double2 pc = points[c], pa = points[a], pb = points[b], pd = points[d];
+  const int inside = exact ? clm_incircle_sos_exact(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y)
+                           : clm_incircle_filter(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y);
+  if (inside == CLM_UNCERTAIN)
+    return CLM_UNCERTAIN;
+  return inside > 0 ? CLM_FLIP : CLM_KEEP;
+}
+
 // Must the edge a-b between triangles (c,a,b) and (d,b,a) flip? Ghost edges
 // are decided with the exact orientation test: two ghosts sharing a hull
 // vertex flip when that vertex is reflex, real-ghost edges never do, and with
 // fixed_boundary (refinement) no ghost edge flips. Constraints never flip
 // (constrained: whether the mesh has any; thesis §4.2 step 3). Real edges take
-// the in-circle test: the floating-point filter, which may answer
-// CLM_UNCERTAIN, or with `exact` the exact, perturbed predicate, which never
-// does (thesis §3.6.3: the uncertain ones go to a second kernel).
+// the in-circle test (incircle_verdict).
 inline int edge_must_flip(__global const double2 *points, __global const int *constraint_start,
                           __global const int *constraint_adjacent, int constrained,
                           int fixed_boundary, int c, int a, int b, int d, int exact) {
@@ -311,12 +322,7 @@ inline int edge_must_flip(__global const double2 *points, __global const int *co
     return CLM_KEEP; // a hull edge: the hull only grows
   if (constrained && is_constraint(constraint_start, constraint_adjacent, a, b))
     return CLM_KEEP;
-  const double2 pc = points[c], pa = points[a], pb = points[b], pd = points[d];
-  const int inside = exact ? clm_incircle_sos_exact(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y)
-                           : clm_incircle_filter(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y);
-  if (inside == CLM_UNCERTAIN)
-    return CLM_UNCERTAIN;
-  return inside > 0 ? CLM_FLIP : CLM_KEEP;
+  return incircle_verdict(points, c, a, b, d, exact);
 }
 
 #endif

@@ -635,10 +635,10 @@ __kernel void flag_dead_triangles(__global const int *tri_vertex, __global int *
 // Compaction (thesis §3.6.1 collects the empty slots; here the live
 // triangles also move into spatial order, so that a triangle's neighbours
 // share its cache lines: the refinement's kernels are bound by those random
-// accesses on a CPU). The live triangles are counted per cell of a Z-order
-// curve over the bounding box (cells_per_side = 2^bits, scale: cells per
-// unit), scattered to their cells, sorted by slot inside each cell, and
-// moved there.
+// accesses on a CPU). Each live triangle gets the cell of its centre on a
+// Z-order curve over the bounding box (2^bits cells a side, scale: cells per
+// unit); the host buckets them by cell (PrefixScan::bucket), each cell is
+// sorted by slot, and the triangles move there.
 inline uint spread_bits(uint x) { // bit i of x to bit 2i
   x &= 0xffffu;
   x = (x | (x << 8)) & 0x00ff00ffu;
@@ -651,10 +651,10 @@ inline int cell_coordinate(double x, double low, double scale, int bits) {
   return clamp((int)((x - low) * scale), 0, (1 << bits) - 1);
 }
 
-__kernel void count_triangle_cells(__global const double2 *points, __global const int *tri_vertex,
-                                   const double2 low, const double scale, const int bits,
-                                   __global int *cell, volatile __global int *cell_size,
-                                   const int n) {
+// cell[t]: the Z-order cell of triangle t, -1 for an empty slot.
+__kernel void triangle_cells(__global const double2 *points, __global const int *tri_vertex,
+                             const double2 low, const double scale, const int bits,
+                             __global int *cell, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -671,18 +671,22 @@ __kernel void count_triangle_cells(__global const double2 *points, __global cons
       ++real;
     }
   const double2 centre = sum / (double)real;
-  const int c = (int)(spread_bits((uint)cell_coordinate(centre.x, low.x, scale, bits)) |
-                      (spread_bits((uint)cell_coordinate(centre.y, low.y, scale, bits)) << 1));
-  cell[t] = c;
-  atomic_inc(&cell_size[c]);
+  cell[t] = (int)(spread_bits((uint)cell_coordinate(centre.x, low.x, scale, bits)) |
+                  (spread_bits((uint)cell_coordinate(centre.y, low.y, scale, bits)) << 1));
 }
 
-// The order inside a cell is fixed by sort_cells: the cursor never reaches the mesh.
-__kernel void scatter_to_cells(__global const int *cell, __global const int *cell_start,
-                               volatile __global int *cursor, __global int *order, const int n) {
-  const int t = get_global_id(0);
-  if (t < n && cell[t] >= 0)
-    order[cell_start[cell[t]] + atomic_inc(&cursor[cell[t]])] = t;
+// Moves a[root] down the max-heap a[0 .. size) to its place.
+inline void sift_down_ints(__global int *a, int root, int size) {
+  const int x = a[root];
+  for (int child = 2 * root + 1; child < size; child = 2 * root + 1) {
+    if (child + 1 < size && a[child] < a[child + 1])
+      ++child;
+    if (a[child] <= x)
+      break;
+    a[root] = a[child];
+    root = child;
+  }
+  a[root] = x;
 }
 
 // Sorts a[0 .. size) ascending: insertion sort when short, else heap sort
@@ -698,24 +702,13 @@ inline void sort_ascending(__global int *a, int size) {
     }
     return;
   }
-  for (int end = size; end > 1; --end) {
-    // Heapify once, then move the largest to the end each round.
-    for (int root = (end == size ? end / 2 - 1 : 0); root >= 0; --root) {
-      int r = root;
-      const int x = a[r];
-      for (int child = 2 * r + 1; child < end; child = 2 * r + 1) {
-        if (child + 1 < end && a[child] < a[child + 1])
-          ++child;
-        if (a[child] <= x)
-          break;
-        a[r] = a[child];
-        r = child;
-      }
-      a[r] = x;
-    }
+  for (int root = size / 2 - 1; root >= 0; --root)
+    sift_down_ints(a, root, size);
+  for (int end = size - 1; end > 0; --end) {
     const int top = a[0];
-    a[0] = a[end - 1];
-    a[end - 1] = top;
+    a[0] = a[end];
+    a[end] = top;
+    sift_down_ints(a, 0, end);
   }
 }
 

@@ -93,7 +93,7 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
                 b = tri_vertex[3 * t + prev3(i)],
                 d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
       // Only real edges that are not constraints were uncertain.
-      if (edge_must_flip(points, 0, 0, 0, 0, c, a, b, d, 1) == CLM_FLIP)
+      if (incircle_verdict(points, c, a, b, d, 1) == CLM_FLIP)
         bits |= 1 << i;
     }
   flags[index] = bits & 7;

@@ -89,7 +89,8 @@ __kernel void invert_numbering(__global const int *original_id, __global int *de
 // vertex; triangles are grouped by that vertex, the groups in the order of
 // its device slot (the Hilbert curve, so that the sort reads memory that lies
 // together), and sorted inside a group by their second and third vertices: a
-// counting sort on the first vertex's slot, then a sort of each small bucket.
+// counting sort on the first vertex's slot (PrefixScan::bucket), then a sort
+// of each small bucket, which fixes the order the bucketing's atomic cursor left.
 // first_slot[t]: the device slot of t's first vertex.
 __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_neighbor,
                                  __global const int *device_of_input, __global int *first_slot,
@@ -110,26 +111,6 @@ __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_nei
   for (int i = 0; i < 3; ++i) {
     out_vertex[3 * t + i] = v[i];
     out_neighbor[3 * t + i] = m[i];
-  }
-}
-
-__kernel void count_by_first_vertex(__global const int *first_slot,
-                                    volatile __global int *bucket_size, const int n) {
-  const int t = get_global_id(0);
-  if (t < n)
-    atomic_inc(&bucket_size[first_slot[t]]);
-}
-
-// Places each triangle in its bucket; the order inside a bucket is fixed by
-// sort_buckets, so the atomic cursor never reaches the output.
-__kernel void scatter_by_first_vertex(__global const int *first_slot,
-                                      __global const int *bucket_start,
-                                      volatile __global int *cursor, __global int *order,
-                                      const int n) {
-  const int t = get_global_id(0);
-  if (t < n) {
-    const int v = first_slot[t];
-    order[bucket_start[v] + atomic_inc(&cursor[v])] = t;
   }
 }
 

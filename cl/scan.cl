@@ -88,3 +88,19 @@ __kernel void unique_clear(__global const int *list, __global uint *marks, const
   if (gid < n && list[gid] >= 0)
     marks[list[gid]] = 0xffffffffu;
 }
+
+// Bucketing (a counting sort's first half): key[i] in [0, buckets) or
+// negative (left out). The order inside a bucket comes from the atomic
+// cursor, so callers sort each bucket before its order reaches anything.
+__kernel void count_keys(__global const int *key, volatile __global int *bucket_size, const int n) {
+  const int i = get_global_id(0);
+  if (i < n && key[i] >= 0)
+    atomic_inc(&bucket_size[key[i]]);
+}
+
+__kernel void scatter_by_key(__global const int *key, __global const int *bucket_start,
+                             volatile __global int *cursor, __global int *order, const int n) {
+  const int i = get_global_id(0);
+  if (i < n && key[i] >= 0)
+    order[bucket_start[key[i]] + atomic_inc(&cursor[key[i]])] = i;
+}

@@ -97,19 +97,14 @@ uint32_t hilbert_index(uint32_t x, uint32_t y) {
 
 // Input indices sorted along a Hilbert curve (stable, so ties keep input order).
 std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
-  double min_x = points[0].x, max_x = min_x, min_y = points[0].y, max_y = min_y;
-  for (const Point &p : points) {
-    min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
-    min_y = std::min(min_y, p.y), max_y = std::max(max_y, p.y);
-  }
-  const double span = std::max(max_x - min_x, max_y - min_y);
+  const auto [low, span] = bounding_square(points);
   const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
   // (key, index) pairs, sorted by three stable counting passes of 11 bits
   // over the key (the index in the low half keeps ties in input order).
   std::vector<uint64_t> entry(points.size()), buffer(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - min_x) * scale));
-    const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - min_y) * scale));
+    const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - low.x) * scale));
+    const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - low.y) * scale));
     entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
   }
   constexpr int kDigitBits = 11;
@@ -208,15 +203,6 @@ bool all_collinear(const std::vector<Point> &points) {
   return true;
 }
 
-// Lower-left corner and side of the square that the digital Voronoi texture covers.
-std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
-  const auto [low_x, high_x] = std::minmax_element(
-      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
-  const auto [low_y, high_y] = std::minmax_element(
-      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
-  return {{low_x->x, low_y->y}, std::max(high_x->x - low_x->x, high_y->y - low_y->y)};
-}
-
 // The hull polygon fanned from its first vertex, closed by one ghost triangle
 // per hull edge; links are (triangle << 2) | edge.
 struct HullFan {
@@ -267,6 +253,14 @@ HullFan hull_fan(const std::vector<int32_t> &hull) {
 }
 
 } // namespace
+
+std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
+  const auto [low_x, high_x] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
+  const auto [low_y, high_y] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
+  return {{low_x->x, low_y->y}, std::max(high_x->x - low_x->x, high_y->y - low_y->y)};
+}
 
 void PhaseTimer::charge(const std::string &name) {
   device_.queue().finish();

@@ -22,6 +22,10 @@ inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// Lower-left corner and side of the square around the points (non-empty):
+// the digital Voronoi texture's, and the cells of refinement's triangle order.
+std::pair<Point, double> bounding_square(const std::vector<Point> &points);
+
 // Charges wall time to named phases, waiting for the device at each boundary.
 class PhaseTimer {
 public:

@@ -1,5 +1,6 @@
 #include "flipflop_deletion.hpp"
 
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -31,8 +32,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       flag_dead_(device.kernel(kFile, "flag_dead_triangles", kPhase)),
       flag_deleted_(device.kernel(kFile, "flag_deleted_points", kPhase)),
       number_(device.kernel(kFile, "number_steiner_points", kPhase)),
-      count_cells_(device.kernel(kFile, "count_triangle_cells", kPhase)),
-      scatter_cells_(device.kernel(kFile, "scatter_to_cells", kPhase)),
+      triangle_cells_(device.kernel(kFile, "triangle_cells", kPhase)),
       sort_cells_(device.kernel(kFile, "sort_cells", kPhase)),
       move_triangles_(device.kernel(kFile, "move_triangles", kPhase)),
       // The next list holds the pass's results and the redundant stars before
@@ -243,24 +243,19 @@ void FlipflopDeletion::compact_triangles(Point low, double side) {
   while (bits < 15 && (std::size_t{1} << (2 * bits)) * 8 < slots)
     ++bits;
   const std::size_t cells = std::size_t{1} << (2 * bits);
-  const double scale = side > 0 ? static_cast<double>(std::size_t{1} << bits) / side : 0.0;
+  const double scale =
+      side > 0 && std::isfinite(side) ? static_cast<double>(std::size_t{1} << bits) / side : 0.0;
   // The marks (none are set between iterations) hold the cells, the stamps
   // the new slots, the children the moved vertices: all are reset after.
   const DeviceArray<cl_int> &cell = mesh_.tri_mark, &new_slot = mesh_.modified_stamp;
-  DeviceArray<cl_int> cell_size(device_, cells), cell_start(device_, cells), cursor(device_, cells);
-  cell_size.fill(device_, 0, cells);
-  cursor.fill(device_, 0, cells);
-  const auto items = static_cast<cl_int>(slots);
-  set_args(count_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+  set_args(triangle_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            cl_double2{{low.x, low.y}}, scale, static_cast<cl_int>(bits), cell.buffer(),
-           cell_size.buffer(), items);
-  launch(device_, count_cells_, slots, kPhase);
-  const auto live =
-      static_cast<std::size_t>(scan_.exclusive_scan(cell_size, cell_start, cells, kPhase));
-  DeviceArray<cl_int> order(device_, live);
-  set_args(scatter_cells_, cell.buffer(), cell_start.buffer(), cursor.buffer(), order.buffer(),
-           items);
-  launch(device_, scatter_cells_, slots, kPhase);
+           static_cast<cl_int>(slots));
+  launch(device_, triangle_cells_, slots, kPhase);
+  DeviceArray<cl_int> cell_size(device_, cells), cell_start(device_, cells), cursor(device_, cells),
+      order(device_, slots);
+  const auto live = static_cast<std::size_t>(
+      scan_.bucket(cell, slots, cells, cell_size, cell_start, cursor, order, kPhase));
   set_args(sort_cells_, cell_start.buffer(), cell_size.buffer(), order.buffer(), new_slot.buffer(),
            static_cast<cl_int>(cells));
   launch(device_, sort_cells_, cells, kPhase);

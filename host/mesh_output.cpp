@@ -17,8 +17,6 @@ MeshOutput::MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       restore_numbering_(device.kernel(kFile, "restore_input_numbering", kPhase)),
       invert_numbering_(device.kernel(kFile, "invert_numbering", kPhase)),
       rotate_(device.kernel(kFile, "rotate_to_smallest", kPhase)),
-      count_buckets_(device.kernel(kFile, "count_by_first_vertex", kPhase)),
-      scatter_buckets_(device.kernel(kFile, "scatter_by_first_vertex", kPhase)),
       sort_buckets_(device.kernel(kFile, "sort_buckets", kPhase)),
       write_sorted_(device.kernel(kFile, "write_sorted", kPhase)) {}
 
@@ -78,14 +76,9 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
     set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), device_of_input.buffer(),
              first_slot.buffer(), triangle_count);
     launch(device_, rotate_, count, kPhase);
-    bucket_size.fill(device_, 0, points);
-    set_args(count_buckets_, first_slot.buffer(), bucket_size.buffer(), triangle_count);
-    launch(device_, count_buckets_, count, kPhase);
-    scan_.exclusive_scan(bucket_size, bucket_start, points, kPhase);
-    representative.fill(device_, 0, points); // reused as the buckets' cursors
-    set_args(scatter_buckets_, first_slot.buffer(), bucket_start.buffer(), representative.buffer(),
-             order.buffer(), triangle_count);
-    launch(device_, scatter_buckets_, count, kPhase);
+    // representative is reused as the buckets' cursors.
+    scan_.bucket(first_slot, count, points, bucket_size, bucket_start, representative, order,
+                 kPhase);
     set_args(sort_buckets_, out_vertex.buffer(), bucket_start.buffer(), bucket_size.buffer(),
              order.buffer(), position.buffer(), point_count);
     launch(device_, sort_buckets_, points, kPhase);

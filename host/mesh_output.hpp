@@ -33,7 +33,7 @@ private:
   PrefixScan &scan_;
   cl::Kernel flag_real_, write_real_, smallest_representative_, redirect_duplicates_,
       rename_vertices_, fill_identity_, restore_numbering_, invert_numbering_, rotate_,
-      count_buckets_, scatter_buckets_, sort_buckets_, write_sorted_;
+      sort_buckets_, write_sorted_;
 };
 
 } // namespace clmesh

@@ -12,7 +12,9 @@ PrefixScan::PrefixScan(Device &device)
       compact_indices_(device.kernel("scan.cl", "compact_indices", "scan")),
       unique_mark_(device.kernel("scan.cl", "unique_mark", "scan")),
       unique_keep_(device.kernel("scan.cl", "unique_keep", "scan")),
-      unique_clear_(device.kernel("scan.cl", "unique_clear", "scan")), total_buffer_(device, 1),
+      unique_clear_(device.kernel("scan.cl", "unique_clear", "scan")),
+      count_keys_(device.kernel("scan.cl", "count_keys", "scan")),
+      scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")), total_buffer_(device, 1),
       group_(std::min<std::size_t>(256, device.max_work_group())) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
@@ -89,6 +91,21 @@ int PrefixScan::unique(const DeviceArray<cl_int> &list, std::size_t n,
   set_args(unique_clear_, list.buffer(), marks.buffer(), items);
   launch(device_, unique_clear_, n, phase);
   return compact(list, keep, offsets, out, n, phase);
+}
+
+int PrefixScan::bucket(const DeviceArray<cl_int> &key, std::size_t n, std::size_t buckets,
+                       const DeviceArray<cl_int> &size, const DeviceArray<cl_int> &start,
+                       const DeviceArray<cl_int> &cursor, const DeviceArray<cl_int> &order,
+                       const std::string &phase) {
+  const auto items = static_cast<cl_int>(n);
+  size.fill(device_, 0, buckets);
+  set_args(count_keys_, key.buffer(), size.buffer(), items);
+  launch(device_, count_keys_, n, phase);
+  const int placed = exclusive_scan(size, start, buckets, phase);
+  cursor.fill(device_, 0, buckets);
+  set_args(scatter_by_key_, key.buffer(), start.buffer(), cursor.buffer(), order.buffer(), items);
+  launch(device_, scatter_by_key_, n, phase);
+  return placed;
 }
 
 } // namespace clmesh

@@ -31,6 +31,15 @@ public:
              const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
              const DeviceArray<cl_int> &out, const std::string &phase);
 
+  // order = 0 .. n) grouped by key (buckets keys, negative ones left out),
+  // bucket b at order[start[b] .. start[b] + size[b]); the order inside a
+  // bucket is arbitrary. cursor: scratch of `buckets` entries. Returns how
+  // many were placed.
+  int bucket(const DeviceArray<cl_int> &key, std::size_t n, std::size_t buckets,
+             const DeviceArray<cl_int> &size, const DeviceArray<cl_int> &start,
+             const DeviceArray<cl_int> &cursor, const DeviceArray<cl_int> &order,
+             const std::string &phase);
+
 private:
   void scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
                   const std::string &phase);
@@ -38,7 +47,7 @@ private:
 
   Device &device_;
   cl::Kernel scan_blocks_, add_offsets_, total_, compact_, compact_indices_, unique_mark_,
-      unique_keep_, unique_clear_;
+      unique_keep_, unique_clear_, count_keys_, scatter_by_key_;
   DeviceArray<cl_int> total_buffer_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned

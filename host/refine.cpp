@@ -91,15 +91,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // small hull angles; the bound on iterations turns anything else into
   // remaining bad triangles, reported, instead of a hang.
   const long max_iterations = 1000;
-  // The square around the points, for the spatial order of the triangles.
-  Point low{points[0].x, points[0].y};
-  double side = 0;
-  for (const Point &p : points) {
-    low.x = std::min(low.x, p.x);
-    low.y = std::min(low.y, p.y);
-  }
-  for (const Point &p : points)
-    side = std::max({side, p.x - low.x, p.y - low.y});
+  const auto [low, side] = bounding_square(points); // for the spatial order of the triangles
   // Triangles move into spatial order whenever their slots grew by half.
   std::size_t compacted_slots = 0;
   for (long iteration = 0;; ++iteration) {

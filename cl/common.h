@@ -131,6 +131,13 @@ inline int orient_point(__global const double2 *points, int a, int b, double2 p)
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, p.x, p.y);
 }
 
+// Is p strictly inside the circumcircle of the real (counter-clockwise)
+// triangle tri? Exact.
+inline bool circumcircle_holds(__global const double2 *points, VertexTriple tri, double2 p) {
+  const double2 pa = points[tri.v[0]], pb = points[tri.v[1]], pc = points[tri.v[2]];
+  return clm_incircle(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y, p.x, p.y) > 0;
+}
+
 #define CLM_WALK_LOST 0
 #define CLM_WALK_LOCATED 1
 #define CLM_WALK_AT_VERTEX 2

@@ -8,13 +8,18 @@
 // midpoint (as Triangle computes it). A candidate outside the hull, or inside
 // the diametral lens of a hull edge of its container (Triangle's test: the
 // candidate sees the edge at an angle of at least 180 - 2 x the minimum angle),
-// becomes the midpoint of that hull edge (the convex hull is the boundary). Priority: the shorter
-// the shortest edge, the worse the triangle; containers are marked with atomic minimum of it, and a
-// candidate survives the insertion filter when it owns its container's mark and no neighbouring
-// container has a better one. Quality decisions use floating point, as Triangle's do; the insertion
+// becomes the midpoint of that hull edge (the convex hull is the boundary). Priority: midpoints
+// before off-centers (§3.4.1: segment-split before triangle-split), then the shorter the shortest
+// edge, the worse the triangle; containers are marked with atomic minimum of it, and a candidate
+// survives the insertion filter when it owns its container's mark and no neighbouring container
+// has a better one. Quality decisions use floating point, as Triangle's do; the insertion
 // that follows uses the exact predicates.
 #include "common.h"
 #include "refinement.h"
+
+// Priorities are the bits of a positive float (the squared shortest edge):
+// the top bit is free to rank off-centers after midpoints.
+#define CLM_OFFCENTER_RANK 0x80000000u
 
 // Marks the hull vertices (CLM_POINT_HULL), and among them those whose hull
 // angle is below the minimum angle (CLM_POINT_ACUTE_HULL; cos_bound: its
@@ -175,8 +180,8 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
                                 __global const int *modified_stamp, __global int *last_container,
                                 const int located_stamp, __global double2 *candidate,
                                 __global int *container, __global int *split_edge,
-                                __global const int *origin, const double lens, const int max_steps,
-                                const int n) {
+                                __global const int *origin, __global uint *priority,
+                                const double lens, const int max_steps, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
@@ -196,12 +201,14 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
     hull_edge = link_edge(link);
   } else if (on_hull(point_state[tri.v[0]]) || on_hull(point_state[tri.v[1]]) ||
              on_hull(point_state[tri.v[2]])) {
-    // A hull edge of the container or of a neighbour whose diametral lens
-    // holds c is encroached: it is split instead. (Every such edge has a
-    // vertex of the container: none is near a container without one.)
+    // A hull edge of the container, or of a neighbour that c's cavity
+    // takes (its circumcircle holds c), whose diametral lens holds c is
+    // encroached: it is split instead (Triangle tests the hull edges of the
+    // new star; every such edge near c has a vertex of the container).
     for (int r = -1; r < 3 && hull_edge < 0; ++r) {
       const int s = r < 0 ? t : link_triangle(tri_neighbor[3 * t + r]);
-      if (is_ghost(load_vertices(tri_vertex, s)))
+      const VertexTriple near = load_vertices(tri_vertex, s);
+      if (is_ghost(near))
         continue;
       for (int i = 0; i < 3 && hull_edge < 0; ++i) {
         const int a = tri_vertex[3 * s + next3(i)], b = tri_vertex[3 * s + prev3(i)];
@@ -210,7 +217,8 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
         const int u = link_triangle(tri_neighbor[3 * s + i]);
         if (!is_ghost(load_vertices(tri_vertex, u)))
           continue;
-        if (in_lens(points[a], points[b], c, lens)) {
+        if (in_lens(points[a], points[b], c, lens) &&
+            (r < 0 || circumcircle_holds(points, near, c))) {
           hull_edge = i;
           t = s;
         }
@@ -228,6 +236,10 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
     splits_cleanly =
         orient_point(points, apex, a, middle) > 0 && orient_point(points, b, apex, middle) > 0;
   }
+  // Segment-split goes before triangle-split (thesis §3.4.1): off-centers
+  // rank after every midpoint, in their own order.
+  if (hull_edge < 0)
+    priority[k] |= CLM_OFFCENTER_RANK;
   const bool located = (walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0) && splits_cleanly;
   container[k] = located ? t : -1;
   last_container[bad] = located ? t : -1;
@@ -357,7 +369,7 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
   original_id[p] = p; // numbered again at the end (number_steiner_points)
   point_state[p] = midpoint ? CLM_POINT_NEW_MIDPOINT : CLM_POINT_NEW;
   insertion_radius2[p] = radius2;
-  point_priority[p] = midpoint ? 0u : priority[k];
+  point_priority[p] = midpoint ? 0u : priority[k] & ~CLM_OFFCENTER_RANK;
   new_points[offset[k]] = p;
   insertion_log[logged + offset[k]] = c; // to count the points inserted more than once
 }

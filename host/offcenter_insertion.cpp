@@ -100,7 +100,8 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
            located_stamp_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           origin_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
+           origin_.buffer(), priority_.buffer(), lens_,
+           static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
   located_stamp_ = stamp;
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),

@@ -651,6 +651,11 @@ inline int cell_coordinate(double x, double low, double scale, int bits) {
   return clamp((int)((x - low) * scale), 0, (1 << bits) - 1);
 }
 
+inline int z_cell(double2 p, double2 low, double scale, int bits) {
+  return (int)(spread_bits((uint)cell_coordinate(p.x, low.x, scale, bits)) |
+               (spread_bits((uint)cell_coordinate(p.y, low.y, scale, bits)) << 1));
+}
+
 // cell[t]: the Z-order cell of triangle t, -1 for an empty slot.
 __kernel void triangle_cells(__global const double2 *points, __global const int *tri_vertex,
                              const double2 low, const double scale, const int bits,
@@ -670,9 +675,20 @@ __kernel void triangle_cells(__global const double2 *points, __global const int 
       sum += points[tri.v[i]];
       ++real;
     }
-  const double2 centre = sum / (double)real;
-  cell[t] = (int)(spread_bits((uint)cell_coordinate(centre.x, low.x, scale, bits)) |
-                  (spread_bits((uint)cell_coordinate(centre.y, low.y, scale, bits)) << 1));
+  cell[t] = z_cell(sum / (double)real, low, scale, bits);
+}
+
+// The Steiner points move likewise (their triangles' loads of points and
+// states follow): cell[k] of point first + k, -1 for a deleted one. The
+// input points keep their slots, hence their numbers.
+__kernel void steiner_point_cells(__global const double2 *points, __global const int *point_state,
+                                  const double2 low, const double scale, const int bits,
+                                  __global int *cell, const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    cell[k] = point_state[first + k] == CLM_POINT_DELETED
+                  ? -1
+                  : z_cell(points[first + k], low, scale, bits);
 }
 
 // Moves a[root] down the max-heap a[0 .. size) to its place.
@@ -737,6 +753,38 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
     moved_vertex[3 * k + i] = tri_vertex[3 * t + i];
     moved_neighbor[3 * k + i] = encode_link(new_slot[link_triangle(link)], link_edge(link));
   }
+}
+
+// Point first + order[k] moves to first + k with its state, insertion radius
+// and priority.
+__kernel void move_steiner_points(__global const int *order, __global const double2 *points,
+                                  __global const int *point_state,
+                                  __global const double *insertion_radius2,
+                                  __global const uint *point_priority,
+                                  __global double2 *moved_point, __global int *moved_state,
+                                  __global double *moved_radius2, __global uint *moved_priority,
+                                  __global int *original_id, const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int p = first + order[k], q = first + k;
+  moved_point[q] = points[p];
+  moved_state[q] = point_state[p];
+  moved_radius2[q] = insertion_radius2[p];
+  moved_priority[q] = point_priority[p];
+  original_id[q] = q; // numbered again at the end (number_steiner_points)
+}
+
+// The triangles' Steiner vertices take their new slots (new_slot[k]: of
+// point first + k, relative to first).
+__kernel void renumber_steiner_vertices(__global const int *new_slot, __global int *tri_vertex,
+                                        const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int v = tri_vertex[k];
+  if (v >= first)
+    tri_vertex[k] = first + new_slot[v - first];
 }
 
 // Final numbering: the surviving Steiner points follow the input points in

@@ -42,10 +42,11 @@ public:
   // Collects the empty triangle and point slots into the mesh's free lists.
   void collect_free_slots();
   // Moves the live triangles to the front, in the order of a Z-order curve
-  // over the square of side `side` from `low` (the points' bounding box), and
-  // empties the triangle free list. Every slot number changes: lists of
-  // triangles kept elsewhere are void.
-  void compact_triangles(Point low, double side);
+  // over the square of side `side` from `low` (the points' bounding box),
+  // then the live Steiner points (slots `first` ..) likewise, and empties
+  // both free lists. Every triangle and Steiner slot number changes: lists
+  // of them kept elsewhere are void.
+  void compact(Point low, double side, std::size_t first);
 
   // Numbers the surviving Steiner points (slots first ..) after the input
   // points in slot order, the deleted ones after them, and returns the
@@ -53,6 +54,22 @@ public:
   std::vector<Point> steiner_points(std::size_t first);
 
 private:
+  // A Z-order grid over the bounding box with about `per_cell` of `items`
+  // in each cell.
+  struct ZGrid {
+    cl_double2 low;
+    double scale; // cells per unit
+    int bits;     // 2^bits cells a side
+    std::size_t cells;
+  };
+  static ZGrid z_grid(Point low, double side, std::size_t items, std::size_t per_cell);
+  // From the cells of `items` (-1: left out): order[k], the item that goes
+  // to place k, and new_slot[item], its place, cell by cell, in item order
+  // inside a cell. Returns how many are placed.
+  std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell, std::size_t items,
+                      const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
+  void compact_triangles(Point low, double side);
+  void compact_steiner_points(Point low, double side, std::size_t first);
   long propose(cl_int items, cl_int any_redundant);
   void find_stars(int stamp, std::size_t next, std::size_t *n);
 
@@ -65,7 +82,8 @@ private:
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
       count_next_, gather_next_, clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_,
-      flag_deleted_, number_, triangle_cells_, sort_cells_, move_triangles_;
+      flag_deleted_, number_, triangle_cells_, point_cells_, move_points_, renumber_vertices_,
+      sort_cells_, move_triangles_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,

@@ -96,7 +96,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   std::size_t compacted_slots = 0;
   for (long iteration = 0;; ++iteration) {
     if (mesh.triangle_count >= compacted_slots + compacted_slots / 2) {
-      steps->flipflop.compact_triangles(low, side);
+      steps->flipflop.compact(low, side, n);
       steps->offcenter.forget_triangles();
       changed.size = 0;
       deleted_since_collection = false;

@@ -287,22 +287,32 @@ __kernel void mark_candidate_ties(__global const int *container, __global const 
     atomic_min(&tie_mark[partner], k);
 }
 
+// rings: how far the filter looks, 2 (the neighbours and theirs) or 3 (and
+// theirs). The thesis looks at the neighbours only; each ring further makes
+// the parallel insertion closer to the sequential order of priorities: fewer
+// points, more iterations.
 __kernel void insertion_filter(__global const int *container, __global const int *split_edge,
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,
-                               __global int *survive, const int n) {
+                               const int rings, __global int *survive, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int t = container[k];
   bool wins = t >= 0 && tri_mark[t] == priority[k] && tie_mark[t] == k;
-  // No container of better priority among the neighbours and theirs.
+  // No container of better priority within the rings.
   for (int i = 0; i < 3 && wins; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     wins = tri_mark[u] >= priority[k];
     for (int j = 0; j < 3 && wins; ++j) {
       const int w = link_triangle(tri_neighbor[3 * u + j]);
-      wins = w == t || tri_mark[w] >= priority[k];
+      if (w == t)
+        continue;
+      wins = tri_mark[w] >= priority[k];
+      for (int l = 0; l < 3 && wins && rings > 2; ++l) {
+        const int x = link_triangle(tri_neighbor[3 * w + l]);
+        wins = x == t || x == u || tri_mark[x] >= priority[k];
+      }
     }
   }
   const int partner = wins ? split_partner(tri_neighbor, container, split_edge, k) : -1;

@@ -10,8 +10,8 @@ const char *kFile = "offcenter_insertion.cl";
 }
 
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
-                                       double max_area)
-    : device_(device), mesh_(mesh), max_area_(max_area),
+                                       double max_area, int filter_rings)
+    : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -112,7 +112,7 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   launch(device_, ties_, bad_, kPhase);
   set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
-           survive_.buffer(), n);
+           static_cast<cl_int>(filter_rings_), survive_.buffer(), n);
   launch(device_, filter_, bad_, kPhase);
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);

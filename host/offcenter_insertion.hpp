@@ -22,7 +22,10 @@ class OffcenterInsertion {
 public:
   static constexpr const char *kPhase = "offcenter_insertion";
 
-  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area);
+  // filter_rings: how many rings of neighbouring triangles the insertion
+  // filter looks at (2 or 3; see insertion_filter).
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
+                     int filter_rings);
 
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
@@ -55,6 +58,7 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
+  int filter_rings_;
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;

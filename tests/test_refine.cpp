@@ -43,11 +43,12 @@ double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
 clmesh::RefineResult
 refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
                clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv,
-               bool remaining_allowed = false) {
+               bool remaining_allowed = false, int filter_rings = 0) {
   clmesh::RefineOptions options;
   options.min_angle = angle;
   options.max_area = max_area;
   options.algorithm = algorithm;
+  options.filter_rings = filter_rings;
   clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
   std::vector<Point> points = input;
   points.insert(points.end(), result.added_points.begin(), result.added_points.end());
@@ -126,9 +127,10 @@ TEST_CASE("refine: nearly straight runs of hull points (delaunator fixtures)") {
 }
 
 TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than GPU-QM-V") {
+  // The same insertion filter for both: only their deletion rules differ.
   const auto points = fixtures::uniform(6000, 80);
-  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv);
-  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm);
+  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv, false, 2);
+  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm, false, 2);
   MESSAGE("GPU-QM-V: " << qmv.stats.insertions << " insertions, " << qmv.stats.deleted
                        << " deleted; GPU-QM: " << qm.stats.insertions << " insertions, "
                        << qm.stats.deleted << " deleted");
@@ -140,6 +142,23 @@ TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than 
   CHECK(qm.stats.inserted_more_than_once <= qm.stats.deleted);
   CHECK(qmv.stats.inserted_more_than_once <= qmv.stats.deleted);
   CHECK(qm.stats.inserted_more_than_once > 0);
+}
+
+TEST_CASE("refine: an insertion filter that looks further inserts fewer points") {
+  const auto points = fixtures::uniform(6000, 80);
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    const auto two = refine_checked(points, 30, -1, algorithm, false, 2);
+    const auto three = refine_checked(points, 30, -1, algorithm, false, 3);
+    MESSAGE("two rings: " << two.stats.inserted << " Steiner points, " << two.stats.iterations
+                          << " iterations; three: " << three.stats.inserted << ", "
+                          << three.stats.iterations);
+    CHECK(three.stats.inserted < two.stats.inserted);
+    CHECK(three.stats.iterations > two.stats.iterations);
+  }
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  options.filter_rings = 4;
+  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
 }
 
 TEST_CASE("refine: maximum area, alone and with an angle") {

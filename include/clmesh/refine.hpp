@@ -22,6 +22,9 @@ struct RefineOptions {
   double max_area = -1;  // -a; <= 0: none
   long max_steiner = -1; // -S; < 0: no limit
   RefineAlgorithm algorithm = RefineAlgorithm::qmv;
+  // Rings of neighbouring triangles the insertion filter looks at: 2 or 3;
+  // 0 picks the algorithm's (qm: 3, for the fewest points; qmv: 2, faster).
+  int filter_rings = 0;
 };
 
 struct RefineStats {

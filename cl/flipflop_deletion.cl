@@ -356,14 +356,48 @@ __kernel void flipflop_apply(__global const int *active, __global const int *ope
     reserve_in_group(done[k], scratch, &flip_counts[k]);
 }
 
-// Second step: the outward edges of every applied operation.
-__kernel void flipflop_relink(__global const int *operation, __global const int *proposal,
-                              __global const int *star, __global const int *applied,
-                              __global const int *tri_vertex, __global int *tri_neighbor,
-                              __global const int *modified_stamp, __global const int *children,
-                              const int stamp, const int n) {
+// Entries passed to the next list (count[gid]): the triangles an operation
+// produced, or the proposer itself when its operation was not applied and
+// its triangle was not rewritten by another's.
+inline int next_entries(__global const int *active, __global const int *operation,
+                        __global const int *star, __global const int *applied,
+                        __global const int *modified_stamp, int stamp, int gid) {
+  const int op = operation[gid];
+  if (applied[gid] >= 0)
+    return op == CLM_OP_REMOVE && star[4 * gid + 3] < 0 ? 1 : 2;
+  return op != CLM_OP_NONE && modified_stamp[active[gid]] != stamp ? 1 : 0;
+}
+
+// This pass's marks are cleared (apply, the last kernel to read them, has run).
+inline void clear_pass_marks(__global const int *active, __global const int *operation,
+                             __global const int *proposal, __global const int *star,
+                             __global uint *tri_mark, int gid) {
+  const int op = operation[gid];
+  if (op == CLM_OP_REMOVE) {
+    for (int k = 0; k < 4; ++k)
+      if (star[4 * gid + k] >= 0)
+        tri_mark[star[4 * gid + k]] = CLM_NO_MARK;
+  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+    tri_mark[active[gid]] = CLM_NO_MARK;
+    tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
+  }
+}
+
+// Second step, after flipflop_apply: the applied operations' outer edges are relinked,
+// each entry counts what it passes to the next list, and the marks are
+// cleared (one kernel: these read only what apply wrote).
+__kernel void flipflop_relink(__global const int *active, __global const int *operation,
+                              __global const int *proposal, __global const int *star,
+                              __global const int *applied, __global const int *tri_vertex,
+                              __global int *tri_neighbor, __global const int *modified_stamp,
+                              __global const int *children, __global uint *tri_mark,
+                              __global int *count, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || applied[gid] < 0)
+  if (gid >= n)
+    return;
+  count[gid] = next_entries(active, operation, star, applied, modified_stamp, stamp, gid);
+  clear_pass_marks(active, operation, proposal, star, tri_mark, gid);
+  if (applied[gid] < 0)
     return;
   const int t = applied[gid];
   if (operation[gid] == CLM_OP_REMOVE) {
@@ -384,25 +418,6 @@ __kernel void flipflop_relink(__global const int *operation, __global const int 
     relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
     relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
   }
-}
-
-// Entries passed to the next list: the triangles an operation produced, or
-// the proposer itself when its operation was not applied and its triangle
-// was not rewritten by another's.
-__kernel void flipflop_count_next(__global const int *active, __global const int *operation,
-                                  __global const int *star, __global const int *applied,
-                                  __global const int *modified_stamp, __global int *count,
-                                  const int stamp, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int op = operation[gid];
-  int next = 0;
-  if (applied[gid] >= 0)
-    next = op == CLM_OP_REMOVE && star[4 * gid + 3] < 0 ? 1 : 2;
-  else if (op != CLM_OP_NONE && modified_stamp[active[gid]] != stamp)
-    next = 1;
-  count[gid] = next;
 }
 
 __kernel void flipflop_gather_next(__global const int *active, __global const int *proposal,
@@ -429,24 +444,6 @@ __kernel void flipflop_gather_next(__global const int *active, __global const in
   }
   next_active[o] = applied[gid];
   next_active[o + 1] = link_triangle(proposal[gid]);
-}
-
-// Clears this pass's marks (after every kernel that reads them).
-__kernel void flipflop_clear_marks(__global const int *active, __global const int *operation,
-                                   __global const int *proposal, __global const int *star,
-                                   __global uint *tri_mark, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int op = operation[gid];
-  if (op == CLM_OP_REMOVE) {
-    for (int k = 0; k < 4; ++k)
-      if (star[4 * gid + k] >= 0)
-        tri_mark[star[4 * gid + k]] = CLM_NO_MARK;
-  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
-    tri_mark[active[gid]] = CLM_NO_MARK;
-    tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
-  }
 }
 
 // Over the tracked points (this iteration's, then old ones the boundary

@@ -43,13 +43,6 @@ __kernel void scan_add_offsets(__global int *out, __global const int *block_offs
     out[gid] += block_offsets[gid / block];
 }
 
-// total[0] = offsets[n-1] + counts[n-1] (0 when n == 0 is handled on the host).
-__kernel void scan_total(__global const int *counts, __global const int *offsets,
-                         __global int *total, const int n) {
-  if (get_global_id(0) == 0)
-    total[0] = offsets[n - 1] + counts[n - 1];
-}
-
 // Stream compaction: out[offset[i]] = list[i] where keep[i] (offset: exclusive scan of keep).
 __kernel void compact_list(__global const int *list, __global const int *keep,
                            __global const int *offset, __global int *out, const int n) {

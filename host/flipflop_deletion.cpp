@@ -22,9 +22,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),
       apply_(device.kernel(kFile, "flipflop_apply", kPhase)),
       relink_(device.kernel(kFile, "flipflop_relink", kPhase)),
-      count_next_(device.kernel(kFile, "flipflop_count_next", kPhase)),
       gather_next_(device.kernel(kFile, "flipflop_gather_next", kPhase)),
-      clear_marks_(device.kernel(kFile, "flipflop_clear_marks", kPhase)),
       track_(device.kernel(kFile, "track_redundant_points", kPhase)),
       emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
       finish_(device.kernel(kFile, "finish_iteration", kPhase)),
@@ -113,16 +111,11 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
              mesh_.point_state.buffer(), applied_.buffer(), flip_counts_.buffer(), pass_stamp,
              items);
     launch(device_, apply_, n, kPhase);
-    set_args(relink_, operation_.buffer(), proposal_.buffer(), star_.buffer(), applied_.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
-             mesh_.children.buffer(), pass_stamp, items);
+    set_args(relink_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+             applied_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.modified_stamp.buffer(), mesh_.children.buffer(), mesh_.tri_mark.buffer(),
+             count_.buffer(), pass_stamp, items);
     launch(device_, relink_, n, kPhase);
-    set_args(count_next_, active_.buffer(), operation_.buffer(), star_.buffer(), applied_.buffer(),
-             mesh_.modified_stamp.buffer(), count_.buffer(), pass_stamp, items);
-    launch(device_, count_next_, n, kPhase);
-    set_args(clear_marks_, active_.buffer(), operation_.buffer(), proposal_.buffer(),
-             star_.buffer(), mesh_.tri_mark.buffer(), items);
-    launch(device_, clear_marks_, n, kPhase);
     const auto next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
     set_args(gather_next_, active_.buffer(), proposal_.buffer(), operation_.buffer(),
              star_.buffer(), applied_.buffer(), count_.buffer(), offset_.buffer(),

@@ -81,9 +81,8 @@ private:
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
-      count_next_, gather_next_, clear_marks_, track_, emit_, finish_, keep_stuck_, flag_dead_,
-      flag_deleted_, number_, triangle_cells_, point_cells_, move_points_, renumber_vertices_,
-      sort_cells_, move_triangles_;
+      gather_next_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_,
+      triangle_cells_, point_cells_, move_points_, renumber_vertices_, sort_cells_, move_triangles_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,

@@ -7,14 +7,13 @@ namespace clmesh {
 PrefixScan::PrefixScan(Device &device)
     : device_(device), scan_blocks_(device.kernel("scan.cl", "scan_blocks", "scan")),
       add_offsets_(device.kernel("scan.cl", "scan_add_offsets", "scan")),
-      total_(device.kernel("scan.cl", "scan_total", "scan")),
       compact_(device.kernel("scan.cl", "compact_list", "scan")),
       compact_indices_(device.kernel("scan.cl", "compact_indices", "scan")),
       unique_mark_(device.kernel("scan.cl", "unique_mark", "scan")),
       unique_keep_(device.kernel("scan.cl", "unique_keep", "scan")),
       unique_clear_(device.kernel("scan.cl", "unique_clear", "scan")),
       count_keys_(device.kernel("scan.cl", "count_keys", "scan")),
-      scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")), total_buffer_(device, 1),
+      scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")),
       group_(std::min<std::size_t>(256, device.max_work_group())) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
@@ -29,21 +28,27 @@ const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
 
 // Items per work-item of scan_blocks (CLM_SCAN_ITEMS in cl/scan.cl).
 constexpr std::size_t kScanItems = 8;
+constexpr std::size_t kSmallGroup = 32;
 
-void PrefixScan::scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
-                            const std::string &phase) {
-  const std::size_t group = group_, block = group * kScanItems;
+const DeviceArray<cl_int> &PrefixScan::scan_level(const cl::Buffer &in, const cl::Buffer &out,
+                                                  std::size_t n, int level,
+                                                  const std::string &phase) {
+  // A short list (most of the flip-flop's passes) takes one small work-group:
+  // PoCL pays for each barrier per work-item.
+  const std::size_t group = n <= kSmallGroup * kScanItems ? std::min(kSmallGroup, group_) : group_;
+  const std::size_t block = group * kScanItems;
   const std::size_t groups = (n + block - 1) / block;
   const auto &sums = block_sums(level, groups);
   set_args(scan_blocks_, in, out, sums.buffer(), cl::Local(sizeof(cl_int) * group),
            static_cast<cl_int>(n));
   launch(device_, scan_blocks_, groups * group, phase, group);
   if (groups == 1)
-    return;
+    return sums; // one block: its sum is the total
   const auto &scanned = levels_.at(level).second;
-  scan_level(sums.buffer(), scanned.buffer(), groups, level + 1, phase);
+  const auto &total = scan_level(sums.buffer(), scanned.buffer(), groups, level + 1, phase);
   set_args(add_offsets_, out, scanned.buffer(), static_cast<cl_int>(block), static_cast<cl_int>(n));
   launch(device_, add_offsets_, n, phase);
+  return total;
 }
 
 int PrefixScan::exclusive_scan(const DeviceArray<cl_int> &counts,
@@ -51,11 +56,7 @@ int PrefixScan::exclusive_scan(const DeviceArray<cl_int> &counts,
                                const std::string &phase) {
   if (n == 0)
     return 0;
-  scan_level(counts.buffer(), offsets.buffer(), n, 0, phase);
-  set_args(total_, counts.buffer(), offsets.buffer(), total_buffer_.buffer(),
-           static_cast<cl_int>(n));
-  launch(device_, total_, 1, phase);
-  return total_buffer_.read(device_, 0);
+  return scan_level(counts.buffer(), offsets.buffer(), n, 0, phase).read(device_, 0);
 }
 
 int PrefixScan::compact(const DeviceArray<cl_int> &list, const DeviceArray<cl_int> &keep,

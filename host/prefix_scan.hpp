@@ -41,14 +41,15 @@ public:
              const std::string &phase);
 
 private:
-  void scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n, int level,
-                  const std::string &phase);
+  // Scans n entries of `in` into `out` (exclusive); returns the array whose
+  // first entry is their total (the top level's block sums).
+  const DeviceArray<cl_int> &scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n,
+                                        int level, const std::string &phase);
   const DeviceArray<cl_int> &block_sums(int level, std::size_t size);
 
   Device &device_;
-  cl::Kernel scan_blocks_, add_offsets_, total_, compact_, compact_indices_, unique_mark_,
-      unique_keep_, unique_clear_, count_keys_, scatter_by_key_;
-  DeviceArray<cl_int> total_buffer_;
+  cl::Kernel scan_blocks_, add_offsets_, compact_, compact_indices_, unique_mark_, unique_keep_,
+      unique_clear_, count_keys_, scatter_by_key_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned
 };

@@ -61,7 +61,7 @@ __kernel void compact_indices(__global const int *keep, __global const int *offs
 
 // Duplicates in a list of slots (negative entries are dropped): each slot
 // keeps its first position, found with atomic minimum in marks[] (all
-// 0xffffffff outside these kernels, restored by unique_clear), so the list
+// 0xffffffff outside these kernels, restored by unique_compact), so the list
 // kept is the same however the work is scheduled.
 __kernel void unique_mark(__global const int *list, volatile __global uint *marks, const int n) {
   const int gid = get_global_id(0);
@@ -76,10 +76,16 @@ __kernel void unique_keep(__global const int *list, __global const uint *marks, 
     keep[gid] = list[gid] >= 0 && marks[list[gid]] == (uint)gid;
 }
 
-__kernel void unique_clear(__global const int *list, __global uint *marks, const int n) {
+// out[offset[i]] = list[i] for the kept entries (offset: exclusive scan of
+// keep), each clearing its slot's mark: one is kept per distinct slot.
+__kernel void unique_compact(__global const int *list, __global const int *keep,
+                             __global const int *offset, __global uint *marks, __global int *out,
+                             const int n) {
   const int gid = get_global_id(0);
-  if (gid < n && list[gid] >= 0)
+  if (gid < n && keep[gid]) {
+    out[offset[gid]] = list[gid];
     marks[list[gid]] = 0xffffffffu;
+  }
 }
 
 // Bucketing (a counting sort's first half): key[i] in [0, buckets) or

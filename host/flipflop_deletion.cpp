@@ -138,6 +138,10 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = next;
     }
   }
+  // Checked once per iteration: a lost star only leaves its point undeleted
+  // until then.
+  if (failures_.read(device_, 0) != 0)
+    throw InternalError("flip-flop lost the star of a redundant point");
   const std::vector<cl_int> flips = flip_counts_.download(device_, 3);
   counts.delaunay_flips += flips[0];
   counts.non_delaunay_flips += flips[1] + flips[2];
@@ -192,8 +196,6 @@ void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
   launch(device_, track_, m, kPhase);
   const auto stars =
       static_cast<std::size_t>(scan_.exclusive_scan(star_size_, star_offset_, m, kPhase));
-  if (failures_.read(device_, 0) != 0)
-    throw InternalError("flip-flop lost the star of a redundant point");
   redundant_left_ = stars > 0;
   if (next + stars > next_active_.size())
     throw InternalError("flip-flop: the active list is longer than its arrays");

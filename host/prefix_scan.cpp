@@ -11,7 +11,7 @@ PrefixScan::PrefixScan(Device &device)
       compact_indices_(device.kernel("scan.cl", "compact_indices", "scan")),
       unique_mark_(device.kernel("scan.cl", "unique_mark", "scan")),
       unique_keep_(device.kernel("scan.cl", "unique_keep", "scan")),
-      unique_clear_(device.kernel("scan.cl", "unique_clear", "scan")),
+      unique_compact_(device.kernel("scan.cl", "unique_compact", "scan")),
       count_keys_(device.kernel("scan.cl", "count_keys", "scan")),
       scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")),
       group_(std::min<std::size_t>(256, device.max_work_group())) {}
@@ -89,9 +89,11 @@ int PrefixScan::unique(const DeviceArray<cl_int> &list, std::size_t n,
   launch(device_, unique_mark_, n, phase);
   set_args(unique_keep_, list.buffer(), marks.buffer(), keep.buffer(), items);
   launch(device_, unique_keep_, n, phase);
-  set_args(unique_clear_, list.buffer(), marks.buffer(), items);
-  launch(device_, unique_clear_, n, phase);
-  return compact(list, keep, offsets, out, n, phase);
+  const int kept = exclusive_scan(keep, offsets, n, phase);
+  set_args(unique_compact_, list.buffer(), keep.buffer(), offsets.buffer(), marks.buffer(),
+           out.buffer(), items);
+  launch(device_, unique_compact_, n, phase);
+  return kept;
 }
 
 int PrefixScan::bucket(const DeviceArray<cl_int> &key, std::size_t n, std::size_t buckets,

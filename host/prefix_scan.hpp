@@ -49,7 +49,7 @@ private:
 
   Device &device_;
   cl::Kernel scan_blocks_, add_offsets_, compact_, compact_indices_, unique_mark_, unique_keep_,
-      unique_clear_, count_keys_, scatter_by_key_;
+      unique_compact_, count_keys_, scatter_by_key_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned
 };

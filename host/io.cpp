@@ -566,19 +566,11 @@ public:
   // (the integer columns of .ele, .edge and .neigh are by far the bulk).
   void integer(long value, int width = 0) {
     char digits[24];
-    int count = 0;
-    unsigned long magnitude =
-        value < 0 ? 0UL - static_cast<unsigned long>(value) : static_cast<unsigned long>(value);
-    do {
-      digits[count++] = static_cast<char>('0' + magnitude % 10);
-      magnitude /= 10;
-    } while (magnitude != 0);
-    if (value < 0)
-      digits[count++] = '-';
+    const auto result = std::to_chars(digits, digits + sizeof digits, value);
+    const auto count = static_cast<int>(result.ptr - digits);
     if (width > count)
       buffer_.append(static_cast<std::size_t>(width - count), ' ');
-    while (count > 0)
-      buffer_ += digits[--count];
+    buffer_.append(digits, result.ptr);
   }
   // Appends `value` as printf's "%.17g" does (std::to_chars promises the
   // same characters), without printf's cost: coordinates fill .node files.

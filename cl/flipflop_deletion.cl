@@ -752,8 +752,9 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
   }
 }
 
-// Point first + order[k] moves to first + k with its state, insertion radius
-// and priority.
+// Every point q < n of the new arrays takes its coordinates, state,
+// insertion radius and priority from point p: itself for an input point
+// (q < first), first + order[q - first] for a Steiner point.
 __kernel void move_steiner_points(__global const int *order, __global const double2 *points,
                                   __global const int *point_state,
                                   __global const double *insertion_radius2,
@@ -761,15 +762,16 @@ __kernel void move_steiner_points(__global const int *order, __global const doub
                                   __global double2 *moved_point, __global int *moved_state,
                                   __global double *moved_radius2, __global uint *moved_priority,
                                   __global int *original_id, const int first, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
+  const int q = get_global_id(0);
+  if (q >= n)
     return;
-  const int p = first + order[k], q = first + k;
+  const int p = q < first ? q : first + order[q - first];
   moved_point[q] = points[p];
   moved_state[q] = point_state[p];
   moved_radius2[q] = insertion_radius2[p];
   moved_priority[q] = point_priority[p];
-  original_id[q] = q; // numbered again at the end (number_steiner_points)
+  if (q >= first)
+    original_id[q] = q; // numbered again at the end (number_steiner_points)
 }
 
 // The triangles' Steiner vertices take their new slots (new_slot[k]: of

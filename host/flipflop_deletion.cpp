@@ -305,22 +305,11 @@ void FlipflopDeletion::compact_steiner_points(Point low, double side, std::size_
   DeviceArray<cl_int> state(device_, capacity);
   DeviceArray<cl_double> radius2(device_, capacity);
   DeviceArray<cl_uint> priority(device_, capacity);
-  guarded(kPhase, "copying the input points", [&] {
-    auto &queue = device_.queue();
-    queue.enqueueCopyBuffer(mesh_.points.buffer(), points.buffer(), 0, 0,
-                            first * sizeof(cl_double2));
-    queue.enqueueCopyBuffer(mesh_.point_state.buffer(), state.buffer(), 0, 0,
-                            first * sizeof(cl_int));
-    queue.enqueueCopyBuffer(mesh_.insertion_radius2.buffer(), radius2.buffer(), 0, 0,
-                            first * sizeof(cl_double));
-    queue.enqueueCopyBuffer(mesh_.point_priority.buffer(), priority.buffer(), 0, 0,
-                            first * sizeof(cl_uint));
-  });
   set_args(move_points_, order.buffer(), mesh_.points.buffer(), mesh_.point_state.buffer(),
            mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), points.buffer(),
            state.buffer(), radius2.buffer(), priority.buffer(), mesh_.original_id.buffer(),
-           static_cast<cl_int>(first), static_cast<cl_int>(live));
-  launch(device_, move_points_, live, kPhase);
+           static_cast<cl_int>(first), static_cast<cl_int>(first + live));
+  launch(device_, move_points_, first + live, kPhase);
   set_args(renumber_vertices_, new_slot.buffer(), mesh_.tri_vertex.buffer(),
            static_cast<cl_int>(first), static_cast<cl_int>(3 * mesh_.triangle_count));
   launch(device_, renumber_vertices_, 3 * mesh_.triangle_count, kPhase);

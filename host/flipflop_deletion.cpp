@@ -245,13 +245,15 @@ FlipflopDeletion::ZGrid FlipflopDeletion::z_grid(Point low, double side, std::si
 }
 
 std::size_t FlipflopDeletion::z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
+                                      const DeviceArray<cl_ulong> &key, bool rotated,
                                       std::size_t items, const DeviceArray<cl_int> &order,
                                       const DeviceArray<cl_int> &new_slot) {
   DeviceArray<cl_int> cell_size(device_, grid.cells), cell_start(device_, grid.cells),
       cursor(device_, grid.cells);
   const auto placed = static_cast<std::size_t>(
       scan_.bucket(cell, items, grid.cells, cell_size, cell_start, cursor, order, kPhase));
-  set_args(sort_cells_, cell_start.buffer(), cell_size.buffer(), order.buffer(), new_slot.buffer(),
+  set_args(sort_cells_, cell_start.buffer(), cell_size.buffer(), key.buffer(),
+           static_cast<cl_int>(rotated), order.buffer(), new_slot.buffer(),
            static_cast<cl_int>(grid.cells));
   launch(device_, sort_cells_, grid.cells, kPhase);
   return placed;
@@ -268,11 +270,16 @@ void FlipflopDeletion::compact_triangles(Point low, double side) {
   // The marks (none are set between iterations) hold the cells, the stamps
   // the new slots, the children the moved vertices: all are reset after.
   const DeviceArray<cl_int> &cell = mesh_.tri_mark, &new_slot = mesh_.modified_stamp;
-  set_args(triangle_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), grid.low, grid.scale,
-           static_cast<cl_int>(grid.bits), cell.buffer(), static_cast<cl_int>(slots));
-  launch(device_, triangle_cells_, slots, kPhase);
   DeviceArray<cl_int> order(device_, slots);
-  const std::size_t live = z_order(grid, cell, slots, order, new_slot);
+  std::size_t live = 0;
+  {
+    DeviceArray<cl_ulong> key(device_, slots);
+    set_args(triangle_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), grid.low,
+             grid.scale, static_cast<cl_int>(grid.bits), cell.buffer(), key.buffer(),
+             static_cast<cl_int>(slots));
+    launch(device_, triangle_cells_, slots, kPhase);
+    live = z_order(grid, cell, key, true, slots, order, new_slot);
+  }
   {
     DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity);
     set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
@@ -295,11 +302,15 @@ void FlipflopDeletion::compact_steiner_points(Point low, double side, std::size_
   const ZGrid grid = z_grid(low, side, slots, 4);
   // Scratch: the flip-flop's per-point arrays, reset between iterations.
   const DeviceArray<cl_int> &cell = star_size_, &new_slot = star_offset_, &order = tracked_;
-  set_args(point_cells_, mesh_.points.buffer(), mesh_.point_state.buffer(), grid.low, grid.scale,
-           static_cast<cl_int>(grid.bits), cell.buffer(), static_cast<cl_int>(first),
-           static_cast<cl_int>(slots));
-  launch(device_, point_cells_, slots, kPhase);
-  const std::size_t live = z_order(grid, cell, slots, order, new_slot);
+  std::size_t live = 0;
+  {
+    DeviceArray<cl_ulong> key(device_, slots);
+    set_args(point_cells_, mesh_.points.buffer(), mesh_.point_state.buffer(), grid.low, grid.scale,
+             static_cast<cl_int>(grid.bits), cell.buffer(), key.buffer(),
+             static_cast<cl_int>(first), static_cast<cl_int>(slots));
+    launch(device_, point_cells_, slots, kPhase);
+    live = z_order(grid, cell, key, false, slots, order, new_slot);
+  }
   const std::size_t capacity = mesh_.point_capacity;
   DeviceArray<cl_double2> points(device_, capacity);
   DeviceArray<cl_int> state(device_, capacity);

@@ -64,9 +64,11 @@ private:
   };
   static ZGrid z_grid(Point low, double side, std::size_t items, std::size_t per_cell);
   // From the cells of `items` (-1: left out): order[k], the item that goes
-  // to place k, and new_slot[item], its place, cell by cell, in item order
-  // inside a cell. Returns how many are placed.
-  std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell, std::size_t items,
+  // to place k, and new_slot[item], its place, cell by cell, in the order of
+  // key[item] inside a cell; `rotated` (triangles): new_slot[item] is the
+  // link (place, rotation in key's low two bits). Returns how many are placed.
+  std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
+                      const DeviceArray<cl_ulong> &key, bool rotated, std::size_t items,
                       const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
   void compact_triangles(Point low, double side);
   void compact_steiner_points(Point low, double side, std::size_t first);

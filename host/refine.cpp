@@ -68,12 +68,10 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     throw UsageError("the insertion filter looks at 2 or 3 rings of triangles");
   RefineResult result;
   const std::size_t n = points.size();
-  // Refinement breaks ties by triangle slot, so it must start from a slot
-  // layout that depends on the input alone: the hull fan's. (The Voronoi
-  // construction's layout depends on the grid; the triangles do not.)
-  DelaunayOptions delaunay = options.delaunay;
-  delaunay.voronoi_construction = false;
-  DelaunayScheduler scheduler(device, points, delaunay, result.mesh.stats, first_room(n));
+  // Refinement breaks ties by triangle slot; its first compaction gives
+  // the triangles a layout that depends on them alone, whichever
+  // construction (and grid) built them.
+  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, first_room(n));
   device.program("offcenter_insertion.cl", "setup");
   device.program("flipflop_deletion.cl", "setup");
   if (!scheduler.triangulate()) {

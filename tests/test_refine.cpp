@@ -207,7 +207,9 @@ TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
 TEST_CASE("refine: the same mesh whatever the work-group size, grid or construction") {
   clmesh::RefineOptions options;
   options.min_angle = 30;
-  const auto points = fixtures::gaussian(3000, 78);
+  auto points = fixtures::gaussian(3000, 78);
+  for (std::size_t i = 0; i < 3000; i += 10) // duplicates: which copy is meshed must not matter
+    points.push_back(points[i]);
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
     options.algorithm = algorithm;
     options.delaunay.work_group = 1;
@@ -230,6 +232,9 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     options.delaunay.grid = 0;
     options.delaunay.voronoi_construction = false;
     const auto fourth = clmesh::refine_delaunay(device(), points, options);
+    CHECK(first.mesh.stats.construction == "voronoi");
+    CHECK(third.mesh.stats.construction == "voronoi");
+    CHECK(fourth.mesh.stats.construction == "hull_fan");
     CHECK(first.mesh.triangles == third.mesh.triangles);
     CHECK(first.mesh.triangles == fourth.mesh.triangles);
     options.delaunay.voronoi_construction = true;

@@ -1,6 +1,8 @@
 // clmesh — device selection, program building and error naming.
 #include "opencl_context.hpp"
 
+#include "program_cache.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -239,6 +241,11 @@ Device::Device(cl::Device device, DeviceDescription description)
   guarded("setup", "creating the context", [&] {
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);
+    const cl::Platform platform(device_.getInfo<CL_DEVICE_PLATFORM>());
+    build_identity_ =
+        platform.getInfo<CL_PLATFORM_NAME>() + "\n" + platform.getInfo<CL_PLATFORM_VERSION>() +
+        "\n" + device_.getInfo<CL_DEVICE_NAME>() + "\n" + device_.getInfo<CL_DEVICE_VERSION>() +
+        "\n" + device_.getInfo<CL_DRIVER_VERSION>();
   });
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
@@ -268,10 +275,20 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   if (it != programs_.end())
     return it->second;
   const std::string source = kernel_source(file);
-  cl::Program program(context_, source);
   // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
   // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
   const std::string options = "-cl-std=CL1.2";
+  const ProgramCache cache(source, options + "\n" + build_identity_);
+  if (const auto binary = cache.load()) {
+    try {
+      cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
+      program.build(std::vector<cl::Device>{device_}, options.c_str());
+      return programs_.emplace(file, program).first->second;
+    } catch (const cl::Error &) {
+      // A binary the driver no longer takes: built again from the source.
+    }
+  }
+  cl::Program program(context_, source);
   try {
     program.build(std::vector<cl::Device>{device_}, options.c_str());
   } catch (const cl::Error &error) {
@@ -281,6 +298,13 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
     } catch (const cl::Error &) {
     }
     throw OpenCLError(error.err(), "building " + file + ":\n" + log, phase, "");
+  }
+  try {
+    const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+    if (binaries.size() == 1)
+      cache.store(binaries.front());
+  } catch (const cl::Error &) {
+    // No binary to keep: the next run builds from the source again.
   }
   return programs_.emplace(file, program).first->second;
 }

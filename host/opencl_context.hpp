@@ -29,6 +29,7 @@ public:
   // Builds (once per device) the program made of `file` with its
   // `#include "x.h"` lines expanded, without fast-math or mad options.
   // Sources come from CLMESH_KERNEL_DIR when set, else from the embedded copies.
+  // Binaries are kept between runs (program_cache.hpp).
   cl::Program &program(const std::string &file, const std::string &phase);
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
@@ -47,6 +48,7 @@ private:
   cl::CommandQueue queue_;
   std::size_t work_group_ = 64;
   std::map<std::string, cl::Program> programs_;
+  std::string build_identity_; // platform, device and driver, for the program cache
 };
 
 // Source text of a kernel file with its includes expanded.

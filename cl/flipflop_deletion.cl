@@ -19,6 +19,7 @@
 // the still-unhappy triangles form the next active list, to which the stars
 // of the redundant points are added (Algorithm 3.2), without duplicates.
 #include "common.h"
+#include "group_scan.h"
 #include "refinement.h"
 
 #define CLM_OP_NONE 0
@@ -310,9 +311,47 @@ inline void remove_point(__global const double2 *points, __global int *tri_verte
                  encode_link(first, 1), outer[2]);
 }
 
-// Applies the operations that own every mark they wrote. applied[gid]: the
-// (first) slot that holds the result, or -1. flip_counts: Delaunay flips,
-// flops, removals.
+// Applies the operation of entry gid if it owns every mark it wrote.
+// applied[gid]: the (first) slot that holds the result, or -1; done: this
+// work-item's Delaunay flips, flops and removals so far.
+inline void apply_operation(int gid, __global const int *active, __global const int *operation,
+                            __global const int *proposal, __global const int *star,
+                            volatile __global uint *tri_mark, __global const double2 *points,
+                            __global int *tri_vertex, __global int *tri_neighbor,
+                            __global int *modified_stamp, __global int *children,
+                            __global int *point_state, __global int *applied, int *done,
+                            const int stamp) {
+  const int op = operation[gid], t = active[gid];
+  applied[gid] = -1;
+  if (op == CLM_OP_REMOVE) {
+    int s[4];
+    load_star(star, gid, s);
+    const int smallest = smallest_slot(s);
+    const uint key = 4u * (uint)smallest + 3u;
+    bool owned = true;
+    for (int k = 0; k < 4; ++k)
+      owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
+    // Up to four proposers share this flip: the first to take the mark applies it.
+    if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
+      const int p = proposal[gid];
+      remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
+      applied[gid] = smallest;
+      point_state[p] = CLM_POINT_DELETED;
+      ++done[2];
+    }
+  } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+    const int u = link_triangle(proposal[gid]), i = link_edge(proposal[gid]);
+    const uint key = (op == CLM_OP_FLOP ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
+    if (tri_mark[t] == key && tri_mark[u] == key) {
+      flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
+      applied[gid] = t;
+      ++done[op == CLM_OP_DELAUNAY ? 0 : 1];
+    }
+  }
+}
+
+// Applies the operations that own every mark they wrote. flip_counts:
+// Delaunay flips, flops, removals.
 __kernel void flipflop_apply(__global const int *active, __global const int *operation,
                              __global const int *proposal, __global const int *star,
                              volatile __global uint *tri_mark, __global const double2 *points,
@@ -322,35 +361,9 @@ __kernel void flipflop_apply(__global const int *active, __global const int *ope
                              volatile __global int *flip_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
   int done[3] = {0, 0, 0}; // Delaunay flips, flops, removals by this work-item
-  if (gid < n) {
-    const int op = operation[gid], t = active[gid];
-    applied[gid] = -1;
-    if (op == CLM_OP_REMOVE) {
-      int s[4];
-      load_star(star, gid, s);
-      const int smallest = smallest_slot(s);
-      const uint key = 4u * (uint)smallest + 3u;
-      bool owned = true;
-      for (int k = 0; k < 4; ++k)
-        owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
-      // Up to four proposers share this flip: the first to take the mark applies it.
-      if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
-        const int p = proposal[gid];
-        remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
-        applied[gid] = smallest;
-        point_state[p] = CLM_POINT_DELETED;
-        done[2] = 1;
-      }
-    } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
-      const int u = link_triangle(proposal[gid]), i = link_edge(proposal[gid]);
-      const uint key = (op == CLM_OP_FLOP ? 0u : CLM_DELAUNAY_KEYS) | (uint)(4 * t + i);
-      if (tri_mark[t] == key && tri_mark[u] == key) {
-        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
-        applied[gid] = t;
-        done[op == CLM_OP_DELAUNAY ? 0 : 1] = 1;
-      }
-    }
-  }
+  if (gid < n)
+    apply_operation(gid, active, operation, proposal, star, tri_mark, points, tri_vertex,
+                    tri_neighbor, modified_stamp, children, point_state, applied, done, stamp);
   volatile __local int scratch[2];
   for (int k = 0; k < 3; ++k)
     reserve_in_group(done[k], scratch, &flip_counts[k]);
@@ -383,18 +396,13 @@ inline void clear_pass_marks(__global const int *active, __global const int *ope
   }
 }
 
-// Second step, after flipflop_apply: the applied operations' outer edges are relinked,
-// each entry counts what it passes to the next list, and the marks are
-// cleared (one kernel: these read only what apply wrote).
-__kernel void flipflop_relink(__global const int *active, __global const int *operation,
-                              __global const int *proposal, __global const int *star,
-                              __global const int *applied, __global const int *tri_vertex,
-                              __global int *tri_neighbor, __global const int *modified_stamp,
-                              __global const int *children, __global uint *tri_mark,
-                              __global int *count, const int stamp, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+// Entry gid's count of next entries, its marks cleared, its results linked.
+inline void relink_results(int gid, __global const int *active, __global const int *operation,
+                           __global const int *proposal, __global const int *star,
+                           __global const int *applied, __global const int *tri_vertex,
+                           __global int *tri_neighbor, __global const int *modified_stamp,
+                           __global const int *children, __global uint *tri_mark,
+                           __global int *count, const int stamp) {
   count[gid] = next_entries(active, operation, star, applied, modified_stamp, stamp, gid);
   clear_pass_marks(active, operation, proposal, star, tri_mark, gid);
   if (applied[gid] < 0)
@@ -420,13 +428,27 @@ __kernel void flipflop_relink(__global const int *active, __global const int *op
   }
 }
 
-__kernel void flipflop_gather_next(__global const int *active, __global const int *proposal,
-                                   __global const int *operation, __global const int *star,
-                                   __global const int *applied, __global const int *count,
-                                   __global const int *offset, __global int *next_active,
-                                   const int n) {
+// Second step, after flipflop_apply: the applied operations' outer edges are relinked,
+// each entry counts what it passes to the next list, and the marks are
+// cleared (one kernel: these read only what apply wrote).
+__kernel void flipflop_relink(__global const int *active, __global const int *operation,
+                              __global const int *proposal, __global const int *star,
+                              __global const int *applied, __global const int *tri_vertex,
+                              __global int *tri_neighbor, __global const int *modified_stamp,
+                              __global const int *children, __global uint *tri_mark,
+                              __global int *count, const int stamp, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || count[gid] == 0)
+  if (gid < n)
+    relink_results(gid, active, operation, proposal, star, applied, tri_vertex, tri_neighbor,
+                   modified_stamp, children, tri_mark, count, stamp);
+}
+
+// Entry gid's results (or itself) at next_active[offset[gid] ..].
+inline void gather_results(int gid, __global const int *active, __global const int *proposal,
+                           __global const int *operation, __global const int *star,
+                           __global const int *applied, __global const int *count,
+                           __global const int *offset, __global int *next_active) {
+  if (count[gid] == 0)
     return;
   const int o = offset[gid];
   if (applied[gid] < 0) {
@@ -446,21 +468,25 @@ __kernel void flipflop_gather_next(__global const int *active, __global const in
   next_active[o + 1] = link_triangle(proposal[gid]);
 }
 
+__kernel void flipflop_gather_next(__global const int *active, __global const int *proposal,
+                                   __global const int *operation, __global const int *star,
+                                   __global const int *applied, __global const int *count,
+                                   __global const int *offset, __global int *next_active,
+                                   const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    gather_results(gid, active, proposal, operation, star, applied, count, offset, next_active);
+}
+
 // Over the tracked points (this iteration's, then old ones the boundary
 // routine marked): the ones marked in this pass become redundant; every redundant point finds a
 // triangle of its star again (its anchor may have been rewritten in this pass: then one of the
 // slot's children holds it) and counts its star in star_size[k] (0 for the others).
-__kernel void track_redundant_points(__global const int *tracked, __global int *point_state,
-                                     __global int *redundant_mark, __global int *redundant_anchor,
-                                     __global const int *tri_vertex,
-                                     __global const int *tri_neighbor,
-                                     __global const int *modified_stamp,
-                                     __global const int *children, __global int *star_size,
-                                     volatile __global int *failures, const int stamp,
-                                     const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
+inline void track_point(int k, __global const int *tracked, __global int *point_state,
+                        __global int *redundant_mark, __global int *redundant_anchor,
+                        __global const int *tri_vertex, __global const int *tri_neighbor,
+                        __global const int *modified_stamp, __global const int *children,
+                        __global int *star_size, volatile __global int *failures, const int stamp) {
   star_size[k] = 0;
   const int p = tracked[k];
   if (redundant_mark[p]) {
@@ -494,21 +520,131 @@ __kernel void track_redundant_points(__global const int *tracked, __global int *
   star_size[k] = size;
 }
 
+__kernel void track_redundant_points(__global const int *tracked, __global int *point_state,
+                                     __global int *redundant_mark, __global int *redundant_anchor,
+                                     __global const int *tri_vertex,
+                                     __global const int *tri_neighbor,
+                                     __global const int *modified_stamp,
+                                     __global const int *children, __global int *star_size,
+                                     volatile __global int *failures, const int stamp,
+                                     const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    track_point(k, tracked, point_state, redundant_mark, redundant_anchor, tri_vertex, tri_neighbor,
+                modified_stamp, children, star_size, failures, stamp);
+}
+
 // Appends the star of every redundant point to the next active list at
 // out[base + offset[k] ..] (Algorithm 3.2, lines 6-10).
-__kernel void emit_redundant_stars(__global const int *tracked,
-                                   __global const int *redundant_anchor,
-                                   __global const int *tri_vertex, __global const int *tri_neighbor,
-                                   __global const int *star_size, __global const int *offset,
-                                   __global int *out, const int base, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n || star_size[k] == 0)
+inline void emit_star(int k, __global const int *tracked, __global const int *redundant_anchor,
+                      __global const int *tri_vertex, __global const int *tri_neighbor,
+                      __global const int *star_size, __global const int *offset, __global int *out,
+                      const int base) {
+  if (star_size[k] == 0)
     return;
   const int p = tracked[k];
   int s = redundant_anchor[p];
   for (int j = 0; j < star_size[k]; ++j) {
     out[base + offset[k] + j] = s;
     s = next_around(tri_neighbor, s, index_in(tri_vertex, s, p));
+  }
+}
+
+__kernel void emit_redundant_stars(__global const int *tracked,
+                                   __global const int *redundant_anchor,
+                                   __global const int *tri_vertex, __global const int *tri_neighbor,
+                                   __global const int *star_size, __global const int *offset,
+                                   __global int *out, const int base, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    emit_star(k, tracked, redundant_anchor, tri_vertex, tri_neighbor, star_size, offset, out, base);
+}
+
+// A whole pass by one work-group, for short lists: the kernels above in
+// order (propose, exact proposals, apply, relink and count, gather, and when
+// stars are looked for, tracking, stars and duplicate removal into active),
+// with barriers between them instead of launches. PoCL pays about 30 us a
+// launch, and most passes, all of GPU-QM's on hard inputs, list a few
+// hundred triangles. Entry by entry the results are those of the kernels.
+// result: [0] the pass's entries in next_active, [1] points marked, [2]
+// stars listed (-1: not looked for, -2: no room for them), [3] the next
+// list's length, [4] exact proposals.
+__kernel void flipflop_pass_in_group(
+    __global int *active, __global const double2 *points, __global int *tri_vertex,
+    __global int *tri_neighbor, __global const int *constraint_start,
+    __global const int *constraint_adjacent, const int constrained, __global int *point_state,
+    __global const double *insertion_radius2, __global const uint *point_priority,
+    const int orthogonal_test, const int any_redundant, __global int *redundant_mark,
+    __global int *redundant_anchor, volatile __global int *marked_count,
+    volatile __global uint *tri_mark, __global int *operation, __global int *proposal,
+    __global int *star, __global int *modified_stamp, __global int *children, __global int *applied,
+    volatile __global int *flip_counts, __global int *count, __global int *offset,
+    __global int *next_active, const int next_capacity, __global const int *tracked, const int m,
+    const int find_stars, __global int *star_size, __global int *star_offset,
+    volatile __global int *failures, __local int *scratch, volatile __global int *result,
+    const int stamp, const int n) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  if (lid == 0) {
+    marked_count[0] = 0;
+    result[4] = 0;
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int exact = 0;
+  for (int k = lid; k < n; k += size) {
+    operation[k] = CLM_OP_NONE;
+    if (!propose_operation(k, 0, active, points, tri_vertex, tri_neighbor, constraint_start,
+                           constraint_adjacent, constrained, point_state, insertion_radius2,
+                           point_priority, orthogonal_test, any_redundant, redundant_mark,
+                           redundant_anchor, marked_count, tri_mark, operation, proposal, star)) {
+      propose_operation(k, 1, active, points, tri_vertex, tri_neighbor, constraint_start,
+                        constraint_adjacent, constrained, point_state, insertion_radius2,
+                        point_priority, orthogonal_test, any_redundant, redundant_mark,
+                        redundant_anchor, marked_count, tri_mark, operation, proposal, star);
+      ++exact;
+    }
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int done[3] = {0, 0, 0};
+  for (int k = lid; k < n; k += size)
+    apply_operation(k, active, operation, proposal, star, tri_mark, points, tri_vertex,
+                    tri_neighbor, modified_stamp, children, point_state, applied, done, stamp);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    relink_results(k, active, operation, proposal, star, applied, tri_vertex, tri_neighbor,
+                   modified_stamp, children, (__global uint *)tri_mark, count, stamp);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int next = group_exclusive_scan(count, offset, n, scratch);
+  for (int k = lid; k < n; k += size)
+    gather_results(k, active, proposal, operation, star, applied, count, offset, next_active);
+  for (int j = 0; j < 3; ++j)
+    if (done[j] > 0)
+      atomic_add(&flip_counts[j], done[j]);
+  if (exact > 0)
+    atomic_add(&result[4], exact);
+  const int marked = marked_count[0];
+  int stars = -1, length = next;
+  if (marked > 0 || find_stars) {
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int k = lid; k < m; k += size)
+      track_point(k, tracked, point_state, redundant_mark, redundant_anchor, tri_vertex,
+                  tri_neighbor, modified_stamp, children, star_size, failures, stamp);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    stars = group_exclusive_scan(star_size, star_offset, m, scratch);
+    if (next + stars > next_capacity) {
+      stars = -2;
+    } else {
+      for (int k = lid; k < m; k += size)
+        emit_star(k, tracked, redundant_anchor, tri_vertex, tri_neighbor, star_size, star_offset,
+                  next_active, next);
+      barrier(CLK_GLOBAL_MEM_FENCE);
+      length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
+    }
+  }
+  if (lid == 0) {
+    result[0] = next;
+    result[1] = marked;
+    result[2] = stars;
+    result[3] = length;
   }
 }
 

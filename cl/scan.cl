@@ -7,6 +7,8 @@
 // CLM_SCAN_ITEMS x (work-group size) entries costs a handful of barriers.
 #define CLM_SCAN_ITEMS 8
 
+#include "group_scan.h"
+
 // Exclusive scan of each block; block_sums[g] = block total.
 __kernel void scan_blocks(__global const int *in, __global int *out, __global int *block_sums,
                           __local int *scratch, const int n) {
@@ -19,14 +21,7 @@ __kernel void scan_blocks(__global const int *in, __global int *out, __global in
     sum += first + j < n ? in[first + j] : 0;
   }
   scratch[lid] = sum;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  // Hillis-Steele inclusive scan of the work-items' sums.
-  for (int offset = 1; offset < size; offset <<= 1) {
-    const int add = lid >= offset ? scratch[lid - offset] : 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    scratch[lid] += add;
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
+  local_inclusive_scan(scratch, lid, size);
   const int before = scratch[lid] - sum;
   for (int j = 0; j < CLM_SCAN_ITEMS; ++j)
     if (first + j < n)
@@ -65,15 +60,15 @@ __kernel void compact_indices(__global const int *keep, __global const int *offs
 // kept is the same however the work is scheduled.
 __kernel void unique_mark(__global const int *list, volatile __global uint *marks, const int n) {
   const int gid = get_global_id(0);
-  if (gid < n && list[gid] >= 0)
-    atomic_min(&marks[list[gid]], (uint)gid);
+  if (gid < n)
+    mark_first_entry(list, marks, gid);
 }
 
 __kernel void unique_keep(__global const int *list, __global const uint *marks, __global int *keep,
                           const int n) {
   const int gid = get_global_id(0);
   if (gid < n)
-    keep[gid] = list[gid] >= 0 && marks[list[gid]] == (uint)gid;
+    keep[gid] = is_first_entry(list, marks, gid);
 }
 
 // out[offset[i]] = list[i] for the kept entries (offset: exclusive scan of
@@ -82,10 +77,8 @@ __kernel void unique_compact(__global const int *list, __global const int *keep,
                              __global const int *offset, __global uint *marks, __global int *out,
                              const int n) {
   const int gid = get_global_id(0);
-  if (gid < n && keep[gid]) {
-    out[offset[gid]] = list[gid];
-    marks[list[gid]] = 0xffffffffu;
-  }
+  if (gid < n && keep[gid])
+    move_first_entry(list, offset, marks, out, gid);
 }
 
 // Bucketing (a counting sort's first half): key[i] in [0, buckets) or

@@ -14,9 +14,10 @@ constexpr long kMaxPasses = 100000;
 } // namespace
 
 FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
-                                   bool orthogonal_test, double lens)
+                                   bool orthogonal_test, double lens, std::size_t group_pass_limit)
     : device_(device), mesh_(mesh), scan_(scan), orthogonal_test_(orthogonal_test ? 1 : 0),
-      lens_(lens), mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
+      lens_(lens), group_pass_limit_(group_pass_limit),
+      mark_encroaching_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
       propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),
@@ -36,6 +37,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       renumber_vertices_(device.kernel(kFile, "renumber_steiner_vertices", kPhase)),
       sort_cells_(device.kernel(kFile, "sort_cells", kPhase)),
       move_triangles_(device.kernel(kFile, "move_triangles", kPhase)),
+      pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
       active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
@@ -47,7 +49,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
       encroach_claim_(device, mesh.point_capacity), marked_count_(device, 1),
       exact_count_(device, 1), flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1),
-      kept_(device, 1) {
+      kept_(device, 1), pass_result_(device, 5) {
   redundant_mark_.fill(device_, 0, mesh.point_capacity);
   encroach_claim_.fill(device_, 0x7fffffff, mesh.point_capacity);
   failures_.fill(device_, 0, 1);
@@ -101,32 +103,19 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
     if (pass == kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
                           " passes");
-    const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
-    marked_count_.fill(device_, 0, 1);
-    counts.exact_checks += propose(items, static_cast<cl_int>(redundant_left_ && pass > 0));
-    set_args(apply_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
-             mesh_.tri_mark.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
-             mesh_.point_state.buffer(), applied_.buffer(), flip_counts_.buffer(), pass_stamp,
-             items);
-    launch(device_, apply_, n, kPhase);
-    set_args(relink_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
-             applied_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.modified_stamp.buffer(), mesh_.children.buffer(), mesh_.tri_mark.buffer(),
-             count_.buffer(), pass_stamp, items);
-    launch(device_, relink_, n, kPhase);
-    const auto next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
-    set_args(gather_next_, active_.buffer(), proposal_.buffer(), operation_.buffer(),
-             star_.buffer(), applied_.buffer(), count_.buffer(), offset_.buffer(),
-             next_active_.buffer(), items);
-    launch(device_, gather_next_, n, kPhase);
-    rewritten.append(device_, next_active_, next); // the pass's results (and losers)
+    const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
+    const PassResult result = n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
+                                  ? pass_in_group(n, any_redundant, pass_stamp, counts)
+                                  : pass_by_kernels(n, any_redundant, pass_stamp, counts);
+    rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
     ++counts.passes;
-    const int marked = marked_count_.read(device_, 0);
-    if (marked > 0 || redundant_left_) {
-      find_stars(pass_stamp, next, &n);
-      if (next == 0 && marked == 0 && redundant_left_) {
+    if (result.looked_for_stars) {
+      redundant_left_ = result.stars > 0;
+      n = result.length;
+      if (n > mesh_.list_capacity)
+        throw InternalError("flip-flop: the active list is longer than its arrays");
+      if (result.next == 0 && result.marked == 0 && redundant_left_) {
         // Stalled: what is left cannot be deleted. Their stars are listed.
         set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), kept_.buffer(),
                  static_cast<cl_int>(tracked_n_));
@@ -135,7 +124,7 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
       }
     } else {
       std::swap(active_, next_active_);
-      n = next;
+      n = result.next;
     }
   }
   // Checked once per iteration: a lost star only leaves its point undeleted
@@ -154,6 +143,63 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
   }
   counts.midpoints += midpoints_.read(device_, 0);
   counts.kept_redundant += kept_.read(device_, 0);
+}
+
+FlipflopDeletion::PassResult FlipflopDeletion::pass_by_kernels(std::size_t n, cl_int any_redundant,
+                                                               cl_int stamp,
+                                                               FlipflopCounts &counts) {
+  const auto items = static_cast<cl_int>(n);
+  marked_count_.fill(device_, 0, 1);
+  counts.exact_checks += propose(items, any_redundant);
+  set_args(apply_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+           mesh_.tri_mark.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
+           mesh_.point_state.buffer(), applied_.buffer(), flip_counts_.buffer(), stamp, items);
+  launch(device_, apply_, n, kPhase);
+  set_args(relink_, active_.buffer(), operation_.buffer(), proposal_.buffer(), star_.buffer(),
+           applied_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), mesh_.tri_mark.buffer(),
+           count_.buffer(), stamp, items);
+  launch(device_, relink_, n, kPhase);
+  PassResult result;
+  result.next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
+  set_args(gather_next_, active_.buffer(), proposal_.buffer(), operation_.buffer(), star_.buffer(),
+           applied_.buffer(), count_.buffer(), offset_.buffer(), next_active_.buffer(), items);
+  launch(device_, gather_next_, n, kPhase);
+  result.marked = marked_count_.read(device_, 0);
+  result.looked_for_stars = result.marked > 0 || redundant_left_;
+  if (result.looked_for_stars)
+    result.length = find_stars(stamp, result.next, &result.stars);
+  return result;
+}
+
+FlipflopDeletion::PassResult FlipflopDeletion::pass_in_group(std::size_t n, cl_int any_redundant,
+                                                             cl_int stamp, FlipflopCounts &counts) {
+  const std::size_t group = device_.work_group();
+  set_args(pass_in_group_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
+           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),
+           mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
+           mesh_.point_priority.buffer(), orthogonal_test_, any_redundant, redundant_mark_.buffer(),
+           redundant_anchor_.buffer(), marked_count_.buffer(), mesh_.tri_mark.buffer(),
+           operation_.buffer(), proposal_.buffer(), star_.buffer(), mesh_.modified_stamp.buffer(),
+           mesh_.children.buffer(), applied_.buffer(), flip_counts_.buffer(), count_.buffer(),
+           offset_.buffer(), next_active_.buffer(), static_cast<cl_int>(next_active_.size()),
+           tracked_.buffer(), static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
+           star_size_.buffer(), star_offset_.buffer(), failures_.buffer(),
+           cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
+  launch(device_, pass_in_group_, group, kPhase, group);
+  const std::vector<cl_int> values = pass_result_.download(device_, 5);
+  if (values[2] == -2)
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  PassResult result;
+  result.next = static_cast<std::size_t>(values[0]);
+  result.marked = values[1];
+  result.looked_for_stars = values[2] >= 0;
+  result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
+  result.length = static_cast<std::size_t>(values[3]);
+  counts.exact_checks += values[4];
+  return result;
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the
@@ -186,7 +232,7 @@ long FlipflopDeletion::propose(cl_int items, cl_int any_redundant) {
 
 // Marked points become redundant, and the stars of the redundant ones join the
 // next list (next_active_[0 .. next)), which goes without duplicates to active_.
-void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
+std::size_t FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *stars_found) {
   const std::size_t m = tracked_n_;
   const auto points = static_cast<cl_int>(m);
   set_args(track_, tracked_.buffer(), mesh_.point_state.buffer(), redundant_mark_.buffer(),
@@ -196,7 +242,7 @@ void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
   launch(device_, track_, m, kPhase);
   const auto stars =
       static_cast<std::size_t>(scan_.exclusive_scan(star_size_, star_offset_, m, kPhase));
-  redundant_left_ = stars > 0;
+  *stars_found = stars;
   if (next + stars > next_active_.size())
     throw InternalError("flip-flop: the active list is longer than its arrays");
   if (stars > 0) {
@@ -206,10 +252,8 @@ void FlipflopDeletion::find_stars(int stamp, std::size_t next, std::size_t *n) {
              next_active_.buffer(), static_cast<cl_int>(next), points);
     launch(device_, emit_, m, kPhase);
   }
-  *n = static_cast<std::size_t>(
+  return static_cast<std::size_t>(
       scan_.unique(next_active_, next + stars, mesh_.tri_mark, count_, offset_, active_, kPhase));
-  if (*n > mesh_.list_capacity)
-    throw InternalError("flip-flop: the active list is longer than its arrays");
 }
 
 void FlipflopDeletion::collect_free_slots() {

@@ -29,8 +29,9 @@ public:
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
   // lens: Triangle's encroachment test of hull edges (offcenter_insertion.cl).
+  // group_pass_limit: RefineOptions::group_pass_limit.
   FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test,
-                   double lens);
+                   double lens, std::size_t group_pass_limit);
 
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
@@ -72,24 +73,46 @@ private:
                       const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
   void compact_triangles(Point low, double side);
   void compact_steiner_points(Point low, double side, std::size_t first);
+  // What a pass leaves: `next` entries in next_active_ (its results and
+  // losers); when stars were looked for, the next list (those and the
+  // redundant points' stars, without repeats) in active_, `length` long.
+  struct PassResult {
+    std::size_t next = 0;
+    int marked = 0; // points marked redundant in the pass
+    bool looked_for_stars = false;
+    std::size_t stars = 0;
+    std::size_t length = 0;
+  };
+  // Short lists take one work-group for the whole pass (flipflop_pass_in_group)
+  // when the points to track are few too.
+  static constexpr std::size_t kTrackedInGroup = 8192;
+  PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
+                             FlipflopCounts &counts);
+  PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
+                           FlipflopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
-  void find_stars(int stamp, std::size_t next, std::size_t *n);
+  // Tracks the redundant points, lists their stars after the pass's `next`
+  // entries (*stars of them) and removes repeats into active_; returns the length.
+  std::size_t find_stars(int stamp, std::size_t next, std::size_t *stars);
 
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl_int orthogonal_test_;
   double lens_;
+  std::size_t group_pass_limit_;
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
       gather_next_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_,
-      triangle_cells_, point_cells_, move_points_, renumber_vertices_, sort_cells_, move_triangles_;
+      triangle_cells_, point_cells_, move_points_, renumber_vertices_, sort_cells_, move_triangles_,
+      pass_in_group_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
       encroach_claim_;
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_;
+  DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
 };
 
 } // namespace clmesh

@@ -50,7 +50,8 @@ struct RefinementSteps {
                   filter_rings(options)),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
-                 options.algorithm == RefineAlgorithm::qmv, offcenter.lens()),
+                 options.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
+                 options.group_pass_limit),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;

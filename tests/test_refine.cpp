@@ -238,6 +238,14 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     CHECK(first.mesh.triangles == third.mesh.triangles);
     CHECK(first.mesh.triangles == fourth.mesh.triangles);
     options.delaunay.voronoi_construction = true;
+    // Nor on whether flip-flop passes run in one work-group or as separate kernels.
+    options.group_pass_limit = 0;
+    const auto by_kernels = clmesh::refine_delaunay(device(), points, options);
+    options.group_pass_limit = std::size_t{1} << 30;
+    const auto in_group = clmesh::refine_delaunay(device(), points, options);
+    options.group_pass_limit = clmesh::RefineOptions{}.group_pass_limit;
+    CHECK(first.mesh.triangles == by_kernels.mesh.triangles);
+    CHECK(first.mesh.triangles == in_group.mesh.triangles);
   }
 }
 

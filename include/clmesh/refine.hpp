@@ -6,6 +6,7 @@
 
 #include "clmesh/delaunay.hpp"
 
+#include <cstddef>
 #include <vector>
 
 namespace clmesh {
@@ -25,6 +26,10 @@ struct RefineOptions {
   // Rings of neighbouring triangles the insertion filter looks at: 2 or 3;
   // 0 picks the algorithm's (qm: 3, for the fewest points; qmv: 2, faster).
   int filter_rings = 0;
+  // Flip-flop passes over at most this many triangles run in one work-group,
+  // one launch for the whole pass (0: every pass as separate kernels). A
+  // matter of speed only: the mesh is the same.
+  std::size_t group_pass_limit = 2048;
 };
 
 struct RefineStats {

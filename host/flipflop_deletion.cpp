@@ -1,5 +1,6 @@
 #include "flipflop_deletion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -50,6 +51,9 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       encroach_claim_(device, mesh.point_capacity), marked_count_(device, 1),
       exact_count_(device, 1), flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1),
       kept_(device, 1), pass_result_(device, 5) {
+  pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
+    return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
+  });
   redundant_mark_.fill(device_, 0, mesh.point_capacity);
   encroach_claim_.fill(device_, 0x7fffffff, mesh.point_capacity);
   failures_.fill(device_, 0, 1);
@@ -175,7 +179,8 @@ FlipflopDeletion::PassResult FlipflopDeletion::pass_by_kernels(std::size_t n, cl
 
 FlipflopDeletion::PassResult FlipflopDeletion::pass_in_group(std::size_t n, cl_int any_redundant,
                                                              cl_int stamp, FlipflopCounts &counts) {
-  const std::size_t group = device_.work_group();
+  // The group may have to be smaller for this large kernel than for the others.
+  const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
   set_args(pass_in_group_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
            mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),

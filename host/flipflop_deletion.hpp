@@ -101,6 +101,7 @@ private:
   cl_int orthogonal_test_;
   double lens_;
   std::size_t group_pass_limit_;
+  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_pass_in_group
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,

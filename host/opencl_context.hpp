@@ -24,6 +24,7 @@ public:
 
   const DeviceDescription &description() const { return description_; }
   cl::Context &context() { return context_; }
+  const cl::Device &cl_device() const { return device_; }
   cl::CommandQueue &queue() { return queue_; }
 
   // Builds (once per device) the program made of `file` with its

@@ -52,6 +52,13 @@ inline VertexTriple load_vertices(__global const int *tri_vertex, int t) {
   return tri;
 }
 
+// The index of a triangle's smallest vertex, where its canonical rotation
+// starts (the vertex at infinity, negative, counts as the largest).
+inline int canonical_start(VertexTriple tri) {
+  const uint a = (uint)tri.v[0], b = (uint)tri.v[1], c = (uint)tri.v[2];
+  return a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
+}
+
 inline void store_triangle(__global int *tri_vertex, __global int *tri_neighbor, int t, int a,
                            int b, int c, int na, int nb, int nc) {
   tri_vertex[3 * t] = a;

@@ -795,13 +795,8 @@ inline int z_cell(double2 p, double2 low, double scale, int bits) {
 // triangulation): each triangle starts at its smallest vertex (the vertex at
 // infinity counts as the largest), and a cell's triangles go in the order of
 // their first two vertices, a directed edge that no other triangle starts with.
-inline int canonical_start(VertexTriple tri) {
-  const uint a = (uint)tri.v[0], b = (uint)tri.v[1], c = (uint)tri.v[2];
-  return a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
-}
-
-inline VertexTriple canonical_rotation(VertexTriple tri) {
-  const int r = canonical_start(tri);
+// (The output's canonical order, mesh_output.cl, starts triangles likewise.)
+inline VertexTriple rotated_by(VertexTriple tri, int r) {
   const int a = tri.v[0], b = tri.v[1], c = tri.v[2];
   VertexTriple rotated; // rotated.v[i] = tri.v[(i + r) % 3], without private indexing
   rotated.v[0] = r == 0 ? a : (r == 1 ? b : c);
@@ -825,7 +820,7 @@ __kernel void triangle_cells(__global const double2 *points, __global const int 
     return;
   }
   const int r = canonical_start(tri);
-  tri = canonical_rotation(tri);
+  tri = rotated_by(tri, r);
   double2 sum = (double2)(0, 0); // of the real vertices (two for a ghost)
   int real = 0;
   for (int i = 0; i < 3; ++i)

@@ -98,9 +98,9 @@ __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_nei
   const int t = get_global_id(0);
   if (t >= n)
     return;
-  const int a = out_vertex[3 * t], b = out_vertex[3 * t + 1], c = out_vertex[3 * t + 2];
-  const int r = a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
-  first_slot[t] = device_of_input[r == 0 ? a : (r == 1 ? b : c)];
+  const VertexTriple tri = load_vertices(out_vertex, t);
+  const int r = canonical_start(tri);
+  first_slot[t] = device_of_input[r == 0 ? tri.v[0] : (r == 1 ? tri.v[1] : tri.v[2])];
   if (r == 0)
     return;
   int v[3], m[3];

@@ -20,6 +20,7 @@
 // of the redundant points are added (Algorithm 3.2), without duplicates.
 #include "common.h"
 #include "group_scan.h"
+#include "prefetch.h"
 #include "refinement.h"
 
 #define CLM_OP_NONE 0
@@ -248,6 +249,7 @@ __kernel void flipflop_propose(
   if (gid >= n)
     return;
   operation[gid] = CLM_OP_NONE;
+  prefetch_triangle_and_neighbours(active, gid, n, points, point_state, tri_vertex, tri_neighbor);
   if (!propose_operation(gid, 0, active, points, tri_vertex, tri_neighbor, constraint_start,
                          constraint_adjacent, constrained, point_state, insertion_radius2,
                          point_priority, orthogonal_test, any_redundant, redundant_mark,
@@ -350,6 +352,79 @@ inline void apply_operation(int gid, __global const int *active, __global const 
   }
 }
 
+// Prefetching for flipflop_apply and flipflop_relink (prefetch.h): the
+// triangles an entry's operation rewrites, their marks and their records of
+// children.
+inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
+                           __global const int *modified_stamp, __global const int *children,
+                           __global const uint *tri_mark, int t) {
+  if (t < 0)
+    return;
+  warm_for_write(tri_vertex + 3 * t);
+  warm_for_write(tri_neighbor + 3 * t);
+  warm_for_write(tri_mark + t);
+  warm_for_write(modified_stamp + t);
+  warm_for_write(children + CLM_CHILDREN * t);
+}
+
+inline void prefetch_operation(__global const int *active, __global const int *operation,
+                               __global const int *proposal, __global const int *star,
+                               __global const int *tri_vertex, __global const int *tri_neighbor,
+                               __global const int *modified_stamp, __global const int *children,
+                               __global const uint *tri_mark, int gid, int n) {
+  const int k = gid + CLM_AHEAD, op = entry_ahead(operation, gid, 1, n);
+  if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
+    warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark, active[k]);
+    warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark,
+                   link_triangle(proposal[k]));
+  } else if (op == CLM_OP_REMOVE) {
+    for (int j = 0; j < 4; ++j)
+      warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark, star[4 * k + j]);
+  }
+}
+
+// The outer neighbours of the triangles an applied operation rewrote: their
+// stamps, links and children (the rewritten triangles' records warm).
+inline void warm_outer_neighbours(__global const int *tri_neighbor,
+                                  __global const int *modified_stamp, __global const int *children,
+                                  int t) {
+  if (t < 0)
+    return;
+  for (int e = 0; e < 3; ++e) {
+    const int x = link_triangle(tri_neighbor[3 * t + e]);
+    if (x < 0)
+      continue;
+    warm(modified_stamp + x);
+    warm_for_write(tri_neighbor + 3 * x);
+    warm(children + CLM_CHILDREN * x);
+  }
+}
+
+inline void prefetch_relink(__global const int *operation, __global const int *proposal,
+                            __global const int *star, __global const int *applied,
+                            __global const int *tri_vertex, __global const int *tri_neighbor,
+                            __global const int *modified_stamp, __global const int *children,
+                            __global const uint *tri_mark, int gid, int n) {
+  const int far = gid + 2 * CLM_AHEAD, t_far = entry_ahead(applied, gid, 2, n);
+  if (t_far >= 0) {
+    const bool removal = operation[far] == CLM_OP_REMOVE;
+    for (int j = 0; j < (removal ? 4 : 2); ++j)
+      warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark,
+                     removal  ? star[4 * far + j]
+                     : j == 0 ? t_far
+                              : link_triangle(proposal[far]));
+  }
+  const int near = gid + CLM_AHEAD, t_near = entry_ahead(applied, gid, 1, n);
+  if (t_near >= 0) {
+    const bool removal = operation[near] == CLM_OP_REMOVE;
+    for (int j = 0; j < (removal ? 4 : 2); ++j)
+      warm_outer_neighbours(tri_neighbor, modified_stamp, children,
+                            removal  ? star[4 * near + j]
+                            : j == 0 ? t_near
+                                     : link_triangle(proposal[near]));
+  }
+}
+
 // Applies the operations that own every mark they wrote. flip_counts:
 // Delaunay flips, flops, removals.
 __kernel void flipflop_apply(__global const int *active, __global const int *operation,
@@ -361,6 +436,8 @@ __kernel void flipflop_apply(__global const int *active, __global const int *ope
                              volatile __global int *flip_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
   int done[3] = {0, 0, 0}; // Delaunay flips, flops, removals by this work-item
+  prefetch_operation(active, operation, proposal, star, tri_vertex, tri_neighbor, modified_stamp,
+                     children, tri_mark, gid, n);
   if (gid < n)
     apply_operation(gid, active, operation, proposal, star, tri_mark, points, tri_vertex,
                     tri_neighbor, modified_stamp, children, point_state, applied, done, stamp);
@@ -438,6 +515,8 @@ __kernel void flipflop_relink(__global const int *active, __global const int *op
                               __global const int *children, __global uint *tri_mark,
                               __global int *count, const int stamp, const int n) {
   const int gid = get_global_id(0);
+  prefetch_relink(operation, proposal, star, applied, tri_vertex, tri_neighbor, modified_stamp,
+                  children, tri_mark, gid, n);
   if (gid < n)
     relink_results(gid, active, operation, proposal, star, applied, tri_vertex, tri_neighbor,
                    modified_stamp, children, tri_mark, count, stamp);

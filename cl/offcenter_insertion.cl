@@ -15,6 +15,7 @@
 // has a better one. Quality decisions use floating point, as Triangle's do; the insertion
 // that follows uses the exact predicates.
 #include "common.h"
+#include "prefetch.h"
 #include "refinement.h"
 
 // Priorities are the bits of a positive float (the squared shortest edge):
@@ -106,6 +107,8 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   if (gid >= n)
     return;
   is_bad[gid] = 0;
+  if (use_list)
+    prefetch_corners(list, gid, n, points, point_state, tri_vertex);
   const int t = use_list ? list[gid] : gid;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
@@ -175,6 +178,24 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 // midpoint (as Triangle splits a segment). split_edge[k]: the edge of
 // container[k] the candidate lies on (the hull edge of a midpoint), or -1
 // inside; container[k] = -1 when it falls on a vertex.
+// Prefetching for locate_candidates (prefetch.h): the bad triangle where a
+// walk starts, its corners and its neighbours.
+inline void prefetch_walk_start(__global const int *origin, int k, int n,
+                                __global const double2 *points, __global const int *point_state,
+                                __global const int *tri_vertex, __global const int *tri_neighbor,
+                                __global const int *modified_stamp,
+                                __global const int *last_container) {
+  const int far = entry_ahead(origin, k, 2, n);
+  if (far >= 0) {
+    warm_triangle(tri_vertex, tri_neighbor, far);
+    warm(modified_stamp + far);
+    warm(last_container + far);
+  }
+  const int near = entry_ahead(origin, k, 1, n);
+  warm_corners(points, point_state, tri_vertex, near);
+  warm_neighbours(tri_vertex, tri_neighbor, near);
+}
+
 __kernel void locate_candidates(__global const double2 *points, __global const int *tri_vertex,
                                 __global const int *tri_neighbor, __global const int *point_state,
                                 __global const int *modified_stamp, __global int *last_container,
@@ -183,6 +204,8 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
                                 __global const int *origin, __global uint *priority,
                                 const double lens, const int max_steps, const int n) {
   const int k = get_global_id(0);
+  prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
+                      last_container);
   if (k >= n)
     return;
   const double2 c = candidate[k];
@@ -287,6 +310,31 @@ __kernel void mark_candidate_ties(__global const int *container, __global const 
     atomic_min(&tie_mark[partner], k);
 }
 
+// Prefetching for insertion_filter (prefetch.h): a container's marks and
+// links, then its neighbours' marks and links, then the marks of theirs.
+inline void prefetch_filter(__global const int *container, int k, int n,
+                            __global const uint *tri_mark, __global const int *tie_mark,
+                            __global const int *tri_neighbor) {
+  const int far = entry_ahead(container, k, 3, n);
+  if (far >= 0) {
+    warm(tri_mark + far);
+    warm(tie_mark + far);
+    warm(tri_neighbor + 3 * far);
+  }
+  const int middle = entry_ahead(container, k, 2, n);
+  for (int i = 0; i < 3 && middle >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * middle + i]);
+    warm(tri_mark + u);
+    warm(tri_neighbor + 3 * u);
+  }
+  const int near = entry_ahead(container, k, 1, n);
+  for (int i = 0; i < 3 && near >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * near + i]);
+    for (int j = 0; j < 3 && u >= 0; ++j)
+      warm(tri_mark + link_triangle(tri_neighbor[3 * u + j]));
+  }
+}
+
 // rings: how far the filter looks, 2 (the neighbours and theirs) or 3 (and
 // theirs). The thesis looks at the neighbours only; each ring further makes
 // the parallel insertion closer to the sequential order of priorities: fewer
@@ -296,6 +344,7 @@ __kernel void insertion_filter(__global const int *container, __global const int
                                __global const int *tie_mark, __global const int *tri_neighbor,
                                const int rings, __global int *survive, const int n) {
   const int k = get_global_id(0);
+  prefetch_filter(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k >= n)
     return;
   const int t = container[k];

@@ -246,6 +246,10 @@ Device::Device(cl::Device device, DeviceDescription description)
         platform.getInfo<CL_PLATFORM_NAME>() + "\n" + platform.getInfo<CL_PLATFORM_VERSION>() +
         "\n" + device_.getInfo<CL_DEVICE_NAME>() + "\n" + device_.getInfo<CL_DEVICE_VERSION>() +
         "\n" + device_.getInfo<CL_DRIVER_VERSION>();
+    // A CPU runs a work-group's work-items in turn: they prefetch for the
+    // ones after them (cl/prefetch.h).
+    if (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU)
+      build_options_ += " -DCLM_PREFETCH";
   });
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
@@ -277,7 +281,7 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   const std::string source = kernel_source(file);
   // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
   // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
-  const std::string options = "-cl-std=CL1.2";
+  const std::string options = build_options_;
   const ProgramCache cache(source, options + "\n" + build_identity_);
   if (const auto binary = cache.load()) {
     try {

@@ -50,6 +50,7 @@ private:
   std::size_t work_group_ = 64;
   std::map<std::string, cl::Program> programs_;
   std::string build_identity_; // platform, device and driver, for the program cache
+  std::string build_options_ = "-cl-std=CL1.2";
 };
 
 // Source text of a kernel file with its includes expanded.

@@ -1,0 +1,111 @@
+// clmesh — software prefetching on CPU devices (thesis §3.6: the refinement
+// kernels walk lists of triangles).
+//
+// On a CPU, PoCL runs the work-items of a work-group one after another, and
+// the refinement kernels spend most of their time waiting on chains of
+// dependent loads that miss the cache: list entry -> triangle -> neighbour ->
+// vertex -> point. So a work-item warms the cache for the work-items a few
+// places after it, one link of the chain per stage: the triangles of the
+// entries 3 * CLM_AHEAD places on, their neighbours and corners 2 * CLM_AHEAD
+// on (their triangles are warm by then), the points across their edges
+// CLM_AHEAD on. The host defines CLM_PREFETCH for CPU devices only; elsewhere
+// every helper here is empty. Prefetches change no result, and the loads that
+// lead them read only slots that hold valid indices whatever the moment.
+#ifndef CLMESH_PREFETCH_H
+#define CLMESH_PREFETCH_H
+
+#include "common.h"
+
+#define CLM_AHEAD 6 // work-items between two stages
+
+#ifdef CLM_PREFETCH
+inline void warm(const __global void *p) { __builtin_prefetch(p, 0, 3); }
+inline void warm_for_write(const __global void *p) { __builtin_prefetch(p, 1, 3); }
+#else
+inline void warm(const __global void *p) {}
+inline void warm_for_write(const __global void *p) {}
+#endif
+
+// The entry `stage` stages ahead of gid in list[0 .. n), or -1.
+inline int entry_ahead(__global const int *list, int gid, int stage, int n) {
+#ifdef CLM_PREFETCH
+  const int k = gid + stage * CLM_AHEAD;
+  return k < n ? list[k] : -1;
+#else
+  return -1;
+#endif
+}
+
+// Triangle t's vertices and links.
+inline void warm_triangle(__global const int *tri_vertex, __global const int *tri_neighbor, int t) {
+  if (t < 0)
+    return;
+  warm(tri_vertex + 3 * t);
+  warm(tri_neighbor + 3 * t);
+}
+
+// A vertex's point and state (point_state may be 0: none; nothing for the
+// vertex at infinity or a dead slot's mark).
+inline void warm_vertex(__global const double2 *points, __global const int *point_state, int v) {
+  if (v < 0)
+    return;
+  warm(points + v);
+  if (point_state)
+    warm(point_state + v);
+}
+
+// The points of triangle t's corners (t's record warm).
+inline void warm_corners(__global const double2 *points, __global const int *point_state,
+                         __global const int *tri_vertex, int t) {
+  if (t < 0)
+    return;
+  for (int i = 0; i < 3; ++i)
+    warm_vertex(points, point_state, tri_vertex[3 * t + i]);
+}
+
+// The records of triangle t's neighbours (t's record warm).
+inline void warm_neighbours(__global const int *tri_vertex, __global const int *tri_neighbor,
+                            int t) {
+  if (t < 0)
+    return;
+  for (int i = 0; i < 3; ++i)
+    warm_triangle(tri_vertex, tri_neighbor, link_triangle(tri_neighbor[3 * t + i]));
+}
+
+// The points across triangle t's edges (its neighbours' records warm).
+inline void warm_opposite(__global const double2 *points, __global const int *point_state,
+                          __global const int *tri_vertex, __global const int *tri_neighbor, int t) {
+  if (t < 0)
+    return;
+  for (int i = 0; i < 3; ++i) {
+    const int link = tri_neighbor[3 * t + i];
+    if (link >= 0)
+      warm_vertex(points, point_state, tri_vertex[3 * link_triangle(link) + link_edge(link)]);
+  }
+}
+
+// For a kernel that reads, per entry of `list`, a triangle, its corners,
+// its neighbours and the points across its edges.
+inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, int n,
+                                             __global const double2 *points,
+                                             __global const int *point_state,
+                                             __global const int *tri_vertex,
+                                             __global const int *tri_neighbor) {
+  warm_triangle(tri_vertex, tri_neighbor, entry_ahead(list, gid, 3, n));
+  const int t = entry_ahead(list, gid, 2, n);
+  warm_neighbours(tri_vertex, tri_neighbor, t);
+  warm_corners(points, point_state, tri_vertex, t);
+  warm_opposite(points, point_state, tri_vertex, tri_neighbor, entry_ahead(list, gid, 1, n));
+}
+
+// For a kernel that reads, per entry of `list`, a triangle's vertices and their points.
+inline void prefetch_corners(__global const int *list, int gid, int n,
+                             __global const double2 *points, __global const int *point_state,
+                             __global const int *tri_vertex) {
+  const int t = entry_ahead(list, gid, 2, n);
+  if (t >= 0)
+    warm(tri_vertex + 3 * t);
+  warm_corners(points, point_state, tri_vertex, entry_ahead(list, gid, 1, n));
+}
+
+#endif

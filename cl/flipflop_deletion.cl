@@ -357,7 +357,7 @@ inline void apply_operation(int gid, __global const int *active, __global const 
 // children.
 inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
                            __global const int *modified_stamp, __global const int *children,
-                           __global const uint *tri_mark, int t) {
+                           volatile __global const uint *tri_mark, int t) {
   if (t < 0)
     return;
   warm_for_write(tri_vertex + 3 * t);
@@ -371,7 +371,7 @@ inline void prefetch_operation(__global const int *active, __global const int *o
                                __global const int *proposal, __global const int *star,
                                __global const int *tri_vertex, __global const int *tri_neighbor,
                                __global const int *modified_stamp, __global const int *children,
-                               __global const uint *tri_mark, int gid, int n) {
+                               volatile __global const uint *tri_mark, int gid, int n) {
   const int k = gid + CLM_AHEAD, op = entry_ahead(operation, gid, 1, n);
   if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
     warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark, active[k]);
@@ -404,7 +404,7 @@ inline void prefetch_relink(__global const int *operation, __global const int *p
                             __global const int *star, __global const int *applied,
                             __global const int *tri_vertex, __global const int *tri_neighbor,
                             __global const int *modified_stamp, __global const int *children,
-                            __global const uint *tri_mark, int gid, int n) {
+                            volatile __global const uint *tri_mark, int gid, int n) {
   const int far = gid + 2 * CLM_AHEAD, t_far = entry_ahead(applied, gid, 2, n);
   if (t_far >= 0) {
     const bool removal = operation[far] == CLM_OP_REMOVE;

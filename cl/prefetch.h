@@ -19,11 +19,16 @@
 #define CLM_AHEAD 6 // work-items between two stages
 
 #ifdef CLM_PREFETCH
-inline void warm(const __global void *p) { __builtin_prefetch(p, 0, 3); }
-inline void warm_for_write(const __global void *p) { __builtin_prefetch(p, 1, 3); }
+// (volatile: the marks taken with atomics can be warmed too.)
+inline void warm(const volatile __global void *p) {
+  __builtin_prefetch((const __global void *)p, 0, 3);
+}
+inline void warm_for_write(const volatile __global void *p) {
+  __builtin_prefetch((const __global void *)p, 1, 3);
+}
 #else
-inline void warm(const __global void *p) {}
-inline void warm_for_write(const __global void *p) {}
+inline void warm(const volatile __global void *p) {}
+inline void warm_for_write(const volatile __global void *p) {}
 #endif
 
 // The entry `stage` stages ahead of gid in list[0 .. n), or -1.

@@ -249,7 +249,8 @@ __kernel void flipflop_propose(
   if (gid >= n)
     return;
   operation[gid] = CLM_OP_NONE;
-  prefetch_triangle_and_neighbours(active, gid, n, points, point_state, tri_vertex, tri_neighbor);
+  prefetch_triangle_and_neighbours(active, gid, n, points, any_redundant ? point_state : 0,
+                                   tri_vertex, tri_neighbor);
   if (!propose_operation(gid, 0, active, points, tri_vertex, tri_neighbor, constraint_start,
                          constraint_adjacent, constrained, point_state, insertion_radius2,
                          point_priority, orthogonal_test, any_redundant, redundant_mark,

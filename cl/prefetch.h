@@ -68,13 +68,16 @@ inline void warm_corners(__global const double2 *points, __global const int *poi
     warm_vertex(points, point_state, tri_vertex[3 * t + i]);
 }
 
-// The records of triangle t's neighbours (t's record warm).
+// The vertices of triangle t's neighbours (t's record warm).
 inline void warm_neighbours(__global const int *tri_vertex, __global const int *tri_neighbor,
                             int t) {
   if (t < 0)
     return;
-  for (int i = 0; i < 3; ++i)
-    warm_triangle(tri_vertex, tri_neighbor, link_triangle(tri_neighbor[3 * t + i]));
+  for (int i = 0; i < 3; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * t + i]);
+    if (u >= 0)
+      warm(tri_vertex + 3 * u);
+  }
 }
 
 // The points across triangle t's edges (its neighbours' records warm).
@@ -90,7 +93,8 @@ inline void warm_opposite(__global const double2 *points, __global const int *po
 }
 
 // For a kernel that reads, per entry of `list`, a triangle, its corners,
-// its neighbours and the points across its edges.
+// its neighbours' vertices and the points across its edges (point_state: 0
+// when the kernel does not read the states).
 inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, int n,
                                              __global const double2 *points,
                                              __global const int *point_state,
@@ -103,7 +107,8 @@ inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, 
   warm_opposite(points, point_state, tri_vertex, tri_neighbor, entry_ahead(list, gid, 1, n));
 }
 
-// For a kernel that reads, per entry of `list`, a triangle's vertices and their points.
+// For a kernel that reads, per entry of `list`, a triangle's vertices and
+// their points (and states, unless point_state is 0).
 inline void prefetch_corners(__global const int *list, int gid, int n,
                              __global const double2 *points, __global const int *point_state,
                              __global const int *tri_vertex) {

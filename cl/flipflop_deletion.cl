@@ -384,23 +384,6 @@ inline void prefetch_operation(__global const int *active, __global const int *o
   }
 }
 
-// The outer neighbours of the triangles an applied operation rewrote: their
-// stamps, links and children (the rewritten triangles' records warm).
-inline void warm_outer_neighbours(__global const int *tri_neighbor,
-                                  __global const int *modified_stamp, __global const int *children,
-                                  int t) {
-  if (t < 0)
-    return;
-  for (int e = 0; e < 3; ++e) {
-    const int x = link_triangle(tri_neighbor[3 * t + e]);
-    if (x < 0)
-      continue;
-    warm(modified_stamp + x);
-    warm_for_write(tri_neighbor + 3 * x);
-    warm(children + CLM_CHILDREN * x);
-  }
-}
-
 inline void prefetch_relink(__global const int *operation, __global const int *proposal,
                             __global const int *star, __global const int *applied,
                             __global const int *tri_vertex, __global const int *tri_neighbor,
@@ -419,10 +402,11 @@ inline void prefetch_relink(__global const int *operation, __global const int *p
   if (t_near >= 0) {
     const bool removal = operation[near] == CLM_OP_REMOVE;
     for (int j = 0; j < (removal ? 4 : 2); ++j)
-      warm_outer_neighbours(tri_neighbor, modified_stamp, children,
-                            removal  ? star[4 * near + j]
-                            : j == 0 ? t_near
-                                     : link_triangle(proposal[near]));
+      warm_across_edges(tri_neighbor, modified_stamp, children,
+                        removal  ? star[4 * near + j]
+                        : j == 0 ? t_near
+                                 : link_triangle(proposal[near]),
+                        0, 3);
   }
 }
 

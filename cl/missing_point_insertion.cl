@@ -10,6 +10,7 @@
 // phase restores the Delaunay property after each round, so walks always run
 // in a Delaunay triangulation, where the visibility walk cannot cycle.
 #include "common.h"
+#include "prefetch.h"
 
 #define CLM_PENDING 0
 #define CLM_DUPLICATE 1
@@ -123,6 +124,28 @@ __kernel void clear_container_marks(__global const int *remaining, __global cons
         tri_mark[g] = CLM_NO_MARK;
 }
 
+// Prefetching for split_triangles (prefetch.h): a winner's location, then
+// the triangle it splits.
+inline void prefetch_split(__global const int *remaining, __global const int *winner,
+                           __global const int *location, __global const int *location_edge,
+                           __global const int *tri_vertex, __global const int *tri_neighbor,
+                           __global const int *modified_stamp, __global const int *children,
+                           int gid, int n) {
+  const int far = gid + 2 * CLM_AHEAD, p_far = entry_ahead(remaining, gid, 2, n);
+  if (p_far >= 0 && winner[far]) {
+    warm(location + p_far);
+    warm(location_edge + p_far);
+  }
+  const int near = gid + CLM_AHEAD, p_near = entry_ahead(remaining, gid, 1, n);
+  if (p_near >= 0 && winner[near]) {
+    const int t = location[p_near];
+    warm_for_write(tri_vertex + 3 * t);
+    warm_for_write(tri_neighbor + 3 * t);
+    warm_for_write(modified_stamp + t);
+    warm_for_write(children + CLM_CHILDREN * t);
+  }
+}
+
 // Splits the winners' triangles. Each winner takes new slots 2 * winner_offset
 // and 2 * winner_offset + 1 of the batch (free slots first, see
 // allocate_slot); every child has the new point at index 2,
@@ -137,6 +160,8 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
                               const int free_first, const int free_count, const int first_slot,
                               const int n) {
   const int gid = get_global_id(0);
+  prefetch_split(remaining, winner, location, location_edge, tri_vertex, tri_neighbor,
+                 modified_stamp, children, gid, n);
   if (gid >= n || !winner[gid])
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
@@ -193,6 +218,10 @@ __kernel void relink_split_children(__global const int *changed, __global const 
                                     __global int *tri_neighbor, __global const int *modified_stamp,
                                     __global const int *children, const int stamp, const int n) {
   const int gid = get_global_id(0);
+  const int far = entry_ahead(changed, gid, 2, n);
+  if (far >= 0)
+    warm(tri_neighbor + 3 * far);
+  warm_across_edges(tri_neighbor, modified_stamp, children, entry_ahead(changed, gid, 1, n), 2, 3);
   if (gid >= n || changed[gid] < 0)
     return;
   relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[gid], 2);

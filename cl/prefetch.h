@@ -92,6 +92,22 @@ inline void warm_opposite(__global const double2 *points, __global const int *po
   }
 }
 
+// What relink_edge reads across edges first .. last - 1 of triangle t (t's
+// record warm): the neighbour's stamp, link slots and children.
+inline void warm_across_edges(__global const int *tri_neighbor, __global const int *modified_stamp,
+                              __global const int *children, int t, int first, int last) {
+  if (t < 0)
+    return;
+  for (int e = first; e < last; ++e) {
+    const int x = link_triangle(tri_neighbor[3 * t + e]);
+    if (x < 0)
+      continue;
+    warm(modified_stamp + x);
+    warm_for_write(tri_neighbor + 3 * x);
+    warm(children + CLM_CHILDREN * x);
+  }
+}
+
 // For a kernel that reads, per entry of `list`, a triangle, its corners,
 // its neighbours' vertices and the points across its edges (point_state: 0
 // when the kernel does not read the states).

@@ -353,21 +353,7 @@ inline void apply_operation(int gid, __global const int *active, __global const 
   }
 }
 
-// Prefetching for flipflop_apply and flipflop_relink (prefetch.h): the
-// triangles an entry's operation rewrites, their marks and their records of
-// children.
-inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
-                           __global const int *modified_stamp, __global const int *children,
-                           volatile __global const uint *tri_mark, int t) {
-  if (t < 0)
-    return;
-  warm_for_write(tri_vertex + 3 * t);
-  warm_for_write(tri_neighbor + 3 * t);
-  warm_for_write(tri_mark + t);
-  warm_for_write(modified_stamp + t);
-  warm_for_write(children + CLM_CHILDREN * t);
-}
-
+// Prefetching for flipflop_apply and flipflop_relink (prefetch.h).
 inline void prefetch_operation(__global const int *active, __global const int *operation,
                                __global const int *proposal, __global const int *star,
                                __global const int *tri_vertex, __global const int *tri_neighbor,

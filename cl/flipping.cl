@@ -12,6 +12,7 @@
 // sharing a hull vertex flip when that vertex is reflex; real-ghost edges
 // never flip.
 #include "common.h"
+#include "prefetch.h"
 
 // active_round[t] = round for the triangles of this pass's list.
 __kernel void flip_mark_active(__global const int *active, __global int *active_round,
@@ -49,6 +50,7 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
                               volatile __global int *exact_count, volatile __global uint *tri_mark,
                               __global int *proposal, const int n) {
   const int gid = get_global_id(0);
+  prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
   if (gid >= n)
     return;
   const int t = active[gid];
@@ -107,6 +109,13 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
                          __global int *children, __global int *flipped,
                          volatile __global int *pass_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
+  const int ahead = entry_ahead(proposal, gid, 1, n); // prefetching (prefetch.h)
+  if (ahead >= 0) {
+    warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark,
+                   active[gid + CLM_AHEAD]);
+    warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark,
+                   link_triangle(ahead));
+  }
   int did_flip = 0;
   if (gid < n) {
     const int t = active[gid], prop = proposal[gid];
@@ -139,6 +148,11 @@ __kernel void flip_relink_and_collect(__global const int *active, __global const
                                       __global int *active_round, const int next_round,
                                       volatile __global int *pass_counts, const int n) {
   const int gid = get_global_id(0);
+  const int ahead = gid + CLM_AHEAD; // prefetching (prefetch.h)
+  if (entry_ahead(flipped, gid, 1, n) > 0) {
+    warm_across_edges(tri_neighbor, modified_stamp, children, active[ahead], 1, 3);
+    warm_across_edges(tri_neighbor, modified_stamp, children, link_triangle(proposal[ahead]), 1, 3);
+  }
   int listed[2], count = 0;
   if (gid < n && proposal[gid] >= 0) {
     const int t = active[gid], u = link_triangle(proposal[gid]);

@@ -92,6 +92,20 @@ inline void warm_opposite(__global const double2 *points, __global const int *po
   }
 }
 
+// What a flip or a removal rewrites in triangle t: its vertices and links,
+// its mark, its stamp and its record of children.
+inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
+                           __global const int *modified_stamp, __global const int *children,
+                           volatile __global const uint *tri_mark, int t) {
+  if (t < 0)
+    return;
+  warm_for_write(tri_vertex + 3 * t);
+  warm_for_write(tri_neighbor + 3 * t);
+  warm_for_write(tri_mark + t);
+  warm_for_write(modified_stamp + t);
+  warm_for_write(children + CLM_CHILDREN * t);
+}
+
 // What relink_edge reads across edges first .. last - 1 of triangle t (t's
 // record warm): the neighbour's stamp, link slots and children.
 inline void warm_across_edges(__global const int *tri_neighbor, __global const int *modified_stamp,

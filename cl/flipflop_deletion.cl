@@ -862,6 +862,7 @@ __kernel void triangle_cells(__global const double2 *points, __global const int 
                              const double2 low, const double scale, const int bits,
                              __global int *cell, __global ulong *key, const int n) {
   const int t = get_global_id(0);
+  warm_corners(points, 0, tri_vertex, slot_ahead(t, 1, n)); // prefetching (prefetch.h)
   if (t >= n)
     return;
   VertexTriple tri = load_vertices(tri_vertex, t);

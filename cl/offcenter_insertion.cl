@@ -109,6 +109,8 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   is_bad[gid] = 0;
   if (use_list)
     prefetch_corners(list, gid, n, points, point_state, tri_vertex);
+  else
+    warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))

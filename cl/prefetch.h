@@ -41,6 +41,16 @@ inline int entry_ahead(__global const int *list, int gid, int stage, int n) {
 #endif
 }
 
+// The slot `stage` stages ahead of slot t in a sweep of slots [0 .. n), or -1.
+inline int slot_ahead(int t, int stage, int n) {
+#ifdef CLM_PREFETCH
+  const int k = t + stage * CLM_AHEAD;
+  return k < n ? k : -1;
+#else
+  return -1;
+#endif
+}
+
 // Triangle t's vertices and links.
 inline void warm_triangle(__global const int *tri_vertex, __global const int *tri_neighbor, int t) {
   if (t < 0)

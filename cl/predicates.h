@@ -64,7 +64,10 @@
  *   orientation (three minors)         4 + 4 + 4     = 12
  *   orientation scaled by x, then x    12 * 2 * 2    = 48   (same for y)
  *   lifted term (x*x + y*y) * orient   48 + 48       = 96
- *   in-circle determinant, 4 terms     96 * 4        = 384 (partial sums 192, 288) */
+ *   in-circle determinant, 4 terms     96 * 4        = 384 (partial sums 192, 288)
+ * and for the in-circle determinant of the differences to d (clm_incircle_translated):
+ *   lifted term (x*x + y*y) * minor    16 + 16       = 32
+ *   determinant, 3 terms               32 * 3        = 96 (partial sum 64) */
 #define CLM_LEN_MINOR 4
 #define CLM_LEN_ORIENT 12
 #define CLM_LEN_SCALED1 24
@@ -72,6 +75,8 @@
 #define CLM_LEN_LIFTED 96
 #define CLM_LEN_PARTIAL 288
 #define CLM_LEN_INCIRCLE 384
+#define CLM_LEN_TRANSLATED_TERM 32
+#define CLM_LEN_TRANSLATED 96
 
 /* ---------------------------------------------------------------------------------------- */
 /* Error-free transformations                                                                */
@@ -349,12 +354,54 @@ CLM_COLD int clm_incircle_exact(double ax, double ay, double bx, double by, doub
   return clm_expansion_sign(bn, acc_b);
 }
 
+/* The adaptive middle stage (Shewchuk's stage B): when the differences to d are exact (their
+ * rounding error is zero, as on integer or dyadic lattices, where cocircular points are the
+ * rule), the 3x3 determinant of the differences,
+ *   lift(a-d) M(b-d, c-d) + lift(b-d) M(c-d, a-d) + lift(c-d) M(a-d, b-d),
+ * formed exactly, is the determinant, in far fewer components than clm_incircle_exact.
+ * CLM_UNCERTAIN when a difference was rounded. */
+CLM_COLD int clm_incircle_translated(double ax, double ay, double bx, double by, double cx,
+                                     double cy, double dx, double dy) {
+  double adx, ady, bdx, bdy, cdx, cdy, tail[6];
+  clm_two_sum(ax, -dx, &adx, &tail[0]);
+  clm_two_sum(ay, -dy, &ady, &tail[1]);
+  clm_two_sum(bx, -dx, &bdx, &tail[2]);
+  clm_two_sum(by, -dy, &bdy, &tail[3]);
+  clm_two_sum(cx, -dx, &cdx, &tail[4]);
+  clm_two_sum(cy, -dy, &cdy, &tail[5]);
+  for (int i = 0; i < 6; i++)
+    if (tail[i] != 0.0)
+      return CLM_UNCERTAIN;
+  double bc[CLM_LEN_MINOR], ca[CLM_LEN_MINOR], ab[CLM_LEN_MINOR];
+  double ta[CLM_LEN_TRANSLATED_TERM], tb[CLM_LEN_TRANSLATED_TERM], tc[CLM_LEN_TRANSLATED_TERM];
+  double partial[2 * CLM_LEN_TRANSLATED_TERM], det[CLM_LEN_TRANSLATED];
+  int bcn = clm_minor2(bdx, bdy, cdx, cdy, bc);
+  int can = clm_minor2(cdx, cdy, adx, ady, ca);
+  int abn = clm_minor2(adx, ady, bdx, bdy, ab);
+  int an = clm_lifted_term(bcn, bc, adx, ady, 1.0, ta);
+  int bn = clm_lifted_term(can, ca, bdx, bdy, 1.0, tb);
+  int cn = clm_lifted_term(abn, ab, cdx, cdy, 1.0, tc);
+  int pn = clm_expansion_sum(an, ta, bn, tb, partial);
+  int detn = clm_expansion_sum(pn, partial, cn, tc, det);
+  return clm_expansion_sign(detn, det);
+}
+
+/* The exact sign after the filter failed: the translated stage when it applies, else the
+ * determinant of the original coordinates. */
+CLM_FN int clm_incircle_after_filter(double ax, double ay, double bx, double by, double cx,
+                                     double cy, double dx, double dy) {
+  int s = clm_incircle_translated(ax, ay, bx, by, cx, cy, dx, dy);
+  if (s != CLM_UNCERTAIN)
+    return s;
+  return clm_incircle_exact(ax, ay, bx, by, cx, cy, dx, dy);
+}
+
 CLM_FN int clm_incircle(double ax, double ay, double bx, double by, double cx, double cy, double dx,
                         double dy) {
   int s = clm_incircle_filter(ax, ay, bx, by, cx, cy, dx, dy);
   if (s != CLM_UNCERTAIN)
     return s;
-  return clm_incircle_exact(ax, ay, bx, by, cx, cy, dx, dy);
+  return clm_incircle_after_filter(ax, ay, bx, by, cx, cy, dx, dy);
 }
 
 /* ---------------------------------------------------------------------------------------- */
@@ -416,7 +463,7 @@ CLM_FN int clm_incircle_sos(double ax, double ay, double bx, double by, double c
  * (the device's exact-check kernel): goes straight to the exact determinant. */
 CLM_FN int clm_incircle_sos_exact(double ax, double ay, double bx, double by, double cx, double cy,
                                   double dx, double dy) {
-  int s = clm_incircle_exact(ax, ay, bx, by, cx, cy, dx, dy);
+  int s = clm_incircle_after_filter(ax, ay, bx, by, cx, cy, dx, dy);
   if (s != 0)
     return s;
   return clm_incircle_perturbed(ax, ay, bx, by, cx, cy, dx, dy);

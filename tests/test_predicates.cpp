@@ -48,6 +48,9 @@ int incircle_exact(const Pt &a, const Pt &b, const Pt &c, const Pt &d) {
 int incircle_filter(const Pt &a, const Pt &b, const Pt &c, const Pt &d) {
   return clm_incircle_filter(a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y);
 }
+int incircle_translated(const Pt &a, const Pt &b, const Pt &c, const Pt &d) {
+  return clm_incircle_translated(a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y);
+}
 int sos(const Pt &a, const Pt &b, const Pt &c, const Pt &d) {
   return clm_incircle_sos(a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y);
 }
@@ -67,6 +70,7 @@ double nudge(double x, int k) {
 // Counts disagreements and keeps the first one for the failure message.
 struct Tally {
   long cases = 0, mismatches = 0, uncertain = 0, zeros = 0;
+  long translated = 0; // in-circle cases the translated stage decided
   std::string first;
   void expect(bool good, const std::function<std::string()> &describe) {
     ++cases;
@@ -190,10 +194,12 @@ void check_orient_case(Tally &tally, const Pt &a, const Pt &b, const Pt &c) {
 void check_incircle_case(Tally &tally, const Pt &a, const Pt &b, const Pt &c, const Pt &d) {
   const int ref = cgal_incircle(a, b, c, d);
   const int exact = incircle_exact(a, b, c, d), full = incircle(a, b, c, d);
-  const int filter = incircle_filter(a, b, c, d);
+  const int filter = incircle_filter(a, b, c, d), translated = incircle_translated(a, b, c, d);
   tally.uncertain += filter == CLM_UNCERTAIN;
   tally.zeros += ref == 0;
+  tally.translated += translated != CLM_UNCERTAIN;
   bool good = exact == ref && full == ref && (filter == CLM_UNCERTAIN || filter == ref) &&
+              (translated == CLM_UNCERTAIN || translated == ref) &&
               incircle_exact(b, c, a, d) == ref && incircle_exact(b, a, c, d) == -ref;
   int s = 0, se = 0, sref = 0;
   const bool sos_applies = orient_exact(a, b, c) > 0 && !(d == a) && !(d == b) && !(d == c);
@@ -206,8 +212,8 @@ void check_incircle_case(Tally &tally, const Pt &a, const Pt &b, const Pt &c, co
   tally.expect(good, [&] {
     return "incircle " + text(a) + text(b) + text(c) + text(d) + ": CGAL " + std::to_string(ref) +
            ", exact " + std::to_string(exact) + ", full " + std::to_string(full) + ", filter " +
-           std::to_string(filter) + ", sos " + std::to_string(s) + "/" + std::to_string(se) +
-           " CGAL sos " + std::to_string(sref);
+           std::to_string(filter) + ", translated " + std::to_string(translated) + ", sos " +
+           std::to_string(s) + "/" + std::to_string(se) + " CGAL sos " + std::to_string(sref);
   });
 }
 
@@ -216,7 +222,8 @@ void report(const std::string &what, const Tally &tally) {
             << tally.zeros << " exact zeros; first mismatch: " << tally.first);
   CHECK(tally.mismatches == 0);
   MESSAGE(what << ": " << tally.cases << " cases, " << tally.uncertain
-               << " needed the exact stage, " << tally.zeros << " exactly degenerate");
+               << " needed the exact stage, " << tally.zeros << " exactly degenerate, "
+               << tally.translated << " decided on exact differences");
 }
 #endif
 

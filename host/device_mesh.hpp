@@ -12,9 +12,8 @@ template <typename T> class DeviceArray {
 public:
   DeviceArray() = default;
   DeviceArray(Device &device, std::size_t size) : size_(size) {
-    buffer_ = guarded("allocation", "allocating a device array", [&] {
-      return cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(T) * (size ? size : 1));
-    });
+    buffer_ = guarded("allocation", "allocating a device array",
+                      [&] { return device.allocate(sizeof(T) * (size ? size : 1)); });
   }
   std::size_t size() const { return size_; }
   const cl::Buffer &buffer() const { return buffer_; }

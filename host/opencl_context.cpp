@@ -12,6 +12,8 @@
 #include <set>
 #include <sstream>
 
+#include <sys/mman.h>
+
 namespace clmesh {
 
 const char *opencl_error_name(int code) {
@@ -248,11 +250,38 @@ Device::Device(cl::Device device, DeviceDescription description)
         "\n" + device_.getInfo<CL_DRIVER_VERSION>();
     // A CPU runs a work-group's work-items in turn: they prefetch for the
     // ones after them (cl/prefetch.h).
-    if (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU)
+    cpu_ = (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+    if (cpu_)
       build_options_ += " -DCLM_PREFETCH";
   });
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
+}
+
+cl::Buffer Device::allocate(std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::size_t huge_page = std::size_t{2} << 20;
+  if (cpu_ && bytes >= huge_page) {
+    void *memory = nullptr;
+    if (posix_memalign(&memory, huge_page, bytes) == 0) {
+      // Advice only, for the whole huge pages (a partial last one would be
+      // committed whole): the kernel may not follow it.
+      madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+      cl_int error = CL_SUCCESS;
+      cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
+                                     memory, &error);
+      // The memory goes with the buffer (kernels may hold it longer than its owner).
+      auto release = [](cl_mem, void *user_data) { std::free(user_data); };
+      if (error == CL_SUCCESS &&
+          clSetMemObjectDestructorCallback(buffer, release, memory) == CL_SUCCESS)
+        return cl::Buffer(buffer);
+      if (error == CL_SUCCESS)
+        clReleaseMemObject(buffer);
+      std::free(memory); // then the driver's own memory
+    }
+  }
+#endif
+  return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
 }
 
 std::size_t Device::max_work_group() const {

@@ -34,6 +34,12 @@ public:
   cl::Program &program(const std::string &file, const std::string &phase);
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
+  // A read-write buffer of `bytes`. On a CPU device a large one lives in
+  // host memory that the device uses in place, aligned to 2 MiB with
+  // transparent huge pages asked for: the refinement's random accesses then
+  // miss the TLB far less often.
+  cl::Buffer allocate(std::size_t bytes);
+
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }
   void set_work_group(std::size_t size);
@@ -50,6 +56,7 @@ private:
   std::size_t work_group_ = 64;
   std::map<std::string, cl::Program> programs_;
   std::string build_identity_; // platform, device and driver, for the program cache
+  bool cpu_ = false;
   std::string build_options_ = "-cl-std=CL1.2";
 };
 

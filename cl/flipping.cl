@@ -37,23 +37,14 @@ inline int propose_flip(__global const int *tri_neighbor, volatile __global uint
   return encode_link(u, i);
 }
 
-// flags[gid]: bit i = edge i must flip, bit 3+i = the filter could not tell.
-// An edge between two listed triangles is tested once, by the smaller one
-// (thesis §3.3.2, Algorithm 3.1 line 8). The triangles the filter decided
-// propose at once (proposal[gid]); the others do in flip_check_exact.
-__kernel void flip_check_fast(__global const int *active, __global const double2 *points,
-                              __global const int *tri_vertex, __global const int *tri_neighbor,
-                              __global const int *constraint_start,
-                              __global const int *constraint_adjacent, const int constrained,
-                              const int fixed_boundary, __global const int *active_round,
-                              const int round, __global int *flags, __global int *exact_list,
-                              volatile __global int *exact_count, volatile __global uint *tri_mark,
-                              __global int *proposal, const int n) {
-  const int gid = get_global_id(0);
-  prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
-  if (gid >= n)
-    return;
-  const int t = active[gid];
+// The edges of listed triangle t (-1: none) that must flip, bit i for edge
+// i, and bit 3+i for an edge the filter could not tell. An edge between two
+// listed triangles is tested once, by the smaller one (thesis §3.3.2,
+// Algorithm 3.1 line 8).
+inline int check_triangle(int t, __global const double2 *points, __global const int *tri_vertex,
+                          __global const int *tri_neighbor, __global const int *constraint_start,
+                          __global const int *constraint_adjacent, int constrained,
+                          int fixed_boundary, __global const int *active_round, int round) {
   int bits = 0;
   const VertexTriple tri = t >= 0 ? load_vertices(tri_vertex, t) : (VertexTriple){{CLM_DEAD}};
   if (t >= 0 && !is_dead(tri)) {
@@ -70,6 +61,88 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
         bits |= 8 << i;
     }
   }
+  return bits;
+}
+
+// check_triangle's bits with the uncertain edges decided by the exact,
+// perturbed in-circle test (only real edges that are not constraints are
+// uncertain).
+inline int resolve_uncertain(int t, int bits, __global const double2 *points,
+                             __global const int *tri_vertex, __global const int *tri_neighbor) {
+  for (int i = 0; i < 3; ++i)
+    if (bits & (8 << i)) {
+      const int link = tri_neighbor[3 * t + i];
+      const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
+                b = tri_vertex[3 * t + prev3(i)],
+                d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+      if (incircle_verdict(points, c, a, b, d, 1) == CLM_FLIP)
+        bits |= 1 << i;
+    }
+  return bits & 7;
+}
+
+// Flips proposal prop of triangle t when it owns both marks (see
+// flip_edge); returns whether it did.
+inline int apply_proposal(int t, int prop, volatile __global const uint *tri_mark,
+                          __global int *tri_vertex, __global int *tri_neighbor,
+                          __global int *modified_stamp, __global int *children, int stamp) {
+  if (prop < 0)
+    return 0;
+  const int u = link_triangle(prop), i = link_edge(prop);
+  const uint key = (uint)(3 * t + i);
+  if (tri_mark[t] != key || tri_mark[u] != key)
+    return 0;
+  flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
+  return 1;
+}
+
+// After the flips of a pass: relinks the outward edges (1 and 2) of both
+// triangles of an applied flip, clears the proposal's marks, and lists in
+// listed[] what goes to the next pass: both sides of a flip, or a proposer
+// whose flip lost (a triangle flipped by a neighbour is listed by that
+// neighbour; a happy one leaves). Returns how many were listed.
+inline int relink_and_list(int t, int prop, int flipped, __global const int *tri_vertex,
+                           __global int *tri_neighbor, __global const int *modified_stamp,
+                           __global const int *children, volatile __global uint *tri_mark,
+                           int stamp, int *listed) {
+  if (prop < 0)
+    return 0;
+  const int u = link_triangle(prop);
+  int count = 0;
+  if (flipped) {
+    for (int e = 1; e < 3; ++e) {
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
+    }
+    listed[count++] = t;
+    listed[count++] = u;
+  } else if (modified_stamp[t] != stamp) {
+    listed[count++] = t;
+  }
+  tri_mark[t] = CLM_NO_MARK;
+  tri_mark[u] = CLM_NO_MARK;
+  return count;
+}
+
+// flags[gid]: check_triangle's bits for active[gid]. The triangles the
+// filter decided propose at once (proposal[gid]); the others do in
+// flip_check_exact.
+__kernel void flip_check_fast(__global const int *active, __global const double2 *points,
+                              __global const int *tri_vertex, __global const int *tri_neighbor,
+                              __global const int *constraint_start,
+                              __global const int *constraint_adjacent, const int constrained,
+                              const int fixed_boundary, __global const int *active_round,
+                              const int round, __global int *flags, __global int *exact_list,
+                              volatile __global int *exact_count, volatile __global uint *tri_mark,
+                              __global int *proposal, const int n) {
+  const int gid = get_global_id(0);
+  prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
+  if (gid >= n)
+    return;
+  const int t = active[gid];
+  const int bits =
+      check_triangle(t, points, tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
+                     constrained, fixed_boundary, active_round, round);
   flags[gid] = bits;
   if (bits & 0x38)
     exact_list[atomic_inc(exact_count)] = gid; // proposes after the exact check
@@ -87,22 +160,12 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
   if (gid >= n)
     return;
   const int index = exact_list[gid], t = active[index];
-  int bits = flags[index];
-  for (int i = 0; i < 3; ++i)
-    if (bits & (8 << i)) {
-      const int link = tri_neighbor[3 * t + i];
-      const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
-                b = tri_vertex[3 * t + prev3(i)],
-                d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
-      // Only real edges that are not constraints were uncertain.
-      if (incircle_verdict(points, c, a, b, d, 1) == CLM_FLIP)
-        bits |= 1 << i;
-    }
-  flags[index] = bits & 7;
-  proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits & 7);
+  const int bits = resolve_uncertain(t, flags[index], points, tri_vertex, tri_neighbor);
+  flags[index] = bits;
+  proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits);
 }
 
-// 2-2 flip of the proposals that own both marks (see flip_edge).
+// 2-2 flip of the proposals that own both marks (apply_proposal).
 __kernel void flip_apply(__global const int *active, __global const int *proposal,
                          __global const uint *tri_mark, __global int *tri_vertex,
                          __global int *tri_neighbor, __global int *modified_stamp,
@@ -118,27 +181,16 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
   }
   int did_flip = 0;
   if (gid < n) {
-    const int t = active[gid], prop = proposal[gid];
-    if (prop >= 0) {
-      const int u = link_triangle(prop), i = link_edge(prop);
-      const uint key = (uint)(3 * t + i);
-      if (tri_mark[t] == key && tri_mark[u] == key) {
-        flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
-        did_flip = 1;
-      }
-    }
+    did_flip = apply_proposal(active[gid], proposal[gid], tri_mark, tri_vertex, tri_neighbor,
+                              modified_stamp, children, stamp);
     flipped[gid] = did_flip;
   }
   volatile __local int scratch[2];
   reserve_in_group(did_flip, scratch, &pass_counts[0]); // counts the flips
 }
 
-// Second step: relinks the outward edges (1 and 2) of both flipped
-// triangles, clears the pass's marks, and lists for the next pass both sides
-// of each flip and each triangle whose proposal lost (a triangle flipped by a
-// neighbour is listed by that neighbour; a happy one leaves). Listed
-// triangles get active_round = next_round. pass_counts[1]: the next list's
-// length.
+// Second step (relink_and_list): listed triangles get active_round =
+// next_round; pass_counts[1]: the next list's length.
 __kernel void flip_relink_and_collect(__global const int *active, __global const int *proposal,
                                       __global const int *flipped, __global const int *tri_vertex,
                                       __global int *tri_neighbor,
@@ -153,24 +205,86 @@ __kernel void flip_relink_and_collect(__global const int *active, __global const
     warm_across_edges(tri_neighbor, modified_stamp, children, active[ahead], 1, 3);
     warm_across_edges(tri_neighbor, modified_stamp, children, link_triangle(proposal[ahead]), 1, 3);
   }
-  int listed[2], count = 0;
-  if (gid < n && proposal[gid] >= 0) {
-    const int t = active[gid], u = link_triangle(proposal[gid]);
-    if (flipped[gid]) {
-      for (int e = 1; e < 3; ++e) {
-        relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, e);
-        relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, e);
-      }
-      listed[count++] = t;
-      listed[count++] = u;
-    } else if (modified_stamp[t] != stamp) {
-      listed[count++] = t;
-    }
-    tri_mark[t] = CLM_NO_MARK;
-    tri_mark[u] = CLM_NO_MARK;
-  }
+  int listed[2];
+  const int count =
+      gid < n ? relink_and_list(active[gid], proposal[gid], flipped[gid], tri_vertex, tri_neighbor,
+                                modified_stamp, children, tri_mark, stamp, listed)
+              : 0;
   for (int k = 0; k < count; ++k)
     active_round[listed[k]] = next_round;
   volatile __local int scratch[2];
   append_in_group(listed, count, next_active, &pass_counts[1], scratch);
+}
+
+// Passes by one work-group, for short lists: the kernels above in order
+// (check with the exact test at once, apply, relink and collect), with
+// barriers between them instead of launches, pass after pass while the list
+// is not empty and at most `limit` long, at most max_passes of them. The
+// list alternates between list_a and list_b (2 * limit entries each),
+// starting in list_a with n_first entries marked for round `round`; pass k
+// uses stamp + k. Entry by entry the results are those of the kernels: which
+// edges flip depends only on the keys. result: [0] passes, [1] flips, [2]
+// the last list's length (in list_b after an odd number of passes), [3]
+// uncertain triangles.
+__kernel void flip_passes_in_group(__global int *list_a, __global int *list_b, const int n_first,
+                                   __global const double2 *points, __global int *tri_vertex,
+                                   __global int *tri_neighbor, __global const int *constraint_start,
+                                   __global const int *constraint_adjacent, const int constrained,
+                                   const int fixed_boundary, __global int *active_round,
+                                   const int round, volatile __global uint *tri_mark,
+                                   __global int *proposal, __global int *flipped,
+                                   __global int *modified_stamp, __global int *children,
+                                   const int stamp, const int limit, const int max_passes,
+                                   __global int *result) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  volatile __local int counts[3]; // next list's length, flips, uncertain triangles
+  if (lid == 0)
+    counts[1] = counts[2] = 0;
+  int n = n_first, pass = 0;
+  while (n > 0 && n <= limit && pass < max_passes) {
+    __global int *active = pass % 2 ? list_b : list_a;
+    __global int *next_active = pass % 2 ? list_a : list_b;
+    if (lid == 0)
+      counts[0] = 0;
+    for (int k = lid; k < n; k += size) {
+      const int t = active[k];
+      int bits =
+          check_triangle(t, points, tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
+                         constrained, fixed_boundary, active_round, round + pass);
+      if (bits & 0x38) {
+        atomic_inc(&counts[2]);
+        bits = resolve_uncertain(t, bits, points, tri_vertex, tri_neighbor);
+      }
+      proposal[k] = propose_flip(tri_neighbor, tri_mark, t, bits);
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    for (int k = lid; k < n; k += size) {
+      flipped[k] = apply_proposal(active[k], proposal[k], tri_mark, tri_vertex, tri_neighbor,
+                                  modified_stamp, children, stamp + pass);
+      if (flipped[k])
+        atomic_inc(&counts[1]);
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int k = lid; k < n; k += size) {
+      int listed[2];
+      const int count =
+          relink_and_list(active[k], proposal[k], flipped[k], tri_vertex, tri_neighbor,
+                          modified_stamp, children, tri_mark, stamp + pass, listed);
+      const int first = count > 0 ? atomic_add(&counts[0], count) : 0;
+      for (int j = 0; j < count; ++j) {
+        next_active[first + j] = listed[j];
+        active_round[listed[j]] = round + pass + 1;
+      }
+    }
+    barrier(CLK_GLOBAL_MEM_FENCE | CLK_LOCAL_MEM_FENCE);
+    n = counts[0];
+    ++pass;
+    barrier(CLK_LOCAL_MEM_FENCE); // every work-item has read the length
+  }
+  if (lid == 0) {
+    result[0] = pass;
+    result[1] = counts[1];
+    result[2] = n;
+    result[3] = counts[2];
+  }
 }

@@ -308,7 +308,7 @@ bool DelaunayScheduler::triangulate() {
 
   mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
   MissingPointInsertion insertion(device_, *mesh_, *scan_);
   Device &device = device_;
   DeviceMesh &mesh = *mesh_;
@@ -513,7 +513,7 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
 void DelaunayScheduler::grow(std::size_t extra_points) {
   mesh_->grow(device_, extra_points);
   const bool fixed = flipping_->fixed_boundary();
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
   flipping_->set_fixed_boundary(fixed);
 }
 

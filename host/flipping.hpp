@@ -16,7 +16,8 @@ class Flipping {
 public:
   static constexpr const char *kPhase = "flipping";
 
-  Flipping(Device &device, DeviceMesh &mesh);
+  // group_pass_limit: DelaunayOptions::group_pass_limit.
+  Flipping(Device &device, DeviceMesh &mesh, std::size_t group_pass_limit);
 
   // Flips until every edge of the triangles reachable from `active` (n
   // entries, -1 entries ignored) is locally Delaunay. `stamp` numbers each
@@ -42,10 +43,15 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   bool fixed_boundary_ = false;
-  cl::Kernel mark_active_, check_fast_, check_exact_, apply_, relink_and_collect_;
+  // Lists of at most group_pass_limit_ triangles take one work-group for all
+  // their passes (flip_passes_in_group) while they stay that short.
+  std::size_t group_pass_limit_;
+  cl::Kernel mark_active_, check_fast_, check_exact_, apply_, relink_and_collect_, passes_in_group_;
+  std::size_t passes_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flip_passes_in_group
   DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, exact_count_;
   DeviceArray<cl_int> pass_counts_;  // of a pass: {flips, entries of the next list}
   DeviceArray<cl_int> active_round_; // per triangle: the last check that listed it
+  DeviceArray<cl_int> group_result_; // flip_passes_in_group's passes, flips, length, uncertain
   cl_int round_ = 0;
 };
 

@@ -236,6 +236,29 @@ TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   CHECK(first.stats.missing_points == second.stats.missing_points);
 }
 
+// Short flip passes run in one work-group, pass after pass
+// (flip_passes_in_group), or as separate kernels: the same flips.
+TEST_CASE("delaunay: the same triangles whether short flip passes run in one work-group or not") {
+  const std::vector<std::pair<std::string, std::vector<Point>>> inputs = {
+      {"gaussian", fixtures::gaussian(20000, 31)}, {"lattice", fixtures::lattice(120)}};
+  for (const auto &[name, points] : inputs) {
+    CAPTURE(name);
+    clmesh::DelaunayOptions options;
+    options.group_pass_limit = 0;
+    const auto by_kernels = clmesh::delaunay(device(), points, options);
+    options.group_pass_limit = std::size_t{1} << 30;
+    const auto in_group = clmesh::delaunay(device(), points, options);
+    options.group_pass_limit = clmesh::DelaunayOptions{}.group_pass_limit;
+    const auto mixed = triangulate_and_check(points, options);
+    CHECK(by_kernels.triangles == in_group.triangles);
+    CHECK(by_kernels.neighbors == in_group.neighbors);
+    CHECK(by_kernels.triangles == mixed.triangles);
+    CHECK(by_kernels.stats.flips == in_group.stats.flips);
+    CHECK(by_kernels.stats.flip_passes == mixed.stats.flip_passes);
+    CHECK(by_kernels.stats.exact_predicate_calls == in_group.stats.exact_predicate_calls);
+  }
+}
+
 // Phases 1-3 against the hull fan: the same triangles, whatever the grid.
 // Coarse grids leave out most points, hull corners among them, so Phase 4
 // also inserts points outside the first triangulation's hull.

@@ -18,6 +18,9 @@ struct DelaunayOptions {
   // 1-3); false starts from a fan of the convex hull instead, as the Voronoi
   // route itself does when its result cannot be used. The mesh is the same.
   bool voronoi_construction = true;
+  // Flip passes over lists of at most this many triangles run in one
+  // work-group, pass after pass, in one launch (0: never). The mesh is the same.
+  std::size_t group_pass_limit = 2048;
 };
 
 struct PhaseTime {

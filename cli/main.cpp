@@ -584,6 +584,7 @@ std::string stats_json(const clmesh::DelaunayResult &result, const std::string &
     json += count("boundary_splits", r.boundary_splits);
     json += count("delaunay_flips", r.delaunay_flips);
     json += count("non_delaunay_flips", r.non_delaunay_flips);
+    json += count("growths", r.growths);
     json += count("remaining_bad_triangles", r.remaining_bad, true);
     json += "  },\n";
   }

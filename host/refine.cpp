@@ -18,10 +18,6 @@ namespace clmesh {
 
 namespace {
 
-// First room for Steiner points; the arrays grow by at least n when it runs
-// out (thesis §3.6.1).
-std::size_t first_room(std::size_t n) { return n + 4096; }
-
 // Can the device hold the refinement's arrays for `points` points? About 600
 // bytes per point in all; the largest array (flip-flop's stars, 4 entries
 // per list entry) takes 16 x 8/3 bytes per point.
@@ -31,6 +27,23 @@ bool device_holds(const Device &device, std::size_t points) {
              0.9 * static_cast<double>(device.global_memory()) &&
          largest_per_point * static_cast<double>(points) <
              static_cast<double>(device.max_allocation());
+}
+
+// First room for Steiner points (thesis §3.6.1: the arrays grow when it runs
+// out). A growth copies every array and builds the steps again, and the
+// search after it sweeps every slot, so the first room is what refinement to
+// the angle bound usually takes: point sets gain about 0.6 n Steiner points
+// at 20 degrees and 1.8 n at 30 (uniform, Gaussian, disk; a thin circle up to
+// 3.4 n), and deleted points hold their slots for a while. A growth adds
+// half the room at least, so that few follow.
+std::size_t first_room(const Device &device, std::size_t n, const RefineOptions &options) {
+  const double bound = std::min(options.min_angle, 30.0) / 30.0;
+  auto room = static_cast<std::size_t>(static_cast<double>(n) * std::max(1.0, 2.2 * bound * bound));
+  if (options.max_steiner >= 0)
+    room = std::min(room, std::max(n, static_cast<std::size_t>(options.max_steiner)));
+  if (!device_holds(device, n + room + 4096))
+    room = n;
+  return room + 4096;
 }
 
 // The insertion filter's reach: GPU-QM, the algorithm for the fewest points,
@@ -72,7 +85,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   // Refinement breaks ties by triangle slot; its first compaction gives
   // the triangles a layout that depends on them alone, whichever
   // construction (and grid) built them.
-  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats, first_room(n));
+  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats,
+                              first_room(device, n, options));
   device.program("offcenter_insertion.cl", "setup");
   device.program("flipflop_deletion.cl", "setup");
   if (!scheduler.triangulate()) {
@@ -127,12 +141,14 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
       deleted_since_collection = false;
     }
     if (room() < bad && steiner + bad <= limit) {
-      const std::size_t extra = std::max(bad, n);
+      const std::size_t extra = std::max(bad, mesh.point_capacity / 2);
       if (!device_holds(device, scheduler.mesh().point_capacity + extra)) {
         stats.out_of_memory = true;
         break; // reported with the bad triangles left (angles above about 33 degrees may not end)
       }
+      steps.reset(); // before the mesh grows: a lower peak
       scheduler.grow(extra);
+      ++stats.growths;
       steps = std::make_unique<RefinementSteps>(scheduler, options);
       continue;
     }

@@ -166,6 +166,14 @@ TEST_CASE("refine: maximum area, alone and with an angle") {
   refine_checked(fixtures::uniform(500, 76), 28, 2e-4);
 }
 
+TEST_CASE("refine: a mesh that outgrows its first room, several times") {
+  // About 40 times the input's room in Steiner points: the arrays grow while
+  // candidates wait, and the search starts over on the grown mesh.
+  const auto result = refine_checked(fixtures::uniform(300, 77), 25, 4e-5);
+  CHECK(result.stats.growths >= 2);
+  CHECK(result.added_points.size() > 10000);
+}
+
 TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
   // A thin wedge: the hull angle at the apex is about 3 degrees.
   std::vector<Point> points = {{0, 0}, {10, 0.25}, {10, -0.25}};

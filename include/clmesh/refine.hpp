@@ -43,6 +43,7 @@ struct RefineStats {
   long boundary_splits = 0;         // insertions that split a hull edge at its midpoint
   long delaunay_flips = 0;          // step 3's flips of non-locally-Delaunay edges
   long non_delaunay_flips = 0;      // step 3's flops and 3-1 flips deleting points
+  long growths = 0;                 // times the mesh's arrays grew (thesis §3.6.1)
   bool out_of_memory = false;       // stopped: the device cannot hold more points
   long remaining_bad = 0;           // bad triangles left (small hull angles, -S reached)
 };

@@ -284,6 +284,10 @@ cl::Buffer Device::allocate(std::size_t bytes) {
   return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
 }
 
+std::size_t Device::compute_units() const {
+  return std::max<std::size_t>(1, device_.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
+}
+
 std::size_t Device::max_work_group() const {
   return device_.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
 }

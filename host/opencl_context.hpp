@@ -44,6 +44,8 @@ public:
   std::size_t work_group() const { return work_group_; }
   void set_work_group(std::size_t size);
   std::size_t max_work_group() const;
+  std::size_t compute_units() const;
+  bool is_cpu() const { return cpu_; }
   // CL_DEVICE_MAX_MEM_ALLOC_SIZE and CL_DEVICE_GLOBAL_MEM_SIZE, in bytes.
   std::size_t max_allocation() const;
   std::size_t global_memory() const;

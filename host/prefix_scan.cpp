@@ -4,7 +4,7 @@
 
 namespace clmesh {
 
-PrefixScan::PrefixScan(Device &device)
+PrefixScan::PrefixScan(Device &device, Method method)
     : device_(device), scan_blocks_(device.kernel("scan.cl", "scan_blocks", "scan")),
       add_offsets_(device.kernel("scan.cl", "scan_add_offsets", "scan")),
       compact_(device.kernel("scan.cl", "compact_list", "scan")),
@@ -14,7 +14,11 @@ PrefixScan::PrefixScan(Device &device)
       unique_compact_(device.kernel("scan.cl", "unique_compact", "scan")),
       count_keys_(device.kernel("scan.cl", "count_keys", "scan")),
       scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")),
-      group_(std::min<std::size_t>(256, device.max_work_group())) {}
+      sum_runs_(device.kernel("scan.cl", "sum_runs", "scan")),
+      scan_runs_(device.kernel("scan.cl", "scan_runs", "scan")),
+      group_(std::min<std::size_t>(256, device.max_work_group())),
+      by_runs_(method == Method::runs || (method == Method::device_default && device.is_cpu())),
+      max_runs_(4 * device.compute_units()), run_sums_(device, max_runs_), run_total_(device, 1) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   auto it = levels_.find(level);
@@ -51,11 +55,31 @@ const DeviceArray<cl_int> &PrefixScan::scan_level(const cl::Buffer &in, const cl
   return total;
 }
 
+// Entries a run takes at least (shorter scans are one loop, one launch); at
+// most four runs a compute unit.
+constexpr std::size_t kMinRun = 16384;
+
+int PrefixScan::scan_by_runs(const cl::Buffer &in, const cl::Buffer &out, std::size_t n,
+                             const std::string &phase) {
+  const std::size_t runs = std::min(max_runs_, (n + kMinRun - 1) / kMinRun);
+  const auto run = static_cast<cl_int>((n + runs - 1) / runs), items = static_cast<cl_int>(n);
+  if (runs > 1) {
+    set_args(sum_runs_, in, run_sums_.buffer(), run, items);
+    launch(device_, sum_runs_, runs, phase, 1);
+  }
+  set_args(scan_runs_, in, out, run_sums_.buffer(), run_total_.buffer(), run,
+           static_cast<cl_int>(runs), items);
+  launch(device_, scan_runs_, runs, phase, 1);
+  return run_total_.read(device_, 0);
+}
+
 int PrefixScan::exclusive_scan(const DeviceArray<cl_int> &counts,
                                const DeviceArray<cl_int> &offsets, std::size_t n,
                                const std::string &phase) {
   if (n == 0)
     return 0;
+  if (by_runs_)
+    return scan_by_runs(counts.buffer(), offsets.buffer(), n, phase);
   return scan_level(counts.buffer(), offsets.buffer(), n, 0, phase).read(device_, 0);
 }
 

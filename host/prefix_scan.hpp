@@ -10,7 +10,12 @@ namespace clmesh {
 
 class PrefixScan {
 public:
-  explicit PrefixScan(Device &device);
+  // How exclusive_scan works: blocks of a work-group each, scanned with
+  // barriers and added up level by level (for GPUs), or runs of consecutive
+  // entries, a work-item each, scanned by plain loops (for CPUs, where a
+  // work-group's work-items run one after another). The result is the same.
+  enum class Method { device_default, blocks, runs };
+  explicit PrefixScan(Device &device, Method method = Method::device_default);
 
   // offsets = exclusive scan of counts[0..n); returns the total (one small read-back).
   int exclusive_scan(const DeviceArray<cl_int> &counts, const DeviceArray<cl_int> &offsets,
@@ -46,11 +51,16 @@ private:
   const DeviceArray<cl_int> &scan_level(const cl::Buffer &in, const cl::Buffer &out, std::size_t n,
                                         int level, const std::string &phase);
   const DeviceArray<cl_int> &block_sums(int level, std::size_t size);
+  int scan_by_runs(const cl::Buffer &in, const cl::Buffer &out, std::size_t n,
+                   const std::string &phase);
 
   Device &device_;
   cl::Kernel scan_blocks_, add_offsets_, compact_, compact_indices_, unique_mark_, unique_keep_,
-      unique_compact_, count_keys_, scatter_by_key_;
+      unique_compact_, count_keys_, scatter_by_key_, sum_runs_, scan_runs_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
+  bool by_runs_;      // Method::runs
+  std::size_t max_runs_;
+  DeviceArray<cl_int> run_sums_, run_total_;
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned
 };
 

@@ -41,3 +41,30 @@ TEST_CASE("device arrays: large arrays keep their contents through kernels and g
   CHECK(std::equal(expected.begin(), expected.end(), grown.begin()));
   CHECK(std::all_of(grown.begin() + n, grown.end(), [](cl_int v) { return v == -7; }));
 }
+
+TEST_CASE("device arrays: both scan methods give the exact prefix sums at every length") {
+  // Blocks (GPUs) and runs (CPUs): one block or run, several levels of
+  // blocks, several runs with a short last one.
+  Device &dev = device();
+  const std::size_t lengths[] = {1, 7, 255, 256, 2049, 16384, 16385, 100003, 1000000};
+  std::vector<cl_int> counts(1000001); // one more: the entry past the end stays unwritten
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    counts[i] = static_cast<cl_int>((i * 7919) % 5);
+  DeviceArray<cl_int> device_counts(dev, counts.size()), offsets(dev, counts.size());
+  // (counts[n] is in the array but not in the scan)
+  device_counts.upload(dev, counts);
+  for (const auto method : {PrefixScan::Method::blocks, PrefixScan::Method::runs}) {
+    PrefixScan scan(dev, method);
+    for (const std::size_t n : lengths) {
+      CAPTURE(n);
+      offsets.fill(dev, -1, counts.size());
+      const int total = scan.exclusive_scan(device_counts, offsets, n, "test");
+      std::vector<cl_int> expected(n + 1);
+      std::exclusive_scan(counts.begin(), counts.begin() + n + 1, expected.begin(), 0);
+      CHECK(total == expected[n]);
+      const std::vector<cl_int> got = offsets.download(dev, n + 1);
+      CHECK(std::equal(got.begin(), got.begin() + n, expected.begin()));
+      CHECK(got[n] == -1); // nothing written past the end
+    }
+  }
+}

@@ -15,6 +15,25 @@ inline void local_inclusive_scan(__local int *scratch, int lid, int size) {
   }
 }
 
+// A run of consecutive entries, by one work-item: the sum of in[first ..
+// end), and its exclusive scan from `running` into out (returns the sum
+// after the run; each entry is read before out is written).
+inline int sum_run(__global const int *in, int first, int end) {
+  int sum = 0;
+  for (int i = first; i < end; ++i)
+    sum += in[i];
+  return sum;
+}
+
+inline int scan_run(__global const int *in, __global int *out, int first, int end, int running) {
+  for (int i = first; i < end; ++i) {
+    const int count = in[i];
+    out[i] = running;
+    running += count;
+  }
+  return running;
+}
+
 // out[i] = in[0] + .. + in[i - 1] for i < n, by the whole group (each
 // work-item a run of consecutive entries); returns the total to all.
 inline int group_exclusive_scan(__global const int *in, __global int *out, int n,
@@ -22,18 +41,11 @@ inline int group_exclusive_scan(__global const int *in, __global int *out, int n
   const int lid = get_local_id(0), size = get_local_size(0);
   const int run = (n + size - 1) / size;
   const int first = min(lid * run, n), end = min(first + run, n);
-  int sum = 0;
-  for (int i = first; i < end; ++i)
-    sum += in[i];
+  const int sum = sum_run(in, first, end);
   scratch[lid] = sum;
   local_inclusive_scan(scratch, lid, size);
-  int running = scratch[lid] - sum;
   const int total = scratch[size - 1];
-  for (int i = first; i < end; ++i) {
-    const int count = in[i];
-    out[i] = running;
-    running += count;
-  }
+  scan_run(in, out, first, end, scratch[lid] - sum);
   barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); // scratch free, out visible
   return total;
 }

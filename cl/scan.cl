@@ -45,28 +45,20 @@ __kernel void scan_add_offsets(__global int *out, __global const int *block_offs
 // the integer result is the same. run_sum[r] = the sum of run r.
 __kernel void sum_runs(__global const int *in, __global int *run_sum, const int run, const int n) {
   const int r = get_global_id(0);
-  const int first = r * run, end = min(first + run, n);
-  int sum = 0;
-  for (int i = first; i < end; ++i)
-    sum += in[i];
-  run_sum[r] = sum;
+  const int first = r * run;
+  run_sum[r] = sum_run(in, first, min(first + run, n));
 }
 
-// out = exclusive scan of in, run r from the sum of the runs before it (a
-// few dozen at most); the last run writes the total to total[0]. `in` is
-// read before `out` is written.
+// out = exclusive scan of in, run r from the sum of the runs before it (at
+// most four a compute unit); the last run writes the total to total[0].
 __kernel void scan_runs(__global const int *in, __global int *out, __global const int *run_sum,
                         __global int *total, const int run, const int runs, const int n) {
   const int r = get_global_id(0);
-  int sum = 0;
+  int before = 0;
   for (int k = 0; k < r; ++k)
-    sum += run_sum[k];
-  const int first = r * run, end = min(first + run, n);
-  for (int i = first; i < end; ++i) {
-    const int count = in[i];
-    out[i] = sum;
-    sum += count;
-  }
+    before += run_sum[k];
+  const int first = r * run;
+  const int sum = scan_run(in, out, first, min(first + run, n), before);
   if (r == runs - 1)
     total[0] = sum;
 }

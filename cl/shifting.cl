@@ -4,9 +4,10 @@
 // The triangles of Phase 2 join sites as the digital diagram saw them, at
 // pixel positions; at the real coordinates a triangle may turn over. Every
 // predicate of the mesh reads the real coordinates, so shifting is a check:
-// the sites of a triangle that is not strictly counter-clockwise there are
-// left out of the diagram (they become missing points, inserted exactly in
-// Phase 4) and the construction is repeated until nothing turns over. Then
+// of a triangle that is not strictly counter-clockwise there, the site
+// opposite its longest edge is left out of the diagram (it becomes a missing
+// point, inserted exactly in Phase 4) and the construction is repeated until
+// nothing turns over. Then
 // the ghost flips of Phase 5 make the outer cycle convex, and a last check
 // proves the result a triangulation of the convex hull of its vertices: all
 // triangles counter-clockwise (flips keep them so), every link returned, and
@@ -22,8 +23,22 @@ __kernel void flag_inverted_triangles(__global const double2 *points,
   if (t >= real)
     return;
   const int a = tri_vertex[3 * t], b = tri_vertex[3 * t + 1], c = tri_vertex[3 * t + 2];
-  if (orient_vertices(points, a, b, c) <= 0)
-    bad[a] = bad[b] = bad[c] = 1;
+  if (orient_vertices(points, a, b, c) > 0)
+    return;
+  // A turned-over triangle is nearly flat: its middle site, opposite the
+  // longest edge, lies on the wrong side of the other two. Leaving out only
+  // that one keeps the others, hull sites often, as sites: all three would
+  // expose the next layer of a dense hull to the same fate, round after round.
+  const double2 pa = points[a], pb = points[b], pc = points[c];
+  const double2 ab = pb - pa, bc = pc - pb, ca = pa - pc;
+  const double lab = ab.x * ab.x + ab.y * ab.y, lbc = bc.x * bc.x + bc.y * bc.y,
+               lca = ca.x * ca.x + ca.y * ca.y;
+  if (lab >= lbc && lab >= lca)
+    bad[c] = 1;
+  else if (lbc >= lca)
+    bad[a] = 1;
+  else
+    bad[b] = 1;
 }
 
 // Leaves the flagged sites out of the next diagram, counting them; clears

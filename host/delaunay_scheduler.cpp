@@ -429,10 +429,10 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
     stats_.dropped_sites += left_out;
     timer_->charge(Shifting::kPhase);
     settled = left_out == 0;
-    // Each round should fix most of what is left; when it does not (a hull
-    // whose nearly collinear points turn over one layer after another), the
-    // hull fan is cheaper than more rounds.
-    if (round >= 2 && left_out > kStalledSites && 2 * left_out > left_out_before)
+    // Each round should fix a good part of what is left (a dense hull turns
+    // over layer after layer, a few sites fewer each time); when it does not,
+    // the hull fan is cheaper than more rounds.
+    if (round >= 2 && left_out > kStalledSites && 4 * left_out > 3 * left_out_before)
       break;
     left_out_before = left_out;
   }

@@ -92,9 +92,9 @@ public:
 
 private:
   // Rounds of Phases 1-3 before the hull fan is used instead.
-  static constexpr int kConstructionRounds = 8;
-  // Sites left out in a round that did not halve the previous round's count:
-  // more than this many, and the rounds stop (from the third on).
+  static constexpr int kConstructionRounds = 12;
+  // Sites left out in a round that did not cut the previous round's count by
+  // a quarter: more than this many, and the rounds stop (from the third on).
   static constexpr long kStalledSites = 64;
 
   // Phases 1-3: the first triangulation from the digital Voronoi diagram,

@@ -290,6 +290,21 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
     }
 }
 
+// A dense disk: at the default grid, the outer sites turn over at their real
+// coordinates layer after layer (nearly collinear along the hull). Leaving out
+// only the middle site of each turned-over triangle lets the rounds settle,
+// where leaving out all three sites fell back to the hull fan at 400k points.
+TEST_CASE("delaunay: the construction settles on a dense disk") {
+  const auto points = fixtures::disk(400000, 41);
+  const clmesh::DelaunayResult result = clmesh::delaunay(device(), points);
+  const auto report = clmesh::check_triangulation(points, result.triangles, result.neighbors,
+                                                  result.duplicate_of, true);
+  INFO(problems(report));
+  CHECK(report.ok);
+  CHECK(result.stats.construction == "voronoi");
+  CHECK(result.stats.constructed_triangles > static_cast<long>(points.size()) / 4);
+}
+
 TEST_CASE("delaunay: bad input is refused with a typed error") {
   CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}}), clmesh::InputError);
   CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {1e300, 0}}), clmesh::InputError);

@@ -336,9 +336,10 @@ bool DelaunayScheduler::triangulate() {
   // Phases 1-3 build the first triangulation and list the missing points;
   // when their result cannot be used, the hull is fanned instead.
   if (!options_.voronoi_construction && options_.want_voronoi_image) {
-    stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::default_grid(n);
-    VoronoiBanding banding(device, mesh, *scan_);
     const auto [low, span] = bounding_square(points);
+    stats_.grid =
+        options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points, low, span);
+    VoronoiBanding banding(device, mesh, *scan_);
     stats_.pixel_collisions = static_cast<long>(banding.run(stats_.grid, low, span));
     voronoi_ = banding.download_image();
     timer_->charge(VoronoiBanding::kPhase);
@@ -395,8 +396,8 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
   DeviceMesh &mesh = *mesh_;
-  stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::default_grid(n);
   const auto [low, span] = bounding_square(points);
+  stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points, low, span);
   VoronoiBanding banding(device_, mesh, *scan_);
   TriangulationConstruction construction(device_, mesh, *scan_);
   Shifting shifting(device_, mesh, *scan_);

@@ -29,6 +29,31 @@ int VoronoiBanding::default_grid(std::size_t n) {
   return std::min(kMaxGrid, 1 << std::min(exponent, 13));
 }
 
+int VoronoiBanding::choose_grid(const std::vector<Point> &points, Point low, double span) {
+  const std::size_t n = points.size();
+  const int coarse = default_grid(n);
+  int fine = 2;
+  while (fine < kMaxGrid && static_cast<double>(fine) * fine < static_cast<double>(n))
+    fine *= 2;
+  if (fine <= coarse || !(span > 0))
+    return coarse;
+  // The pixels of map_points_to_pixels (cl/voronoi_banding.cl); at most one
+  // point in 64 may share its pixel.
+  const double scale = fine / span;
+  const std::size_t allowed = n / 64;
+  std::vector<bool> taken(static_cast<std::size_t>(fine) * fine, false);
+  std::size_t shared = 0;
+  for (const Point &p : points) {
+    const auto x = std::min(static_cast<int>((p.x - low.x) * scale), fine - 1);
+    const auto y = std::min(static_cast<int>((p.y - low.y) * scale), fine - 1);
+    const std::size_t pixel = static_cast<std::size_t>(y) * fine + x;
+    if (taken[pixel] && ++shared > allowed)
+      return coarse;
+    taken[pixel] = true;
+  }
+  return fine;
+}
+
 std::size_t VoronoiBanding::run(int grid, Point min, double span,
                                 const DeviceArray<cl_int> *site_state) {
   if (grid < 2 || grid > kMaxGrid)

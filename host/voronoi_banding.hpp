@@ -19,6 +19,13 @@ public:
 
   // A texture side suited to n points: the power of two nearest sqrt(n) / 2.5.
   static int default_grid(std::size_t n);
+  // The grid for these points in the square [low, low + span]^2:
+  // default_grid, or, when nearly every point has a pixel of its own at the
+  // smallest power of two not below sqrt(n) (a lattice, or points as evenly
+  // spread), that finer grid: Phases 1-3 then triangulate them all at once,
+  // without the missing-point insertion whose flips a cocircular lattice
+  // makes long.
+  static int choose_grid(const std::vector<Point> &points, Point low, double span);
 
   // Maps the device points into a grid x grid texture over the square
   // [min, min + span]^2 and colours every pixel with its nearest site.

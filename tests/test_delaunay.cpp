@@ -287,6 +287,12 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
         CHECK(result.stats.constructed_triangles > static_cast<long>(points.size()) / 10);
         CHECK(result.stats.missing_points < static_cast<long>(points.size()));
       }
+      if (grid == 0 && name.rfind("lattice", 0) == 0) {
+        // A pixel for every lattice point: one construction, nothing missing.
+        CHECK(result.stats.grid == 128 >> (name == "lattice" ? 0 : 1));
+        CHECK(result.stats.construction == "voronoi");
+        CHECK(result.stats.missing_points == 0);
+      }
     }
 }
 

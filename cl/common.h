@@ -128,6 +128,9 @@ inline int adjacent_ghost(__global const int *tri_neighbor, VertexTriple ghost, 
   return link_triangle(tri_neighbor[3 * g + (after ? prev3(k) : next3(k))]);
 }
 
+// |v|^2 in plain floating point, no fused multiply-add (FP_CONTRACT OFF).
+inline double squared_length(double2 v) { return v.x * v.x + v.y * v.y; }
+
 inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y);

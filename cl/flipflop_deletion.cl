@@ -130,7 +130,7 @@ inline bool dependent_pair(__global const double2 *points, __global const int *p
     return true; // GPU-QM: any two connected new points are dependent
   // GPU-QM-V (Claim 3.5.1): less than orthogonal, |c - d|^2 < q^2 + r^2.
   const double2 e = points[c] - points[d];
-  return e.x * e.x + e.y * e.y < insertion_radius2[c] + insertion_radius2[d];
+  return squared_length(e) < insertion_radius2[c] + insertion_radius2[d];
 }
 
 // The one of a dependent pair to delete: never a midpoint; otherwise the one

@@ -78,7 +78,7 @@ inline Quality assess(__global const double2 *points, __global const int *point_
   q.shortest = 0;
   for (int i = 0; i < 3; ++i) {
     const double2 d = q.p[prev3(i)] - q.p[next3(i)]; // edge opposite vertex i
-    q.length_squared[i] = d.x * d.x + d.y * d.y;
+    q.length_squared[i] = squared_length(d);
     if (q.length_squared[i] < q.length_squared[q.shortest])
       q.shortest = i;
   }
@@ -122,12 +122,12 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   const int shortest = q.shortest;
   const double2 a = q.p[next3(shortest)], b = q.p[prev3(shortest)], r = q.p[shortest];
   const double2 e = b - a, f = r - a;
-  const double e2 = e.x * e.x + e.y * e.y, f2 = f.x * f.x + f.y * f.y;
+  const double e2 = squared_length(e), f2 = squared_length(f);
   const double denominator = 2.0 * (e.x * f.y - e.y * f.x);
   const double2 center =
       (double2)((f.y * e2 - e.y * f2) / denominator, (e.x * f2 - f.x * e2) / denominator);
   const double2 middle = 0.5 * e, away = center - middle; // from the edge's midpoint
-  const double reach = offconstant * sqrt(e2), distance = sqrt(away.x * away.x + away.y * away.y);
+  const double reach = offconstant * sqrt(e2), distance = sqrt(squared_length(away));
   const double2 offset = distance > reach ? middle + away * (reach / distance) : center;
   const double2 steiner = a + offset;
   if (!isfinite(steiner.x) || !isfinite(steiner.y))
@@ -416,12 +416,12 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
   double radius2;
   if (midpoint) {
     const double2 e = points[tri_vertex[3 * container[k] + next3(split_edge[k])]] - c;
-    radius2 = e.x * e.x + e.y * e.y;
+    radius2 = squared_length(e);
   } else {
     radius2 = INFINITY;
     for (int i = 0; i < 3; ++i) {
       const double2 e = points[tri_vertex[3 * origin[k] + i]] - c;
-      radius2 = fmin(radius2, e.x * e.x + e.y * e.y);
+      radius2 = fmin(radius2, squared_length(e));
     }
   }
   points[p] = c;

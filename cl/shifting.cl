@@ -30,9 +30,8 @@ __kernel void flag_inverted_triangles(__global const double2 *points,
   // that one keeps the others, hull sites often, as sites: all three would
   // expose the next layer of a dense hull to the same fate, round after round.
   const double2 pa = points[a], pb = points[b], pc = points[c];
-  const double2 ab = pb - pa, bc = pc - pb, ca = pa - pc;
-  const double lab = ab.x * ab.x + ab.y * ab.y, lbc = bc.x * bc.x + bc.y * bc.y,
-               lca = ca.x * ca.x + ca.y * ca.y;
+  const double lab = squared_length(pb - pa), lbc = squared_length(pc - pb),
+               lca = squared_length(pa - pc);
   if (lab >= lbc && lab >= lca)
     bad[c] = 1;
   else if (lbc >= lca)

@@ -337,8 +337,7 @@ bool DelaunayScheduler::triangulate() {
   // when their result cannot be used, the hull is fanned instead.
   if (!options_.voronoi_construction && options_.want_voronoi_image) {
     const auto [low, span] = bounding_square(points);
-    stats_.grid =
-        options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points, low, span);
+    stats_.grid = texture_side(low, span);
     VoronoiBanding banding(device, mesh, *scan_);
     stats_.pixel_collisions = static_cast<long>(banding.run(stats_.grid, low, span));
     voronoi_ = banding.download_image();
@@ -392,12 +391,16 @@ bool DelaunayScheduler::triangulate() {
   return true;
 }
 
+int DelaunayScheduler::texture_side(Point low, double span) const {
+  return options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points_, low, span);
+}
+
 bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
   DeviceMesh &mesh = *mesh_;
   const auto [low, span] = bounding_square(points);
-  stats_.grid = options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points, low, span);
+  stats_.grid = texture_side(low, span);
   VoronoiBanding banding(device_, mesh, *scan_);
   TriangulationConstruction construction(device_, mesh, *scan_);
   Shifting shifting(device_, mesh, *scan_);

@@ -97,6 +97,9 @@ private:
   // a quarter: more than this many, and the rounds stop (from the third on).
   static constexpr long kStalledSites = 64;
 
+  // The Voronoi texture's side: --grid, else VoronoiBanding::choose_grid.
+  int texture_side(Point low, double span) const;
+
   // Phases 1-3: the first triangulation from the digital Voronoi diagram,
   // flipped to Delaunay, and the missing points given to `insertion`. False
   // (the mesh to be rebuilt from the hull fan) when that did not succeed.

@@ -12,8 +12,9 @@
 // before off-centers (§3.4.1: segment-split before triangle-split), then the shorter the shortest
 // edge, the worse the triangle; containers are marked with atomic minimum of it, and a candidate
 // survives the insertion filter when it owns its container's mark and no neighbouring container
-// has a better one. Quality decisions use floating point, as Triangle's do; the insertion
-// that follows uses the exact predicates.
+// has a better one, nor one that goes first and would make it redundant in step 3 (GPU-QM-V).
+// Quality decisions use floating point, as Triangle's do; the insertion that follows uses the exact
+// predicates.
 #include "common.h"
 #include "prefetch.h"
 #include "refinement.h"
@@ -171,6 +172,35 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
   priority[k] = slot_priority[gid];
 }
 
+// The second triangle a candidate on an edge splits (a ghost for a hull
+// midpoint), or -1.
+inline int split_partner(__global const int *tri_neighbor, __global const int *container,
+                         __global const int *split_edge, int k) {
+  return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
+}
+
+// Whether located candidate k splits a hull edge (its partner is a ghost).
+inline bool splits_hull_edge(__global const int *tri_vertex, __global const int *tri_neighbor,
+                             __global const int *container, __global const int *split_edge, int k) {
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  return partner >= 0 && is_ghost(load_vertices(tri_vertex, partner));
+}
+
+// The insertion radius of located candidate k at c (thesis §3.5): the
+// distance to the nearest vertex of its bad triangle; half the hull edge for
+// a midpoint. Squared.
+inline double insertion_radius2_of(__global const double2 *points, __global const int *tri_vertex,
+                                   __global const int *tri_neighbor, __global const int *container,
+                                   __global const int *split_edge, __global const int *origin,
+                                   double2 c, int k) {
+  if (splits_hull_edge(tri_vertex, tri_neighbor, container, split_edge, k))
+    return squared_length(points[tri_vertex[3 * container[k] + next3(split_edge[k])]] - c);
+  double radius2 = INFINITY;
+  for (int i = 0; i < 3; ++i)
+    radius2 = fmin(radius2, squared_length(points[tri_vertex[3 * origin[k] + i]] - c));
+  return radius2;
+}
+
 // Locates candidate k walking from its bad triangle, or from the container
 // found for it by the last search (last_container[origin], kept when neither
 // triangle was rewritten since: modified_stamp below located_stamp, the
@@ -204,7 +234,8 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
                                 const int located_stamp, __global double2 *candidate,
                                 __global int *container, __global int *split_edge,
                                 __global const int *origin, __global uint *priority,
-                                const double lens, const int max_steps, const int n) {
+                                __global double *radius2, const double lens, const int max_steps,
+                                const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -269,13 +300,9 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
   container[k] = located ? t : -1;
   last_container[bad] = located ? t : -1;
   split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;
-}
-
-// The second triangle a candidate on an edge splits (a ghost for a hull
-// midpoint), or -1.
-inline int split_partner(__global const int *tri_neighbor, __global const int *container,
-                         __global const int *split_edge, int k) {
-  return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
+  if (located)
+    radius2[k] = insertion_radius2_of(points, tri_vertex, tri_neighbor, container, split_edge,
+                                      origin, candidate[k], k);
 }
 
 // Marks each candidate's container (and its partner) with its priority.
@@ -337,38 +364,74 @@ inline void prefetch_filter(__global const int *container, int k, int n,
   }
 }
 
-// rings: how far the filter looks, 2 (the neighbours and theirs) or 3 (and
-// theirs). The thesis looks at the neighbours only; each ring further makes
-// the parallel insertion closer to the sequential order of priorities: fewer
-// points, more iterations.
+// Does the best candidate of container x, within `ring` rings of candidate
+// k's container, keep k out? Within the priority rings, when it has better
+// priority; with distance rings (any ring up to rings + distance_rings), also
+// when it goes first (better priority, or equal and a smaller index) and the
+// two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
+// orthogonal), of which k would be deleted again.
+inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
+                   __global const double2 *candidate, __global const double *radius2, int x,
+                   int ring, int rings, int distance_rings, int k, uint mine) {
+  const uint mark = tri_mark[x];
+  if (mark > mine)
+    return false;
+  if (mark < mine && ring <= rings)
+    return true;
+  const int j = tie_mark[x];
+  if (distance_rings == 0 || j == 0x7fffffff || (mark == mine && j >= k))
+    return false;
+  return squared_length(candidate[j] - candidate[k]) < radius2[j] + radius2[k];
+}
+
+// rings: how far the filter looks by priority, 2 (the neighbours and theirs)
+// or 3 (and theirs). The thesis looks at the neighbours only; each ring
+// further makes the parallel insertion closer to the sequential order of
+// priorities: fewer points, more iterations. distance_rings: how many rings
+// further (0 or 1) it also leaves out predicted dependent pairs (GPU-QM-V:
+// without it, two candidates of equal priority, on either side of the same
+// short edge, were both inserted and one deleted again in step 3).
 __kernel void insertion_filter(__global const int *container, __global const int *split_edge,
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,
-                               const int rings, __global int *survive, const int n) {
+                               __global const double2 *candidate, __global const double *radius2,
+                               const int rings, const int distance_rings, __global int *survive,
+                               const int n) {
   const int k = get_global_id(0);
   prefetch_filter(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k >= n)
     return;
   const int t = container[k];
-  bool wins = t >= 0 && tri_mark[t] == priority[k] && tie_mark[t] == k;
-  // No container of better priority within the rings.
+  const uint mine = priority[k];
+  const int reach = rings + distance_rings;
+  bool wins = t >= 0 && tri_mark[t] == mine && tie_mark[t] == k;
+#define CLM_BEATEN(x, ring)                                                                        \
+  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, k, mine)
   for (int i = 0; i < 3 && wins; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
-    wins = tri_mark[u] >= priority[k];
+    wins = !CLM_BEATEN(u, 1);
     for (int j = 0; j < 3 && wins; ++j) {
       const int w = link_triangle(tri_neighbor[3 * u + j]);
       if (w == t)
         continue;
-      wins = tri_mark[w] >= priority[k];
-      for (int l = 0; l < 3 && wins && rings > 2; ++l) {
+      wins = !CLM_BEATEN(w, 2);
+      for (int l = 0; l < 3 && wins && reach > 2; ++l) {
         const int x = link_triangle(tri_neighbor[3 * w + l]);
-        wins = x == t || x == u || tri_mark[x] >= priority[k];
+        if (x == t || x == u)
+          continue;
+        wins = !CLM_BEATEN(x, 3);
+        for (int m = 0; m < 3 && wins && reach > 3; ++m) {
+          const int y = link_triangle(tri_neighbor[3 * x + m]);
+          if (y != w)
+            wins = !CLM_BEATEN(y, 4);
+        }
       }
     }
   }
+#undef CLM_BEATEN
   const int partner = wins ? split_partner(tri_neighbor, container, split_edge, k) : -1;
   if (partner >= 0)
-    wins = tri_mark[partner] == priority[k] && tie_mark[partner] == k;
+    wins = tri_mark[partner] == mine && tie_mark[partner] == k;
   survive[k] = wins;
 }
 
@@ -395,7 +458,7 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // a midpoint). Their coordinates are logged after the `logged` earlier ones.
 // Only the first `count` survivors are taken (the -S limit).
 __kernel void append_survivors(__global const double2 *candidate, __global const int *container,
-                               __global const int *split_edge, __global const int *origin,
+                               __global const int *split_edge, __global const double *radius2,
                                __global const uint *priority, __global const int *survive,
                                __global const int *offset, __global const int *tri_vertex,
                                __global const int *tri_neighbor, __global double2 *points,
@@ -411,25 +474,13 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
     return;
   const int p = allocate_slot(free_points, free_first, free_count, first_new, offset[k]);
   const double2 c = candidate[k];
-  const int partner = split_partner(tri_neighbor, container, split_edge, k);
-  const bool midpoint = partner >= 0 && is_ghost(load_vertices(tri_vertex, partner));
-  double radius2;
-  if (midpoint) {
-    const double2 e = points[tri_vertex[3 * container[k] + next3(split_edge[k])]] - c;
-    radius2 = squared_length(e);
-  } else {
-    radius2 = INFINITY;
-    for (int i = 0; i < 3; ++i) {
-      const double2 e = points[tri_vertex[3 * origin[k] + i]] - c;
-      radius2 = fmin(radius2, squared_length(e));
-    }
-  }
+  const bool midpoint = splits_hull_edge(tri_vertex, tri_neighbor, container, split_edge, k);
   points[p] = c;
   location[p] = container[k];
   location_edge[p] = split_edge[k];
   original_id[p] = p; // numbered again at the end (number_steiner_points)
   point_state[p] = midpoint ? CLM_POINT_NEW_MIDPOINT : CLM_POINT_NEW;
-  insertion_radius2[p] = radius2;
+  insertion_radius2[p] = radius2[k];
   point_priority[p] = midpoint ? 0u : priority[k] & ~CLM_OFFCENTER_RANK;
   new_points[offset[k]] = p;
   insertion_log[logged + offset[k]] = c; // to count the points inserted more than once

@@ -10,8 +10,9 @@ const char *kFile = "offcenter_insertion.cl";
 }
 
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
-                                       double max_area, int filter_rings)
+                                       double max_area, int filter_rings, int filter_distance_rings)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
+      filter_distance_rings_(filter_distance_rings),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -28,7 +29,7 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
       listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
-      last_container_(device, mesh.triangle_capacity) {
+      last_container_(device, mesh.triangle_capacity), radius2_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
   last_container_.fill(device_, -1, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
@@ -100,7 +101,7 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
            located_stamp_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           origin_.buffer(), priority_.buffer(), lens_,
+           origin_.buffer(), priority_.buffer(), radius2_.buffer(), lens_,
            static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
   located_stamp_ = stamp;
@@ -112,7 +113,8 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   launch(device_, ties_, bad_, kPhase);
   set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
-           static_cast<cl_int>(filter_rings_), survive_.buffer(), n);
+           candidate_.buffer(), radius2_.buffer(), static_cast<cl_int>(filter_rings_),
+           static_cast<cl_int>(filter_distance_rings_), survive_.buffer(), n);
   launch(device_, filter_, bad_, kPhase);
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
@@ -144,7 +146,7 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
   const std::size_t new_slots = free.take(count);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
   set_args(append_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           origin_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
+           radius2_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
            mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.points.buffer(),
            mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
            mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),

@@ -23,9 +23,11 @@ public:
   static constexpr const char *kPhase = "offcenter_insertion";
 
   // filter_rings: how many rings of neighbouring triangles the insertion
-  // filter looks at (2 or 3; see insertion_filter).
+  // filter looks at by priority (2 or 3); filter_distance_rings: how many
+  // more it looks at for predicted dependent pairs (0 or 1; see
+  // insertion_filter).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
-                     int filter_rings);
+                     int filter_rings, int filter_distance_rings);
 
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
@@ -58,7 +60,7 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
-  int filter_rings_;
+  int filter_rings_, filter_distance_rings_;
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;
@@ -73,7 +75,8 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
+  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
+  cl_int located_stamp_ = 0;       // the mesh's stamp when the last search located
 };
 
 } // namespace clmesh

@@ -43,12 +43,14 @@ double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
 clmesh::RefineResult
 refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
                clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv,
-               bool remaining_allowed = false, int filter_rings = 0) {
+               bool remaining_allowed = false, int filter_rings = 0,
+               int filter_distance_rings = -1) {
   clmesh::RefineOptions options;
   options.min_angle = angle;
   options.max_area = max_area;
   options.algorithm = algorithm;
   options.filter_rings = filter_rings;
+  options.filter_distance_rings = filter_distance_rings;
   clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
   std::vector<Point> points = input;
   points.insert(points.end(), result.added_points.begin(), result.added_points.end());
@@ -127,10 +129,11 @@ TEST_CASE("refine: nearly straight runs of hull points (delaunator fixtures)") {
 }
 
 TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than GPU-QM-V") {
-  // The same insertion filter for both: only their deletion rules differ.
+  // The same insertion filter for both (by priority only): only their
+  // deletion rules differ.
   const auto points = fixtures::uniform(6000, 80);
-  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv, false, 2);
-  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm, false, 2);
+  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv, false, 2, 0);
+  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm, false, 2, 0);
   MESSAGE("GPU-QM-V: " << qmv.stats.insertions << " insertions, " << qmv.stats.deleted
                        << " deleted; GPU-QM: " << qm.stats.insertions << " insertions, "
                        << qm.stats.deleted << " deleted");
@@ -158,6 +161,26 @@ TEST_CASE("refine: an insertion filter that looks further inserts fewer points")
   clmesh::RefineOptions options;
   options.min_angle = 30;
   options.filter_rings = 4;
+  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+}
+
+TEST_CASE("refine: the filter leaves out the pairs GPU-QM-V's step 3 would break up") {
+  // Without the distance test most deletions are of pairs inserted at once
+  // (equal priorities on either side of a short edge, or a ring further).
+  const auto points = fixtures::uniform(6000, 80);
+  const auto qmv = clmesh::RefineAlgorithm::qmv;
+  const auto priority_only = refine_checked(points, 30, -1, qmv, false, 2, 0);
+  const auto with_distance = refine_checked(points, 30, -1, qmv, false, 2, 1);
+  MESSAGE("by priority: " << priority_only.stats.insertions << " insertions, "
+                          << priority_only.stats.deleted << " deleted; with distance: "
+                          << with_distance.stats.insertions << ", " << with_distance.stats.deleted);
+  CHECK(with_distance.stats.deleted * 5 < priority_only.stats.deleted);
+  CHECK(with_distance.stats.insertions < priority_only.stats.insertions);
+  // No more points in the end (within half a percent).
+  CHECK(with_distance.stats.inserted * 200 < priority_only.stats.inserted * 201);
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  options.filter_distance_rings = 2;
   CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
 }
 

@@ -26,6 +26,11 @@ struct RefineOptions {
   // Rings of neighbouring triangles the insertion filter looks at: 2 or 3;
   // 0 picks the algorithm's (qm: 3, for the fewest points; qmv: 2, faster).
   int filter_rings = 0;
+  // Rings further, 0 or 1, where it also leaves out a candidate that would
+  // form a GPU-QM-V dependent pair (less than orthogonal) with one that goes
+  // first, as step 3 would delete it again; -1 picks the algorithm's (qmv: 1,
+  // qm: 0). Within the rings above, such a pair of equal priority too.
+  int filter_distance_rings = -1;
   // Flip-flop passes over at most this many triangles run in one work-group,
   // one launch for the whole pass (0: every pass as separate kernels). A
   // matter of speed only: the mesh is the same.

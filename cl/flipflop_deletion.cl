@@ -714,6 +714,21 @@ __kernel void finish_iteration(__global const int *new_points, __global int *poi
   }
 }
 
+// The coordinates of the points this iteration deleted (the followed ones,
+// tracked[0 .. n), of state deleted) after the `logged` earlier ones, to
+// count the points inserted more than once at the end. A worklist counter
+// places them: their order reaches nothing.
+__kernel void log_deleted_points(__global const int *tracked, __global const int *point_state,
+                                 __global const double2 *points, __global double2 *deletion_log,
+                                 const int logged, volatile __global int *count, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int p = tracked[k];
+  if (point_state[p] == CLM_POINT_DELETED)
+    deletion_log[logged + atomic_inc(count)] = points[p];
+}
+
 // The boundary routine of thesis §3.4.1, before step 3: for each hull
 // midpoint v of this iteration, on the former hull edge a-b with apex c, the
 // off-centers among c and c's neighbours that encroach a-b are marked

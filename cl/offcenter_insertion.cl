@@ -455,7 +455,7 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // each to be inserted in its container, on split_edge when it lies on an
 // edge. Each gets its state, priority and insertion radius (thesis §3.5: the
 // distance to the nearest vertex of its bad triangle; half the hull edge for
-// a midpoint). Their coordinates are logged after the `logged` earlier ones.
+// a midpoint).
 // Only the first `count` survivors are taken (the -S limit).
 __kernel void append_survivors(__global const double2 *candidate, __global const int *container,
                                __global const int *split_edge, __global const double *radius2,
@@ -467,8 +467,7 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
                                __global double *insertion_radius2, __global uint *point_priority,
                                __global const int *free_points, const int free_first,
                                const int free_count, const int first_new, __global int *new_points,
-                               __global double2 *insertion_log, const int logged, const int count,
-                               const int n) {
+                               const int count, const int n) {
   const int k = get_global_id(0);
   if (k >= n || !survive[k] || offset[k] >= count)
     return;
@@ -483,5 +482,4 @@ __kernel void append_survivors(__global const double2 *candidate, __global const
   insertion_radius2[p] = radius2[k];
   point_priority[p] = midpoint ? 0u : priority[k] & ~CLM_OFFCENTER_RANK;
   new_points[offset[k]] = p;
-  insertion_log[logged + offset[k]] = c; // to count the points inserted more than once
 }

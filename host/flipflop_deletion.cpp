@@ -39,6 +39,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       sort_cells_(device.kernel(kFile, "sort_cells", kPhase)),
       move_triangles_(device.kernel(kFile, "move_triangles", kPhase)),
       pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
+      log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
       active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
@@ -50,7 +51,7 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
       star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
       encroach_claim_(device, mesh.point_capacity), marked_count_(device, 1),
       exact_count_(device, 1), flip_counts_(device, 3), failures_(device, 1), midpoints_(device, 1),
-      kept_(device, 1), pass_result_(device, 5) {
+      kept_(device, 1), logged_(device, 1), pass_result_(device, 5) {
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
     return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
@@ -61,7 +62,8 @@ FlipflopDeletion::FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan 
 
 void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
                            const DeviceArray<cl_int> &new_points, std::size_t m, int &stamp,
-                           DeviceList<cl_int> &rewritten, FlipflopCounts &counts) {
+                           DeviceList<cl_int> &rewritten, DeletionLog &deleted,
+                           FlipflopCounts &counts) {
   if (n > mesh_.list_capacity)
     throw InternalError("flip-flop: the active list is longer than its arrays");
   if (n > 0)
@@ -139,6 +141,16 @@ void FlipflopDeletion::run(const DeviceArray<cl_int> &changed, std::size_t n,
   counts.delaunay_flips += flips[0];
   counts.non_delaunay_flips += flips[1] + flips[2];
   counts.deleted += flips[2]; // each removal deletes one point
+  if (flips[2] > 0) {
+    DeviceList<cl_double2> &log = deleted.coordinates;
+    log.reserve(device_, static_cast<std::size_t>(flips[2]));
+    logged_.fill(device_, 0, 1);
+    set_args(log_deleted_, tracked_.buffer(), mesh_.point_state.buffer(), mesh_.points.buffer(),
+             log.items.buffer(), static_cast<cl_int>(log.size), logged_.buffer(),
+             static_cast<cl_int>(tracked_n_));
+    launch(device_, log_deleted_, tracked_n_, kPhase);
+    log.size += static_cast<std::size_t>(flips[2]);
+  }
   midpoints_.fill(device_, 0, 1);
   if (m > 0) {
     set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
@@ -401,6 +413,39 @@ std::vector<Point> FlipflopDeletion::steiner_points(std::size_t first) {
     if (keep[k])
       result.push_back({points[k].s[0], points[k].s[1]});
   return result;
+}
+
+long DeletionLog::points_inserted_more_than_once(Device &device,
+                                                 const std::vector<Point> &survivors) const {
+  if (coordinates.size == 0)
+    return 0;
+  const std::vector<cl_double2> deleted = coordinates.items.download(device, coordinates.size);
+  std::vector<Point> sorted(deleted.size());
+  std::transform(deleted.begin(), deleted.end(), sorted.begin(), [](const cl_double2 &c) {
+    return Point{c.s[0], c.s[1]};
+  });
+  const auto less = [](const Point &a, const Point &b) {
+    return a.x != b.x ? a.x < b.x : a.y < b.y;
+  };
+  const auto same = [](const Point &a, const Point &b) { return a.x == b.x && a.y == b.y; };
+  std::sort(sorted.begin(), sorted.end(), less);
+  // Each point deleted, once per point, and whether it came back.
+  std::vector<Point> distinct;
+  std::vector<char> back;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && same(sorted[i], sorted[i - 1])) {
+      back.back() = 1; // deleted twice: inserted twice at least
+      continue;
+    }
+    distinct.push_back(sorted[i]);
+    back.push_back(0);
+  }
+  for (const Point &p : survivors) {
+    const auto it = std::lower_bound(distinct.begin(), distinct.end(), p, less);
+    if (it != distinct.end() && same(*it, p))
+      back[static_cast<std::size_t>(it - distinct.begin())] = 1;
+  }
+  return static_cast<long>(std::count(back.begin(), back.end(), 1));
 }
 
 } // namespace clmesh

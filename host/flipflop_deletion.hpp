@@ -22,6 +22,17 @@ struct FlipflopCounts {
   long exact_checks = 0;
 };
 
+// The coordinates of every Steiner point deleted as redundant, kept on the
+// device until the end (thesis §3.7 counts the points inserted more than
+// once: deleted as redundant, then inserted again).
+struct DeletionLog {
+  DeviceList<cl_double2> coordinates;
+  // A point was inserted more than once when its coordinates were deleted
+  // twice, or deleted and are among the `survivors` (Steiner points of the
+  // final mesh).
+  long points_inserted_more_than_once(Device &device, const std::vector<Point> &survivors) const;
+};
+
 class FlipflopDeletion {
 public:
   static constexpr const char *kPhase = "flipflop_deletion";
@@ -36,9 +47,11 @@ public:
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
   // Returns when every edge is locally Delaunay and no redundant point is left.
-  // Every triangle it rewrites is appended to `rewritten`.
+  // Every triangle it rewrites is appended to `rewritten`, every point it
+  // deletes to `deleted`.
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
-           std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, FlipflopCounts &counts);
+           std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, DeletionLog &deleted,
+           FlipflopCounts &counts);
 
   // Collects the empty triangle and point slots into the mesh's free lists.
   void collect_free_slots();
@@ -107,12 +120,13 @@ private:
   cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
       gather_next_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_,
       triangle_cells_, point_cells_, move_points_, renumber_vertices_, sort_cells_, move_triangles_,
-      pass_in_group_;
+      pass_in_group_, log_deleted_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
       encroach_claim_;
-  DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_;
+  DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
+      logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
 };
 

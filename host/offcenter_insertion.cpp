@@ -129,8 +129,7 @@ void OffcenterInsertion::forget_triangles() {
 }
 
 std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
-                                       const DeviceArray<cl_int> &new_points, InsertionLog &log,
-                                       std::size_t *wanted) {
+                                       const DeviceArray<cl_int> &new_points, std::size_t *wanted) {
   *wanted = 0;
   if (bad_ == 0)
     return 0;
@@ -139,7 +138,6 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
   const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
   if (count == 0)
     return 0;
-  log.coordinates.reserve(device_, count);
   DeviceMesh::FreeList &free = mesh_.free_points;
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
@@ -151,28 +149,11 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
            mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
            mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
            mesh_.point_priority.buffer(), free_list, free_first, free_count,
-           static_cast<cl_int>(mesh_.point_count), new_points.buffer(),
-           log.coordinates.items.buffer(), static_cast<cl_int>(log.coordinates.size),
-           static_cast<cl_int>(count), n);
+           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), static_cast<cl_int>(count),
+           n);
   launch(device_, append_, bad_, kPhase);
   mesh_.point_count += new_slots;
-  log.coordinates.size += count;
   return count;
-}
-
-long InsertionLog::points_inserted_more_than_once(Device &device) const {
-  std::vector<cl_double2> all = coordinates.items.download(device, coordinates.size);
-  std::sort(all.begin(), all.end(), [](const cl_double2 &a, const cl_double2 &b) {
-    return a.s[0] != b.s[0] ? a.s[0] < b.s[0] : a.s[1] < b.s[1];
-  });
-  auto same = [&](std::size_t i, std::size_t j) {
-    return all[i].s[0] == all[j].s[0] && all[i].s[1] == all[j].s[1];
-  };
-  long repeated = 0;
-  for (std::size_t i = 1; i < all.size(); ++i)
-    if (same(i, i - 1) && (i == 1 || !same(i - 1, i - 2)))
-      ++repeated; // the first repeat of each point
-  return repeated;
 }
 
 } // namespace clmesh

@@ -10,14 +10,6 @@
 
 namespace clmesh {
 
-// The coordinates of every Steiner point inserted, in insertion order, kept
-// on the device until the end (thesis §3.7 counts the points inserted more
-// than once: deleted as redundant, then inserted again).
-struct InsertionLog {
-  DeviceList<cl_double2> coordinates;
-  long points_inserted_more_than_once(Device &device) const;
-};
-
 class OffcenterInsertion {
 public:
   static constexpr const char *kPhase = "offcenter_insertion";
@@ -48,11 +40,11 @@ public:
   std::size_t count_unfixable();
 
   // Appends the survivors to the mesh's points (free slots first, then from
-  // point_count on; they stay on the device), logs them and lists them in new_points,
+  // point_count on; they stay on the device) and lists them in new_points,
   // not inserted yet; the first `room` of them when more survived. Returns how many were
   // appended; *wanted: how many survived.
   std::size_t append(std::size_t room, PrefixScan &scan, const DeviceArray<cl_int> &new_points,
-                     InsertionLog &log, std::size_t *wanted);
+                     std::size_t *wanted);
 
   double lens() const { return lens_; }
 

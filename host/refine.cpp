@@ -116,7 +116,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   FlipflopCounts flips;
   const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
                                                      : std::numeric_limits<std::size_t>::max();
-  InsertionLog log;
+  DeletionLog deletion_log;
   DeviceList<cl_int> changed; // the triangles rewritten since the last search
   std::size_t steiner = 0;    // Steiner points in the mesh now
   bool deleted_since_collection = false;
@@ -169,8 +169,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     ++stats.iterations;
     stats.candidates += static_cast<long>(bad);
     std::size_t wanted = 0;
-    const std::size_t added = steps->offcenter.append(
-        std::min(room(), limit - steiner), scheduler.scan(), steps->new_points, log, &wanted);
+    const std::size_t added = steps->offcenter.append(std::min(room(), limit - steiner),
+                                                      scheduler.scan(), steps->new_points, &wanted);
     scheduler.timer().charge(OffcenterInsertion::kPhase);
     if (added == 0)
       break; // the -S limit, or every candidate fell on a vertex
@@ -183,7 +183,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     const long deleted_before = flips.deleted;
     changed.append(device, insertion.changed(), 4 * inserted);
     steps->flipflop.run(insertion.changed(), 4 * inserted, steps->new_points, added,
-                        scheduler.stamp(), changed, flips);
+                        scheduler.stamp(), changed, deletion_log, flips);
     scheduler.timer().charge(FlipflopDeletion::kPhase);
     const auto deleted = static_cast<std::size_t>(flips.deleted - deleted_before);
     deleted_since_collection = deleted_since_collection || deleted > 0;
@@ -209,7 +209,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   steps.reset();
   scheduler.download(result.mesh);
   result.mesh.duplicate_of.resize(n + survivors);
-  stats.inserted_more_than_once = log.points_inserted_more_than_once(device);
+  stats.inserted_more_than_once =
+      deletion_log.points_inserted_more_than_once(device, result.added_points);
   return result;
 }
 

@@ -22,6 +22,8 @@
 // Priorities are the bits of a positive float (the squared shortest edge):
 // the top bit is free to rank off-centers after midpoints.
 #define CLM_OFFCENTER_RANK 0x80000000u
+// A tie mark with no candidate (the host fills tie_mark with it too).
+#define CLM_NO_CANDIDATE 0x7fffffff
 
 // Marks the hull vertices (CLM_POINT_HULL), and among them those whose hull
 // angle is below the minimum angle (CLM_POINT_ACUTE_HULL; cos_bound: its
@@ -379,7 +381,7 @@ inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
   if (mark < mine && ring <= rings)
     return true;
   const int j = tie_mark[x];
-  if (distance_rings == 0 || j == 0x7fffffff || (mark == mine && j >= k))
+  if (distance_rings == 0 || j == CLM_NO_CANDIDATE || (mark == mine && j >= k))
     return false;
   return squared_length(candidate[j] - candidate[k]) < radius2[j] + radius2[k];
 }
@@ -442,11 +444,11 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
   if (k >= n || container[k] < 0)
     return;
   tri_mark[container[k]] = CLM_NO_MARK;
-  tie_mark[container[k]] = 0x7fffffff;
+  tie_mark[container[k]] = CLM_NO_CANDIDATE;
   const int partner = split_partner(tri_neighbor, container, split_edge, k);
   if (partner >= 0) {
     tri_mark[partner] = CLM_NO_MARK;
-    tie_mark[partner] = 0x7fffffff;
+    tie_mark[partner] = CLM_NO_CANDIDATE;
   }
 }
 

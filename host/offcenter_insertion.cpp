@@ -30,7 +30,7 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
       last_container_(device, mesh.triangle_capacity), radius2_(device, mesh.triangle_capacity) {
-  tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity);
+  tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity); // CLM_NO_CANDIDATE
   last_container_.fill(device_, -1, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);

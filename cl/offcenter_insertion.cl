@@ -374,16 +374,18 @@ inline void prefetch_filter(__global const int *container, int k, int n,
 // orthogonal), of which k would be deleted again.
 inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
                    __global const double2 *candidate, __global const double *radius2, int x,
-                   int ring, int rings, int distance_rings, int k, uint mine) {
+                   int ring, int rings, int distance_rings, double near2, int k, uint mine) {
   const uint mark = tri_mark[x];
   if (mark > mine)
     return false;
-  if (mark < mine && ring <= rings)
-    return true;
   const int j = tie_mark[x];
+  const double gap2 = j == CLM_NO_CANDIDATE ? 0 : squared_length(candidate[j] - candidate[k]),
+               orthogonal2 = j == CLM_NO_CANDIDATE ? 0 : radius2[j] + radius2[k];
+  if (mark < mine && ring <= rings)
+    return j == CLM_NO_CANDIDATE || isinf(near2) || gap2 < near2 * orthogonal2;
   if (distance_rings == 0 || j == CLM_NO_CANDIDATE || (mark == mine && j >= k))
     return false;
-  return squared_length(candidate[j] - candidate[k]) < radius2[j] + radius2[k];
+  return gap2 < orthogonal2;
 }
 
 // rings: how far the filter looks by priority, 2 (the neighbours and theirs)
@@ -397,8 +399,8 @@ __kernel void insertion_filter(__global const int *container, __global const int
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,
                                __global const double2 *candidate, __global const double *radius2,
-                               const int rings, const int distance_rings, __global int *survive,
-                               const int n) {
+                               const int rings, const int distance_rings, const double near2,
+                               __global int *survive, const int n) {
   const int k = get_global_id(0);
   prefetch_filter(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k >= n)
@@ -408,7 +410,7 @@ __kernel void insertion_filter(__global const int *container, __global const int
   const int reach = rings + distance_rings;
   bool wins = t >= 0 && tri_mark[t] == mine && tie_mark[t] == k;
 #define CLM_BEATEN(x, ring)                                                                        \
-  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, k, mine)
+  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, near2, k, mine)
   for (int i = 0; i < 3 && wins; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     wins = !CLM_BEATEN(u, 1);

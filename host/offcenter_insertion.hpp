@@ -17,9 +17,11 @@ public:
   // filter_rings: how many rings of neighbouring triangles the insertion
   // filter looks at by priority (2 or 3); filter_distance_rings: how many
   // more it looks at for predicted dependent pairs (0 or 1; see
-  // insertion_filter).
+  // insertion_filter); filter_near: how near, in multiples of the
+  // orthogonal distance, a better candidate within the rings must be to keep
+  // one out (0: at any distance).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
-                     int filter_rings, int filter_distance_rings);
+                     int filter_rings, int filter_distance_rings, double filter_near);
 
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
@@ -53,6 +55,7 @@ private:
   DeviceMesh &mesh_;
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
   int filter_rings_, filter_distance_rings_;
+  double filter_near2_; // squared; infinite for any distance
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;

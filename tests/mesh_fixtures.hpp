@@ -57,6 +57,19 @@ inline std::vector<Point> circle(int n, unsigned seed) {
   return p;
 }
 
+// The benchmark's thin circle: radii uniform in [1 - thickness / 2,
+// 1 + thickness / 2), a band only a few points wide.
+inline std::vector<Point> ring(int n, double thickness, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), jitter(-0.5, 0.5);
+  std::vector<Point> p(n);
+  for (auto &q : p) {
+    const double a = angle(rng), r = 1 + thickness * jitter(rng);
+    q = {r * std::cos(a), r * std::sin(a)};
+  }
+  return p;
+}
+
 inline std::vector<Point> lattice(int side, double spacing = 1, Point origin = {0, 0}) {
   std::vector<Point> p;
   for (int i = 0; i < side; ++i)

@@ -43,14 +43,15 @@ double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
 clmesh::RefineResult
 refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
                clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv,
-               bool remaining_allowed = false, int filter_rings = 0,
-               int filter_distance_rings = -1) {
+               bool remaining_allowed = false, int filter_rings = 0, int filter_distance_rings = -1,
+               double filter_near = -1) {
   clmesh::RefineOptions options;
   options.min_angle = angle;
   options.max_area = max_area;
   options.algorithm = algorithm;
   options.filter_rings = filter_rings;
   options.filter_distance_rings = filter_distance_rings;
+  options.filter_near = filter_near;
   clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
   std::vector<Point> points = input;
   points.insert(points.end(), result.added_points.begin(), result.added_points.end());
@@ -181,6 +182,25 @@ TEST_CASE("refine: the filter leaves out the pairs GPU-QM-V's step 3 would break
   clmesh::RefineOptions options;
   options.min_angle = 30;
   options.filter_distance_rings = 2;
+  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+}
+
+TEST_CASE("refine: far better candidates do not hold GPU-QM-V's insertions back") {
+  // Along a thin ring the small triangles send their candidates into the same
+  // few large triangles inside it; with the filter's priority at any
+  // distance they went in about one per large triangle and iteration.
+  const auto points = fixtures::ring(20000, 1e-3, 81);
+  const auto qmv = clmesh::RefineAlgorithm::qmv;
+  const auto any_distance = refine_checked(points, 20, -1, qmv, false, 0, -1, 0);
+  const auto near_only = refine_checked(points, 20, -1, qmv);
+  MESSAGE("at any distance: " << any_distance.stats.iterations << " iterations, "
+                              << any_distance.stats.inserted << " points; near only: "
+                              << near_only.stats.iterations << ", " << near_only.stats.inserted);
+  CHECK(near_only.stats.iterations * 10 < any_distance.stats.iterations * 9);
+  // No more than 1% more points.
+  CHECK(near_only.stats.inserted * 100 < any_distance.stats.inserted * 101);
+  clmesh::RefineOptions options;
+  options.filter_near = 0.5;
   CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
 }
 

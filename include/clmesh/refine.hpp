@@ -31,6 +31,11 @@ struct RefineOptions {
   // first, as step 3 would delete it again; -1 picks the algorithm's (qmv: 1,
   // qm: 0). Within the rings above, such a pair of equal priority too.
   int filter_distance_rings = -1;
+  // Within those rings, a better candidate keeps one out only when it is
+  // nearer than this multiple of the distance at which the two would be
+  // orthogonal (GPU-QM-V: far ones leave their neighbourhoods to themselves);
+  // 0: whatever the distance; -1 picks the algorithm's (qmv: 16, qm: 0).
+  double filter_near = -1;
   // Flip-flop passes over at most this many triangles run in one work-group,
   // one launch for the whole pass (0: every pass as separate kernels). A
   // matter of speed only: the mesh is the same.

@@ -125,11 +125,64 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   return order;
 }
 
+// Quickhull's elimination (Eddy; Barber, Dobkin and Huhdanpaa) as a filter:
+// of the points `outside` (none strictly left of hull chord a -> b), drops
+// those strictly inside the triangle of a, b and the farthest of them, f, and
+// goes on with the points beyond a -> f and f -> b, until a group is small;
+// appends what is left to `kept`. The farthest is chosen in rounded
+// arithmetic; what is dropped is decided exactly, so that no hull vertex is
+// ever dropped (the monotone chain sorts out the rest). A thin ring keeps
+// all its points outside the octagon: this leaves about the hull.
+void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
+                        std::vector<int32_t> outside, std::vector<int32_t> &kept) {
+  constexpr std::size_t kSmall = 64; // sorted as they are
+  struct Group {
+    int32_t a, b;
+    std::vector<int32_t> members;
+  };
+  std::vector<Group> stack;
+  stack.push_back({a, b, std::move(outside)});
+  while (!stack.empty()) {
+    Group group = std::move(stack.back());
+    stack.pop_back();
+    const Point &pa = points[group.a], &pb = points[group.b];
+    int32_t far = -1;
+    double farthest = 0;
+    for (const int32_t v : group.members) {
+      const Point &p = points[v];
+      const double d = (pb.x - pa.x) * (pa.y - p.y) - (pb.y - pa.y) * (pa.x - p.x);
+      if (d > farthest || (d == farthest && far >= 0 && v < far)) {
+        farthest = d;
+        far = v;
+      }
+    }
+    if (group.members.size() <= kSmall || far < 0) {
+      kept.insert(kept.end(), group.members.begin(), group.members.end());
+      continue;
+    }
+    const Point &pf = points[far];
+    Group before{group.a, far, {}}, after{far, group.b, {}};
+    for (const int32_t v : group.members) {
+      if (v == far)
+        continue;
+      if (orient(pa, pf, points[v]) <= 0)
+        before.members.push_back(v);
+      else if (orient(pf, pb, points[v]) <= 0)
+        after.members.push_back(v);
+    }
+    kept.push_back(far);
+    std::vector<int32_t>().swap(group.members);
+    stack.push_back(std::move(after));
+    stack.push_back(std::move(before));
+  }
+}
+
 // Vertices of the convex hull, counter-clockwise, without collinear points
 // (Andrew's monotone chain with the exact orientation predicate).
 // Points strictly inside the octagon of the extreme points in eight
 // directions are dropped first (Akl-Toussaint), which leaves few points to
-// sort (a quadrilateral of four keeps half a square's points).
+// sort (a quadrilateral of four keeps half a square's points), then those
+// inside chords of the hull (drop_inside_chords).
 std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
   // Extremes counter-clockwise: min y, max x-y, max x, max x+y, max y,
   // max y-x, min x, min x+y. Rounded sums only choose which points; the
@@ -160,17 +213,20 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
     for (int k = 0; k < 8; ++k)
       if (key(i, k) > key(extreme[k], k))
         extreme[k] = i;
-  std::vector<int32_t> order;
-  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i) {
-    bool inside = true;
-    for (int k = 0; k < 8 && inside; ++k) {
+  // Each point outside the octagon goes with the first side it is not
+  // strictly inside of.
+  std::array<std::vector<int32_t>, 8> outside;
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
+    for (int k = 0; k < 8; ++k) {
       const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
-      if (a.x != b.x || a.y != b.y) // corners may repeat
-        inside = orient(a, b, points[i]) > 0;
+      if ((a.x != b.x || a.y != b.y) && orient(a, b, points[i]) <= 0) { // corners may repeat
+        outside[k].push_back(i);
+        break;
+      }
     }
-    if (!inside)
-      order.push_back(i);
-  }
+  std::vector<int32_t> order;
+  for (int k = 0; k < 8; ++k)
+    drop_inside_chords(points, extreme[k], extreme[(k + 1) % 8], std::move(outside[k]), order);
   std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
     return lexicographically_less(points[a], points[b]) ||
            (!lexicographically_less(points[b], points[a]) && a < b);

@@ -85,6 +85,12 @@ TEST_CASE("delaunay: thesis distributions equal CGAL") {
   SUBCASE("gaussian") { triangulate_and_check(fixtures::gaussian(30000, 2)); }
   SUBCASE("disk") { triangulate_and_check(fixtures::disk(30000, 3)); }
   SUBCASE("circle") { triangulate_and_check(fixtures::circle(5000, 4)); }
+  SUBCASE("thin circle") {
+    // Every point outside the hull's octagon: the hull is found by dropping
+    // the points inside its chords, then the hull is fanned.
+    const auto result = triangulate_and_check(fixtures::ring(30000, 1e-3, 5));
+    CHECK(result.stats.construction == "hull_fan");
+  }
   SUBCASE("512x512 grid") { triangulate_and_check(fixtures::lattice(512)); }
 }
 

@@ -366,6 +366,13 @@ inline void prefetch_filter(__global const int *container, int k, int n,
   }
 }
 
+// Whether candidates j and k are closer than sqrt(factor2) times the
+// distance at which they would be orthogonal (|c_j - c_k|^2 = r_j^2 + r_k^2).
+inline bool closer_than(__global const double2 *candidate, __global const double *radius2, int j,
+                        int k, double factor2) {
+  return squared_length(candidate[j] - candidate[k]) < factor2 * (radius2[j] + radius2[k]);
+}
+
 // Does the best candidate of container x, within `ring` rings of candidate
 // k's container, keep k out? Within the priority rings, when it has better
 // priority; with distance rings (any ring up to rings + distance_rings), also
@@ -378,14 +385,17 @@ inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
   const uint mark = tri_mark[x];
   if (mark > mine)
     return false;
-  const int j = tie_mark[x];
-  const double gap2 = j == CLM_NO_CANDIDATE ? 0 : squared_length(candidate[j] - candidate[k]),
-               orthogonal2 = j == CLM_NO_CANDIDATE ? 0 : radius2[j] + radius2[k];
-  if (mark < mine && ring <= rings)
-    return j == CLM_NO_CANDIDATE || isinf(near2) || gap2 < near2 * orthogonal2;
-  if (distance_rings == 0 || j == CLM_NO_CANDIDATE || (mark == mine && j >= k))
+  if (mark < mine && ring <= rings) {
+    if (isinf(near2))
+      return true;
+    const int j = tie_mark[x];
+    return j == CLM_NO_CANDIDATE || closer_than(candidate, radius2, j, k, near2);
+  }
+  if (distance_rings == 0)
     return false;
-  return gap2 < orthogonal2;
+  const int j = tie_mark[x];
+  return j != CLM_NO_CANDIDATE && (mark < mine || j < k) &&
+         closer_than(candidate, radius2, j, k, 1.0);
 }
 
 // rings: how far the filter looks by priority, 2 (the neighbours and theirs)

@@ -375,7 +375,8 @@ inline bool closer_than(__global const double2 *candidate, __global const double
 
 // Does the best candidate of container x, within `ring` rings of candidate
 // k's container, keep k out? Within the priority rings, when it has better
-// priority; with distance rings (any ring up to rings + distance_rings), also
+// priority and is near (closer_than near2; near2 is infinite for GPU-QM, the
+// thesis's rule at any distance); with distance rings (any ring up to rings + distance_rings), also
 // when it goes first (better priority, or equal and a smaller index) and the
 // two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
 // orthogonal), of which k would be deleted again.
@@ -404,7 +405,10 @@ inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
 // priorities: fewer points, more iterations. distance_rings: how many rings
 // further (0 or 1) it also leaves out predicted dependent pairs (GPU-QM-V:
 // without it, two candidates of equal priority, on either side of the same
-// short edge, were both inserted and one deleted again in step 3).
+// short edge, were both inserted and one deleted again in step 3). near2
+// (GPU-QM-V): far better candidates are left to their own neighbourhoods;
+// along a thin ring the small triangles send their candidates into the same
+// few large triangles, whose neighbours otherwise waited one iteration each.
 __kernel void insertion_filter(__global const int *container, __global const int *split_edge,
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,

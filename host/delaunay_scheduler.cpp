@@ -149,9 +149,10 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
     int32_t far = -1;
     double farthest = 0;
     for (const int32_t v : group.members) {
+      // Twice the area of (a, v, b): how far v lies beyond a -> b, rounded.
       const Point &p = points[v];
       const double d = (pb.x - pa.x) * (pa.y - p.y) - (pb.y - pa.y) * (pa.x - p.x);
-      if (d > farthest || (d == farthest && far >= 0 && v < far)) {
+      if (d > farthest) {
         farthest = d;
         far = v;
       }
@@ -171,7 +172,6 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
         after.members.push_back(v);
     }
     kept.push_back(far);
-    std::vector<int32_t>().swap(group.members);
     stack.push_back(std::move(after));
     stack.push_back(std::move(before));
   }

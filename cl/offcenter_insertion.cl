@@ -379,13 +379,18 @@ inline bool closer_than(__global const double2 *candidate, __global const double
 // thesis's rule at any distance); with distance rings (any ring up to rings + distance_rings), also
 // when it goes first (better priority, or equal and a smaller index) and the
 // two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
-// orthogonal), of which k would be deleted again.
+// orthogonal), of which k would be deleted again. With parallel_midpoints, a
+// midpoint never keeps another out: they split different hull edges (a shared
+// container or partner is settled by its mark) and are never a dependent pair.
 inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
                    __global const double2 *candidate, __global const double *radius2, int x,
-                   int ring, int rings, int distance_rings, double near2, int k, uint mine) {
+                   int ring, int rings, int distance_rings, double near2, int parallel_midpoints,
+                   int k, uint mine) {
   const uint mark = tri_mark[x];
   if (mark > mine)
     return false;
+  if (parallel_midpoints && !(mark & CLM_OFFCENTER_RANK) && !(mine & CLM_OFFCENTER_RANK))
+    return false; // two midpoints: each splits its own hull edge
   if (mark < mine && ring <= rings) {
     if (isinf(near2))
       return true;
@@ -414,7 +419,7 @@ __kernel void insertion_filter(__global const int *container, __global const int
                                __global const int *tie_mark, __global const int *tri_neighbor,
                                __global const double2 *candidate, __global const double *radius2,
                                const int rings, const int distance_rings, const double near2,
-                               __global int *survive, const int n) {
+                               const int parallel_midpoints, __global int *survive, const int n) {
   const int k = get_global_id(0);
   prefetch_filter(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k >= n)
@@ -424,7 +429,8 @@ __kernel void insertion_filter(__global const int *container, __global const int
   const int reach = rings + distance_rings;
   bool wins = t >= 0 && tri_mark[t] == mine && tie_mark[t] == k;
 #define CLM_BEATEN(x, ring)                                                                        \
-  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, near2, k, mine)
+  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, near2,            \
+         parallel_midpoints, k, mine)
   for (int i = 0; i < 3 && wins; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     wins = !CLM_BEATEN(u, 1);

@@ -11,10 +11,11 @@ const char *kFile = "offcenter_insertion.cl";
 
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area, int filter_rings, int filter_distance_rings,
-                                       double filter_near)
+                                       double filter_near, bool parallel_midpoints)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
+      parallel_midpoints_(parallel_midpoints),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -116,7 +117,8 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
            candidate_.buffer(), radius2_.buffer(), static_cast<cl_int>(filter_rings_),
-           static_cast<cl_int>(filter_distance_rings_), filter_near2_, survive_.buffer(), n);
+           static_cast<cl_int>(filter_distance_rings_), filter_near2_,
+           static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
   launch(device_, filter_, bad_, kPhase);
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);

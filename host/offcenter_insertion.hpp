@@ -19,9 +19,11 @@ public:
   // more it looks at for predicted dependent pairs (0 or 1; see
   // insertion_filter); filter_near: how near, in multiples of the
   // orthogonal distance, a better candidate within the rings must be to keep
-  // one out (0: at any distance).
+  // one out (0: at any distance); parallel_midpoints: hull midpoints never
+  // keep each other out.
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
-                     int filter_rings, int filter_distance_rings, double filter_near);
+                     int filter_rings, int filter_distance_rings, double filter_near,
+                     bool parallel_midpoints);
 
   // Finds the bad triangles, locates their candidates (hull midpoints where
   // they fall outside or encroach the hull) and runs the insertion filter.
@@ -56,6 +58,7 @@ private:
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
   int filter_rings_, filter_distance_rings_;
   double filter_near2_; // squared; infinite for any distance
+  bool parallel_midpoints_;
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, locate_, mark_, ties_, filter_,
       clear_, append_;
   std::size_t bad_ = 0;

@@ -85,7 +85,8 @@ double filter_near(const RefineOptions &options) {
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle, options.max_area,
-                  filter_rings(options), filter_distance_rings(options), filter_near(options)),
+                  filter_rings(options), filter_distance_rings(options), filter_near(options),
+                  options.parallel_midpoints),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.algorithm == RefineAlgorithm::qmv, offcenter.lens(),

@@ -204,6 +204,30 @@ TEST_CASE("refine: far better candidates do not hold GPU-QM-V's insertions back"
   CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
 }
 
+TEST_CASE("refine: midpoints of different hull edges go in the same iteration") {
+  // A square's four corners around points kept off its sides: four long hull
+  // edges, halved again and again. When a better midpoint within the rings
+  // kept one out, the halves along a side went in about one at a time.
+  std::vector<Point> points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const Point &p : fixtures::uniform(20000, 82))
+    points.push_back({0.01 + 0.98 * p.x, 0.01 + 0.98 * p.y});
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    clmesh::RefineOptions options;
+    options.min_angle = 20;
+    options.algorithm = algorithm;
+    options.parallel_midpoints = false;
+    const auto one_by_one = clmesh::refine_delaunay(device(), points, options);
+    const auto parallel = refine_checked(points, 20, -1, algorithm);
+    MESSAGE("midpoints kept out by better ones: "
+            << one_by_one.stats.iterations << " iterations, " << one_by_one.stats.inserted
+            << " points; in parallel: " << parallel.stats.iterations << ", "
+            << parallel.stats.inserted);
+    CHECK(parallel.stats.iterations * 4 < one_by_one.stats.iterations * 3);
+    // No more points (within half a percent).
+    CHECK(parallel.stats.inserted * 200 < one_by_one.stats.inserted * 201);
+  }
+}
+
 TEST_CASE("refine: maximum area, alone and with an angle") {
   refine_checked(fixtures::uniform(500, 75), 0, 1e-3);
   refine_checked(fixtures::uniform(500, 76), 28, 2e-4);

@@ -22,6 +22,7 @@
 // Priorities are the bits of a positive float (the squared shortest edge):
 // the top bit is free to rank off-centers after midpoints.
 #define CLM_OFFCENTER_RANK 0x80000000u
+inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCENTER_RANK); }
 // A tie mark with no candidate (the host fills tie_mark with it too).
 #define CLM_NO_CANDIDATE 0x7fffffff
 
@@ -379,18 +380,13 @@ inline bool closer_than(__global const double2 *candidate, __global const double
 // thesis's rule at any distance); with distance rings (any ring up to rings + distance_rings), also
 // when it goes first (better priority, or equal and a smaller index) and the
 // two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
-// orthogonal), of which k would be deleted again. With parallel_midpoints, a
-// midpoint never keeps another out: they split different hull edges (a shared
-// container or partner is settled by its mark) and are never a dependent pair.
+// orthogonal), of which k would be deleted again.
 inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
                    __global const double2 *candidate, __global const double *radius2, int x,
-                   int ring, int rings, int distance_rings, double near2, int parallel_midpoints,
-                   int k, uint mine) {
+                   int ring, int rings, int distance_rings, double near2, int k, uint mine) {
   const uint mark = tri_mark[x];
   if (mark > mine)
     return false;
-  if (parallel_midpoints && !(mark & CLM_OFFCENTER_RANK) && !(mine & CLM_OFFCENTER_RANK))
-    return false; // two midpoints: each splits its own hull edge
   if (mark < mine && ring <= rings) {
     if (isinf(near2))
       return true;
@@ -414,6 +410,10 @@ inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
 // (GPU-QM-V): far better candidates are left to their own neighbourhoods;
 // along a thin ring the small triangles send their candidates into the same
 // few large triangles, whose neighbours otherwise waited one iteration each.
+// parallel_midpoints: a midpoint needs its container and partner only, since
+// only midpoints rank before it and two midpoints never conflict: they split
+// different hull edges (a container or partner they share goes by its mark)
+// and are never a dependent pair.
 __kernel void insertion_filter(__global const int *container, __global const int *split_edge,
                                __global const uint *priority, __global const uint *tri_mark,
                                __global const int *tie_mark, __global const int *tri_neighbor,
@@ -428,10 +428,10 @@ __kernel void insertion_filter(__global const int *container, __global const int
   const uint mine = priority[k];
   const int reach = rings + distance_rings;
   bool wins = t >= 0 && tri_mark[t] == mine && tie_mark[t] == k;
+  const bool ringed = !(parallel_midpoints && is_midpoint_priority(mine));
 #define CLM_BEATEN(x, ring)                                                                        \
-  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, near2,            \
-         parallel_midpoints, k, mine)
-  for (int i = 0; i < 3 && wins; ++i) {
+  beaten(tri_mark, tie_mark, candidate, radius2, x, ring, rings, distance_rings, near2, k, mine)
+  for (int i = 0; i < 3 && wins && ringed; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     wins = !CLM_BEATEN(u, 1);
     for (int j = 0; j < 3 && wins; ++j) {

@@ -7,7 +7,8 @@ namespace clmesh {
 
 namespace {
 const char *kFile = "offcenter_insertion.cl";
-}
+constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_CANDIDATE)
+} // namespace
 
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area, int filter_rings, int filter_distance_rings,
@@ -33,7 +34,7 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
       slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
       last_container_(device, mesh.triangle_capacity), radius2_(device, mesh.triangle_capacity) {
-  tie_mark_.fill(device_, 0x7fffffff, mesh.triangle_capacity); // CLM_NO_CANDIDATE
+  tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
   last_container_.fill(device_, -1, mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);

@@ -75,7 +75,11 @@ per minimum angle in --angles (default 20,30 degrees), by four mesh generators:
 
 The time ratios are each clmesh variant's time / Triangle's (below 1: clmesh
 is faster), the vertex ratios its vertex count / Triangle's for the same angle
-bound (above 1: clmesh inserted more Steiner points).  --repeat works as above.
+bound (above 1: clmesh inserted more Steiner points).  The table also gives
+each clmesh variant's and Triangle's peak resident memory and system CPU
+seconds (mostly the kernel zeroing fresh pages: on a virtual machine its cost
+per GB drifts from run to run, and it grows with the footprint).  --repeat
+works as above.
 
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
            [--dists uniform,grid] [--repeat K] [--markdown OUT.md]
@@ -222,7 +226,7 @@ GNU_TIME = "/usr/bin/time"
 
 
 def run_measured(cmd, timeout):
-    """Runs cmd in a fresh process; returns (stdout, its peak RSS in MB).
+    """Runs cmd in a fresh process; returns (stdout, its peak RSS in MB, its system CPU seconds).
 
     A child's ru_maxrss starts at the high-water mark of the process it was
     forked from (Linux keeps it across exec), so a measurement taken with
@@ -230,11 +234,13 @@ def run_measured(cmd, timeout):
     script's own peak.  GNU time (when installed) is a small C program whose
     child starts from its own tiny footprint: its %M is the command's own
     peak.  Without it, os.wait4's ru_maxrss of the direct child is used (this
-    script keeps itself small: inputs are generated in a subprocess)."""
+    script keeps itself small: inputs are generated in a subprocess).  The
+    system seconds (GNU time's %S, else ru_stime) are mostly the kernel zeroing
+    fresh pages: on a virtual machine their cost per GB changes from run to run."""
     use_time = os.access(GNU_TIME, os.X_OK)
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err, \
             tempfile.NamedTemporaryFile(suffix=".rss") as rss:
-        full = [GNU_TIME, "-f", "%M", "-o", rss.name, "--"] + cmd if use_time else cmd
+        full = [GNU_TIME, "-f", "%M %S", "-o", rss.name, "--"] + cmd if use_time else cmd
         try:
             # A session of its own so that a timeout kills the whole group.
             proc = subprocess.Popen(full, stdout=out, stderr=err, stdin=subprocess.DEVNULL,
@@ -263,10 +269,12 @@ def run_measured(cmd, timeout):
         stdout = out.read().decode(errors="replace")
         stderr = err.read().decode(errors="replace")
         peak_kb = usage.ru_maxrss  # Linux: kilobytes
+        system_s = usage.ru_stime
         if use_time:
-            lines = open(rss.name).read().split()
-            if lines and lines[-1].isdigit():
-                peak_kb = int(lines[-1])
+            fields = open(rss.name).read().split()
+            if len(fields) >= 2 and fields[-2].isdigit():
+                peak_kb = int(fields[-2])
+                system_s = float(fields[-1])
     if timed_out.is_set():
         raise ToolFailure(f"timed out after {timeout:g} s")
     if code != 0:
@@ -274,7 +282,7 @@ def run_measured(cmd, timeout):
             raise ToolFailure(f"cannot start {cmd[0]}")
         tail = (stderr.strip() or stdout.strip()).splitlines()[-3:]
         raise ToolFailure(f"exit status {code}" + (": " + " | ".join(tail) if tail else ""))
-    return stdout, peak_kb / 1024.0
+    return stdout, peak_kb / 1024.0, system_s
 
 
 def last_json_line(stdout):
@@ -294,7 +302,8 @@ def run_clmesh(exe, node, timeout, switches=()):
     fd, stats_path = tempfile.mkstemp(suffix=".json", dir=os.path.dirname(node))
     os.close(fd)
     try:
-        _, peak = run_measured([exe, *switches, "-Q", "--stats-json", stats_path, node], timeout)
+        _, peak, system_s = run_measured([exe, *switches, "-Q", "--stats-json", stats_path, node],
+                                         timeout)
         with open(stats_path) as f:
             stats = json.load(f)
     except (OSError, ValueError) as e:
@@ -313,7 +322,7 @@ def run_clmesh(exe, node, timeout, switches=()):
     vertices = None
     if counts.get("input_points") is not None and refinement.get("steiner_points") is not None:
         vertices = int(counts["input_points"]) + int(refinement["steiner_points"])
-    return {"seconds": seconds, "peak_mb": peak, "phases": phases,
+    return {"seconds": seconds, "peak_mb": peak, "system_s": system_s, "phases": phases,
             "triangles": counts.get("triangles"), "device": stats.get("device"),
             "vertices": vertices, "remaining_bad": refinement.get("remaining_bad_triangles"),
             "iterations": refinement.get("iterations"), "refinement": refinement}
@@ -334,20 +343,21 @@ def run_triangle(available, node, timeout, child=TRIANGLE_CHILD, switches=""):
     if not available:
         raise ToolFailure("the Python package 'triangle' is not available")
     cmd = [sys.executable, "-c", child, node] + ([switches] if switches else [])
-    stdout, peak = run_measured(cmd, timeout)
+    stdout, peak, system_s = run_measured(cmd, timeout)
     r = last_json_line(stdout)
-    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles"),
-            "vertices": r.get("vertices"), "dt_seconds": r.get("dt_seconds")}
+    return {"seconds": float(r["seconds"]), "peak_mb": peak, "system_s": system_s,
+            "triangles": r.get("triangles"), "vertices": r.get("vertices"),
+            "dt_seconds": r.get("dt_seconds")}
 
 
 def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
     """cgal_bench MODE [MODE_ARGS...] NODE, e.g. mode "mesh" with mode_args ("30",)."""
     if not os.path.isfile(exe):
         raise ToolFailure(f"{exe} not built (needs libcgal-dev at configure time)")
-    stdout, peak = run_measured([exe, mode, *mode_args, node], timeout)
+    stdout, peak, system_s = run_measured([exe, mode, *mode_args, node], timeout)
     r = last_json_line(stdout)
-    return {"seconds": float(r["seconds"]), "peak_mb": peak, "triangles": r.get("triangles"),
-            "vertices": r.get("vertices")}
+    return {"seconds": float(r["seconds"]), "peak_mb": peak, "system_s": system_s,
+            "triangles": r.get("triangles"), "vertices": r.get("vertices")}
 
 
 def best_of(k, fn, *args):
@@ -414,6 +424,10 @@ def fmt_ratio(a, b):
 
 def fmt_mb(r):
     return f"{r['peak_mb']:.0f}" if r else "fail"
+
+
+def fmt_system(r):
+    return f"{r['system_s']:.2f}" if r else "fail"
 
 
 def fmt_phases(r):
@@ -716,12 +730,16 @@ def main_quality(a, ap):
                             + [fmt_count(results[k], "vertices")
                                for k in labels + ["Triangle", "CGAL"]]
                             + [fmt_vertex_ratio(results[k], tr) for k in labels]
+                            + [fmt_mb(results[k]) for k in labels + ["Triangle"]]
+                            + [fmt_system(results[k]) for k in labels + ["Triangle"]]
                             + [fmt_refine_details(results[labels[0]])])
 
     header = (["dist", "n", "angle"] + [f"{k} s" for k in labels] + ["Triangle s", "CGAL s"]
               + [f"{k}/Triangle" for k in labels]
               + [f"vertices {k}" for k in labels] + ["vertices Triangle", "vertices CGAL"]
               + [f"vertex ratio {k}/Triangle" for k in labels]
+              + [f"peak MB {k}" for k in labels + ["Triangle"]]
+              + [f"system s {k}" for k in labels + ["Triangle"]]
               + [f"{labels[0]} steps 1/2/3 s, flips"])
     return report(a, header, rows,
                   [f"Quality meshes of the convex hull with minimum angle ANGLE degrees "
@@ -731,7 +749,10 @@ def main_quality(a, ap):
                    "(clmesh: seconds.compute); X/Triangle is the time ratio (below 1: clmesh is "
                    "faster); clmesh vertices = input points + Steiner points, Triangle vertices = "
                    "len(result['vertices']), CGAL vertices = number_of_vertices(); the vertex "
-                   "ratio is clmesh's vertices / Triangle's.",
+                   "ratio is clmesh's vertices / Triangle's. Peak MB: the process's maximum "
+                   "resident set (the largest of the runs); system s: its system CPU seconds in "
+                   "the run whose time is shown, file reading included (mostly the kernel "
+                   "zeroing fresh pages, whose cost per GB drifts on a shared virtual machine).",
                    f"Last column ({labels[0]}): seconds of step 1 (off-center insertion) / step 2 "
                    "(missing point insertion) / step 3 (flip-flop deletion) over all iterations, "
                    "plus the 'flipping' phase timed apart from them (these phases include the "

@@ -97,31 +97,16 @@ inline Quality assess(__global const double2 *points, __global const int *point_
   return q;
 }
 
-// Per entry: is_bad[gid], and the candidate and priority of a bad triangle,
-// for the triangle list[gid] (use_list), else for slot gid. The list holds
-// the bad triangles of the last search and the triangles changed since: the
-// others are still good (thesis §3.3.2).
-__kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *point_state, __global const int *list,
-                                 const int use_list, const double ratio_bound_squared,
-                                 const double max_area, const double offconstant,
-                                 __global int *is_bad, __global double2 *slot_candidate,
-                                 __global uint *slot_priority, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  is_bad[gid] = 0;
-  if (use_list)
-    prefetch_corners(list, gid, n, points, point_state, tri_vertex);
-  else
-    warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
-  const int t = use_list ? list[gid] : gid;
-  const VertexTriple tri = load_vertices(tri_vertex, t);
-  if (is_ghost(tri) || is_dead(tri))
-    return;
+// The candidate of triangle `tri` when it is bad and can be mended: its
+// off-center (Üngör's, as Triangle computes it, on the side of the shortest
+// edge) and its priority, the shortest edge's squared length as a float. The
+// search and the location both compute it, so that no per-slot copy is kept.
+inline bool bad_triangle_candidate(__global const double2 *points, __global const int *point_state,
+                                   VertexTriple tri, double ratio_bound_squared, double max_area,
+                                   double offconstant, double2 *steiner, uint *priority) {
   const Quality q = assess(points, point_state, tri, ratio_bound_squared, max_area);
   if ((!q.skinny && !q.large) || q.unfixable)
-    return;
+    return false;
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
   const int shortest = q.shortest;
   const double2 a = q.p[next3(shortest)], b = q.p[prev3(shortest)], r = q.p[shortest];
@@ -133,12 +118,34 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
   const double2 middle = 0.5 * e, away = center - middle; // from the edge's midpoint
   const double reach = offconstant * sqrt(e2), distance = sqrt(squared_length(away));
   const double2 offset = distance > reach ? middle + away * (reach / distance) : center;
-  const double2 steiner = a + offset;
-  if (!isfinite(steiner.x) || !isfinite(steiner.y))
-    return; // a degenerate computation: leave the triangle alone
-  is_bad[gid] = 1;
-  slot_candidate[gid] = steiner;
-  slot_priority[gid] = as_uint((float)q.length_squared[shortest]);
+  *steiner = a + offset;
+  *priority = as_uint((float)q.length_squared[shortest]);
+  // A degenerate computation leaves the triangle alone.
+  return isfinite(steiner->x) && isfinite(steiner->y);
+}
+
+// Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
+// slot gid. The list holds the bad triangles of the last search and the
+// triangles changed since: the others are still good (thesis §3.3.2).
+__kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
+                                 __global const int *point_state, __global const int *list,
+                                 const int use_list, const double ratio_bound_squared,
+                                 const double max_area, const double offconstant,
+                                 __global int *is_bad, const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  if (use_list)
+    prefetch_corners(list, gid, n, points, point_state, tri_vertex);
+  else
+    warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
+  const int t = use_list ? list[gid] : gid;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  double2 steiner;
+  uint priority;
+  is_bad[gid] = !is_ghost(tri) && !is_dead(tri) &&
+                bad_triangle_candidate(points, point_state, tri, ratio_bound_squared, max_area,
+                                       offconstant, &steiner, &priority);
 }
 
 // counts[0]: the bad triangles whose smallest angle is at an acute hull
@@ -162,17 +169,12 @@ __kernel void count_unfixable_triangles(__global const double2 *points,
 // sum), so that candidate k is the same on every device and for every
 // work-group size.
 __kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
-                                   __global const double2 *slot_candidate,
-                                   __global const uint *slot_priority, __global const int *list,
-                                   const int use_list, __global double2 *candidate,
-                                   __global int *origin, __global uint *priority, const int n) {
+                                   __global const int *list, const int use_list,
+                                   __global int *origin, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || !is_bad[gid])
     return;
-  const int k = offset[gid];
-  candidate[k] = slot_candidate[gid];
-  origin[k] = use_list ? list[gid] : gid;
-  priority[k] = slot_priority[gid];
+  origin[offset[gid]] = use_list ? list[gid] : gid;
 }
 
 // The second triangle a candidate on an edge splits (a ghost for a hull
@@ -204,7 +206,8 @@ inline double insertion_radius2_of(__global const double2 *points, __global cons
   return radius2;
 }
 
-// Locates candidate k walking from its bad triangle, or from the container
+// Computes the candidate of bad triangle origin[k] and its priority, and
+// locates it walking from that triangle, or from the container
 // found for it by the last search (last_container[origin], kept when neither
 // triangle was rewritten since: modified_stamp below located_stamp, the
 // stamp of that search). A candidate that ends in a ghost triangle, or
@@ -234,18 +237,23 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
 __kernel void locate_candidates(__global const double2 *points, __global const int *tri_vertex,
                                 __global const int *tri_neighbor, __global const int *point_state,
                                 __global const int *modified_stamp, __global int *last_container,
-                                const int located_stamp, __global double2 *candidate,
-                                __global int *container, __global int *split_edge,
-                                __global const int *origin, __global uint *priority,
-                                __global double *radius2, const double lens, const int max_steps,
-                                const int n) {
+                                const int located_stamp, const double ratio_bound_squared,
+                                const double max_area, const double offconstant,
+                                __global double2 *candidate, __global int *container,
+                                __global int *split_edge, __global const int *origin,
+                                __global uint *priority, __global double *radius2,
+                                const double lens, const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
   if (k >= n)
     return;
-  const double2 c = candidate[k];
   const int bad = origin[k], known = last_container[bad];
+  double2 c;
+  uint rank;
+  bad_triangle_candidate(points, point_state, load_vertices(tri_vertex, bad), ratio_bound_squared,
+                         max_area, offconstant, &c, &rank); // bad: the search found it so
+  candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;
   const WalkResult walk =
@@ -297,8 +305,7 @@ __kernel void locate_candidates(__global const double2 *points, __global const i
   }
   // Segment-split goes before triangle-split (thesis §3.4.1): off-centers
   // rank after every midpoint, in their own order.
-  if (hull_edge < 0)
-    priority[k] |= CLM_OFFCENTER_RANK;
+  priority[k] = hull_edge < 0 ? rank | CLM_OFFCENTER_RANK : rank;
   const bool located = (walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0) && splits_cleanly;
   container[k] = located ? t : -1;
   last_container[bad] = located ? t : -1;

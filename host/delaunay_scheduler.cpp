@@ -348,7 +348,7 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   // Build every program before the clock starts.
   for (const char *file :
        {"scan.cl", "voronoi_banding.cl", "triangulation_construction.cl", "shifting.cl",
-        "missing_point_insertion.cl", "flipping.cl", "mesh_output.cl"})
+        "missing_point_insertion.cl", "flipping.cl", "mesh_output.cl", "fill.cl"})
     device.program(file, "setup");
   start_ = Clock::now();
 }

@@ -44,16 +44,14 @@ public:
     guarded("allocation", "growing a device array", [&] {
       if (size_)
         device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, size_ * sizeof(T));
-      if (size > size_)
-        device.queue().enqueueFillBuffer(bigger.buffer_, fill, size_ * sizeof(T),
-                                         (size - size_) * sizeof(T));
     });
+    if (size > size_)
+      device.fill(bigger.buffer_, &fill, sizeof(T), size_ * sizeof(T), (size - size_) * sizeof(T),
+                  "allocation");
     return bigger;
   }
   void fill(Device &device, T value, std::size_t count) const {
-    if (count)
-      guarded("setup", "filling a device array",
-              [&] { device.queue().enqueueFillBuffer(buffer_, value, 0, count * sizeof(T)); });
+    device.fill(buffer_, &value, sizeof(T), 0, count * sizeof(T), "setup");
   }
 
 private:

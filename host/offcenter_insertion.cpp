@@ -31,8 +31,7 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       container_(device, mesh.triangle_capacity), split_edge_(device, mesh.triangle_capacity),
       survive_(device, mesh.triangle_capacity), keep_(device, mesh.triangle_capacity),
       offset_(device, mesh.triangle_capacity), tie_mark_(device, mesh.triangle_capacity),
-      listed_(device, mesh.triangle_capacity), slot_candidate_(device, mesh.triangle_capacity),
-      slot_priority_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
+      listed_(device, mesh.triangle_capacity), priority_(device, mesh.triangle_capacity),
       last_container_(device, mesh.triangle_capacity), radius2_(device, mesh.triangle_capacity) {
   tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
   last_container_.fill(device_, -1, mesh.triangle_capacity);
@@ -92,21 +91,20 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   const auto items = static_cast<cl_int>(entries);
   set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
            listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-           offconstant_, keep_.buffer(), slot_candidate_.buffer(), slot_priority_.buffer(), items);
+           offconstant_, keep_.buffer(), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   if (bad_ == 0)
     return 0;
-  set_args(gather_bad_, keep_.buffer(), offset_.buffer(), slot_candidate_.buffer(),
-           slot_priority_.buffer(), listed_.buffer(), static_cast<cl_int>(use_list),
-           candidate_.buffer(), origin_.buffer(), priority_.buffer(), items);
+  set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
+           static_cast<cl_int>(use_list), origin_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   const auto n = static_cast<cl_int>(bad_);
   set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
-           located_stamp_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           origin_.buffer(), priority_.buffer(), radius2_.buffer(), lens_,
-           static_cast<cl_int>(mesh_.triangle_count + 8), n);
+           located_stamp_, ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
+           container_.buffer(), split_edge_.buffer(), origin_.buffer(), priority_.buffer(),
+           radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
   located_stamp_ = stamp;
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),

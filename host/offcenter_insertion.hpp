@@ -68,8 +68,7 @@ private:
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> origin_, container_, split_edge_, survive_, keep_, offset_, tie_mark_;
   DeviceArray<cl_int> listed_; // the triangles of a search after the first
-  DeviceArray<cl_double2> slot_candidate_;
-  DeviceArray<cl_uint> slot_priority_, priority_;
+  DeviceArray<cl_uint> priority_;
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -350,6 +351,28 @@ cl::Kernel Device::kernel(const std::string &file, const std::string &name,
                           const std::string &phase) {
   cl::Program &built = program(file, phase);
   return guarded(phase, "creating kernel", [&] { return cl::Kernel(built, name.c_str()); });
+}
+
+void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
+                  std::size_t offset, std::size_t bytes, const std::string &phase) {
+  if (bytes == 0)
+    return;
+  const std::size_t word = sizeof(cl_uint);
+  if ((pattern_size != 4 && pattern_size != 8 && pattern_size != 16) || offset % word != 0 ||
+      bytes % word != 0) {
+    const cl_int error = clEnqueueFillBuffer(queue_(), buffer(), pattern, pattern_size, offset,
+                                             bytes, 0, nullptr, nullptr);
+    if (error != CL_SUCCESS)
+      throw OpenCLError(error, "clEnqueueFillBuffer", phase, "filling a device array");
+    return;
+  }
+  if (!fill_words_())
+    fill_words_ = kernel("fill.cl", "fill_words", phase);
+  cl_uint4 words{};
+  std::memcpy(&words, pattern, pattern_size);
+  set_args(fill_words_, buffer, words, static_cast<cl_uint>(pattern_size / word),
+           static_cast<cl_ulong>(offset / word), static_cast<cl_ulong>(bytes / word));
+  launch(*this, fill_words_, bytes / word, phase);
 }
 
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase) {

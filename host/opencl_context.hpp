@@ -39,6 +39,11 @@ public:
   // transparent huge pages asked for: the refinement's random accesses then
   // miss the TLB far less often.
   cl::Buffer allocate(std::size_t bytes);
+  // Sets `bytes` bytes of `buffer` from byte `offset` on to copies of the
+  // `pattern_size`-byte `pattern`, in parallel (cl/fill.cl); the pattern
+  // repeats from the buffer's start.
+  void fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
+            std::size_t offset, std::size_t bytes, const std::string &phase);
 
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }
@@ -57,6 +62,7 @@ private:
   cl::CommandQueue queue_;
   std::size_t work_group_ = 64;
   std::map<std::string, cl::Program> programs_;
+  cl::Kernel fill_words_;      // created on the first fill
   std::string build_identity_; // platform, device and driver, for the program cache
   bool cpu_ = false;
   std::string build_options_ = "-cl-std=CL1.2";

@@ -1,6 +1,7 @@
 // Device arrays (host/device_mesh.hpp, Device::allocate): a large array on a
 // CPU device lives in host memory the device uses in place; its contents
-// survive kernels, growth and the release of its owner.
+// survive kernels, growth and the release of its owner; fills set exactly
+// their range.
 #include <doctest/doctest.h>
 
 #include "device_mesh.hpp"
@@ -64,6 +65,37 @@ TEST_CASE("device arrays: both scan methods give the exact prefix sums at every 
       const std::vector<cl_int> got = offsets.download(dev, n + 1);
       CHECK(std::equal(got.begin(), got.begin() + n, expected.begin()));
       CHECK(got[n] == -1); // nothing written past the end
+    }
+  }
+}
+
+TEST_CASE("device arrays: fills set exactly their range, for 4-, 8- and 16-byte elements") {
+  // Device::fill runs a kernel (cl/fill.cl) for these sizes: the pattern
+  // must line up with the elements, also when the range starts inside.
+  Device &dev = device();
+  const std::size_t n = 100003, first = 777;
+  DeviceArray<cl_int> ints(dev, n);
+  ints.upload(dev, std::vector<cl_int>(n, 5));
+  ints.fill(dev, -3, n - 1); // the last entry stays
+  const std::vector<cl_int> got_ints = ints.download(dev, n);
+  CHECK(std::all_of(got_ints.begin(), got_ints.end() - 1, [](cl_int v) { return v == -3; }));
+  CHECK(got_ints.back() == 5);
+
+  const DeviceArray<cl_double> doubles =
+      DeviceArray<cl_double>(dev, first).grown(dev, n, -1.0 / 3.0);
+  const std::vector<cl_double> got_doubles = doubles.download(dev, n - first, first);
+  CHECK(std::all_of(got_doubles.begin(), got_doubles.end(),
+                    [](cl_double v) { return v == -1.0 / 3.0; }));
+
+  DeviceArray<cl_double2> pairs(dev, first);
+  pairs.upload(dev, std::vector<cl_double2>(first, cl_double2{{7, 8}}));
+  const DeviceArray<cl_double2> grown_pairs = pairs.grown(dev, n, cl_double2{{0.25, -2.5}});
+  const std::vector<cl_double2> got_pairs = grown_pairs.download(dev, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = i < first ? 7 : 0.25, y = i < first ? 8 : -2.5;
+    if (got_pairs[i].s[0] != x || got_pairs[i].s[1] != y) {
+      FAIL_CHECK("pair " << i << " is (" << got_pairs[i].s[0] << ", " << got_pairs[i].s[1] << ")");
+      break;
     }
   }
 }

@@ -40,14 +40,21 @@ public:
 
   // A larger array holding this one's contents, the rest set to `fill`.
   DeviceArray grown(Device &device, std::size_t size, T fill) const {
-    DeviceArray bigger(device, size);
-    guarded("allocation", "growing a device array", [&] {
-      if (size_)
-        device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, size_ * sizeof(T));
-    });
+    DeviceArray bigger = enlarged(device, size, size_);
     if (size > size_)
       device.fill(bigger.buffer_, &fill, sizeof(T), size_ * sizeof(T), (size - size_) * sizeof(T),
                   "allocation");
+    return bigger;
+  }
+  // A larger array holding the first `kept` entries of this one, the rest
+  // not written (so not touched: memory comes to a CPU device when first
+  // written).
+  DeviceArray enlarged(Device &device, std::size_t size, std::size_t kept) const {
+    DeviceArray bigger(device, size);
+    if (kept)
+      guarded("allocation", "growing a device array", [&] {
+        device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, kept * sizeof(T));
+      });
     return bigger;
   }
   void fill(Device &device, T value, std::size_t count) const {
@@ -67,7 +74,7 @@ template <typename T> struct DeviceList {
   // Room for `count` more entries after the first `size`.
   void reserve(Device &device, std::size_t count) {
     if (size + count > items.size())
-      items = items.grown(device, 2 * (size + count), T{});
+      items = items.enlarged(device, 2 * (size + count), size);
   }
   void append(Device &device, const DeviceArray<T> &from, std::size_t count) {
     if (count == 0)

@@ -350,8 +350,9 @@ void FlipflopDeletion::compact_triangles(Point low, double side) {
     std::swap(mesh_.tri_vertex, mesh_.children);
     std::swap(mesh_.tri_neighbor, moved_neighbor);
   }
-  mesh_.tri_mark.fill(device_, -1, mesh_.triangle_capacity); // no mark
-  mesh_.modified_stamp.fill(device_, 0, mesh_.triangle_capacity);
+  // Past the old slots the marks and stamps were never written since filled.
+  mesh_.tri_mark.fill(device_, -1, slots); // no mark
+  mesh_.modified_stamp.fill(device_, 0, slots);
   mesh_.triangle_count = live;
   mesh_.free_triangles.first = mesh_.free_triangles.count = 0;
 }

@@ -107,6 +107,7 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
            radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, bad_, kPhase);
   located_stamp_ = stamp;
+  located_slots_ = std::max(located_slots_, mesh_.triangle_count);
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, bad_, kPhase);
@@ -128,7 +129,8 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
 void OffcenterInsertion::forget_triangles() {
   searched_ = false;
   bad_ = 0;
-  last_container_.fill(device_, -1, last_container_.size());
+  last_container_.fill(device_, -1, located_slots_);
+  located_slots_ = 0;
 }
 
 std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,

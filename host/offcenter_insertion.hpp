@@ -74,6 +74,7 @@ private:
   DeviceArray<cl_int> last_container_;
   DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
   cl_int located_stamp_ = 0;       // the mesh's stamp when the last search located
+  std::size_t located_slots_ = 0;  // last_container_ is -1 from here on
 };
 
 } // namespace clmesh

@@ -42,8 +42,7 @@ public:
   DeviceArray grown(Device &device, std::size_t size, T fill) const {
     DeviceArray bigger = enlarged(device, size, size_);
     if (size > size_)
-      device.fill(bigger.buffer_, &fill, sizeof(T), size_ * sizeof(T), (size - size_) * sizeof(T),
-                  "allocation");
+      bigger.fill_range(device, fill, size_, size - size_, "allocation");
     return bigger;
   }
   // A larger array holding the first `kept` entries of this one, the rest
@@ -58,10 +57,17 @@ public:
     return bigger;
   }
   void fill(Device &device, T value, std::size_t count) const {
-    device.fill(buffer_, &value, sizeof(T), 0, count * sizeof(T), "setup");
+    fill_range(device, value, 0, count, "setup");
   }
 
 private:
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8 || sizeof(T) == 16,
+                "Device::fill writes elements of 1, 2 or 4 words");
+  void fill_range(Device &device, T value, std::size_t first, std::size_t count,
+                  const char *phase) const {
+    device.fill(buffer_, &value, sizeof(T), first * sizeof(T), count * sizeof(T), phase);
+  }
+
   cl::Buffer buffer_;
   std::size_t size_ = 0;
 };

@@ -358,14 +358,10 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
   if (bytes == 0)
     return;
   const std::size_t word = sizeof(cl_uint);
-  if ((pattern_size != 4 && pattern_size != 8 && pattern_size != 16) || offset % word != 0 ||
-      bytes % word != 0) {
-    const cl_int error = clEnqueueFillBuffer(queue_(), buffer(), pattern, pattern_size, offset,
-                                             bytes, 0, nullptr, nullptr);
-    if (error != CL_SUCCESS)
-      throw OpenCLError(error, "clEnqueueFillBuffer", phase, "filling a device array");
-    return;
-  }
+  if ((pattern_size != 4 && pattern_size != 8 && pattern_size != 16) ||
+      offset % pattern_size != 0 || bytes % pattern_size != 0)
+    throw InternalError("a device fill takes whole elements of 4, 8 or 16 bytes, not " +
+                        std::to_string(pattern_size));
   if (!fill_words_())
     fill_words_ = kernel("fill.cl", "fill_words", phase);
   cl_uint4 words{};

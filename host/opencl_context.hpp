@@ -40,8 +40,9 @@ public:
   // miss the TLB far less often.
   cl::Buffer allocate(std::size_t bytes);
   // Sets `bytes` bytes of `buffer` from byte `offset` on to copies of the
-  // `pattern_size`-byte `pattern`, in parallel (cl/fill.cl); the pattern
-  // repeats from the buffer's start.
+  // `pattern_size`-byte `pattern` (4, 8 or 16 bytes; offset and bytes whole
+  // elements), in parallel (cl/fill.cl); the pattern repeats from the
+  // buffer's start.
   void fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
             std::size_t offset, std::size_t bytes, const std::string &phase);
 

@@ -44,7 +44,7 @@ clmesh::RefineResult
 refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
                clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv,
                bool remaining_allowed = false, int filter_rings = 0, int filter_distance_rings = -1,
-               double filter_near = -1) {
+               double filter_near = -1, int election_rings = -1) {
   clmesh::RefineOptions options;
   options.min_angle = angle;
   options.max_area = max_area;
@@ -52,6 +52,7 @@ refine_checked(const std::vector<Point> &input, double angle, double max_area = 
   options.filter_rings = filter_rings;
   options.filter_distance_rings = filter_distance_rings;
   options.filter_near = filter_near;
+  options.election_rings = election_rings;
   clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
   std::vector<Point> points = input;
   points.insert(points.end(), result.added_points.begin(), result.added_points.end());
@@ -226,6 +227,39 @@ TEST_CASE("refine: midpoints of different hull edges go in the same iteration") 
     // No more points (within half a percent).
     CHECK(parallel.stats.inserted * 200 < one_by_one.stats.inserted * 201);
   }
+}
+
+TEST_CASE("refine: GPU-QM-V's election locates fewer candidates for the same mesh size") {
+  // Most candidates of bad triangles near worse ones lose in the insertion
+  // filter: only the elected bad triangles send theirs, the others wait. A
+  // square's corners bound the points, so that the hull's long edges are
+  // halved again and again (bad triangles at the hull are always elected).
+  std::vector<Point> points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const Point &p : fixtures::uniform(20000, 83))
+    points.push_back({0.01 + 0.98 * p.x, 0.01 + 0.98 * p.y});
+  const auto qmv = clmesh::RefineAlgorithm::qmv;
+  for (const double angle : {20.0, 30.0}) {
+    INFO("angle " << angle);
+    const auto all = refine_checked(points, angle, -1, qmv, false, 0, -1, -1, 0);
+    const auto one_ring = refine_checked(points, angle, -1, qmv, false, 0, -1, -1, 1);
+    const auto two_rings = refine_checked(points, angle, -1, qmv);
+    MESSAGE("candidates, iterations, points: every bad triangle "
+            << all.stats.candidates << ", " << all.stats.iterations << ", " << all.stats.inserted
+            << "; elected in one ring " << one_ring.stats.candidates << ", "
+            << one_ring.stats.iterations << ", " << one_ring.stats.inserted << "; in two "
+            << two_rings.stats.candidates << ", " << two_rings.stats.iterations << ", "
+            << two_rings.stats.inserted);
+    CHECK(one_ring.stats.candidates < all.stats.candidates);
+    CHECK(two_rings.stats.candidates < one_ring.stats.candidates);
+    CHECK(two_rings.stats.candidates * 3 < all.stats.candidates * 2);
+    // At most a third more iterations, and 1.5% more points.
+    CHECK(two_rings.stats.iterations * 3 <= all.stats.iterations * 4);
+    CHECK(two_rings.stats.inserted * 200 < all.stats.inserted * 203);
+  }
+  clmesh::RefineOptions options;
+  options.min_angle = 30;
+  options.election_rings = 3;
+  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
 }
 
 TEST_CASE("refine: maximum area, alone and with an angle") {

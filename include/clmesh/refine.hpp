@@ -42,6 +42,12 @@ struct RefineOptions {
   // iterations). false: the thesis's filter, where a better midpoint within
   // the rings keeps one out like any better candidate.
   bool parallel_midpoints = true;
+  // A bad triangle sends a candidate only when no bad triangle within this
+  // many rings of it (0, 1 or 2) has a better priority; the others wait, where
+  // the insertion filter would mostly have left their candidates out. 0: every
+  // bad triangle sends one (the thesis); -1 picks the algorithm's (qmv: 2,
+  // qm: 0).
+  int election_rings = -1;
   // Flip-flop passes over at most this many triangles run in one work-group,
   // one launch for the whole pass (0: every pass as separate kernels). A
   // matter of speed only: the mesh is the same.
@@ -50,7 +56,7 @@ struct RefineOptions {
 
 struct RefineStats {
   long iterations = 0;
-  long candidates = 0;              // bad triangles' candidates, over all iterations
+  long candidates = 0;              // candidates located (elected), over all iterations
   long insertions = 0;              // candidates inserted (step 2), over all iterations
   long deleted = 0;                 // of them, deleted again as redundant (step 3)
   long kept_redundant = 0;          // redundant points kept: no flip could delete them

@@ -189,6 +189,30 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
   origin[offset[gid]] = use_list ? list[gid] : gid;
 }
 
+// Prefetching for a kernel that reads the marks of two rings of triangles
+// around each triangle of `list` (prefetch.h): the triangle's mark and links,
+// then its neighbours' marks and links, then the marks of theirs.
+inline void prefetch_two_rings(__global const int *list, int k, int n,
+                               __global const uint *tri_mark, __global const int *tri_neighbor) {
+  const int far = entry_ahead(list, k, 3, n);
+  if (far >= 0) {
+    warm(tri_mark + far);
+    warm(tri_neighbor + 3 * far);
+  }
+  const int middle = entry_ahead(list, k, 2, n);
+  for (int i = 0; i < 3 && middle >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * middle + i]);
+    warm(tri_mark + u);
+    warm(tri_neighbor + 3 * u);
+  }
+  const int near = entry_ahead(list, k, 1, n);
+  for (int i = 0; i < 3 && near >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * near + i]);
+    for (int j = 0; j < 3 && u >= 0; ++j)
+      warm(tri_mark + link_triangle(tri_neighbor[3 * u + j]));
+  }
+}
+
 // The election (GPU-QM-V): bad triangle bad[k] sends a candidate in this
 // iteration only when no bad triangle within `rings` rings of it (1: its
 // neighbours; 2: and theirs) has a better priority (the marks of
@@ -204,6 +228,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
                                __global const uint *tri_mark, const int rings,
                                __global int *elected, const int n) {
   const int k = get_global_id(0);
+  prefetch_two_rings(bad, k, n, tri_mark, tri_neighbor);
   if (k >= n)
     return;
   const int t = bad[k];
@@ -408,31 +433,6 @@ __kernel void mark_candidate_ties(__global const int *container, __global const 
     atomic_min(&tie_mark[partner], k);
 }
 
-// Prefetching for insertion_filter (prefetch.h): a container's marks and
-// links, then its neighbours' marks and links, then the marks of theirs.
-inline void prefetch_filter(__global const int *container, int k, int n,
-                            __global const uint *tri_mark, __global const int *tie_mark,
-                            __global const int *tri_neighbor) {
-  const int far = entry_ahead(container, k, 3, n);
-  if (far >= 0) {
-    warm(tri_mark + far);
-    warm(tie_mark + far);
-    warm(tri_neighbor + 3 * far);
-  }
-  const int middle = entry_ahead(container, k, 2, n);
-  for (int i = 0; i < 3 && middle >= 0; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * middle + i]);
-    warm(tri_mark + u);
-    warm(tri_neighbor + 3 * u);
-  }
-  const int near = entry_ahead(container, k, 1, n);
-  for (int i = 0; i < 3 && near >= 0; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * near + i]);
-    for (int j = 0; j < 3 && u >= 0; ++j)
-      warm(tri_mark + link_triangle(tri_neighbor[3 * u + j]));
-  }
-}
-
 // Whether candidates j and k are closer than sqrt(factor2) times the
 // distance at which they would be orthogonal (|c_j - c_k|^2 = r_j^2 + r_k^2).
 inline bool closer_than(__global const double2 *candidate, __global const double *radius2, int j,
@@ -487,7 +487,10 @@ __kernel void insertion_filter(__global const int *container, __global const int
                                const int rings, const int distance_rings, const double near2,
                                const int parallel_midpoints, __global int *survive, const int n) {
   const int k = get_global_id(0);
-  prefetch_filter(container, k, n, tri_mark, tie_mark, tri_neighbor);
+  prefetch_two_rings(container, k, n, tri_mark, tri_neighbor);
+  const int far = entry_ahead(container, k, 3, n);
+  if (far >= 0)
+    warm(tie_mark + far);
   if (k >= n)
     return;
   const int t = container[k];

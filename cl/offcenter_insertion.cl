@@ -190,13 +190,17 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 }
 
 // Prefetching for a kernel that reads the marks of two rings of triangles
-// around each triangle of `list` (prefetch.h): the triangle's mark and links,
-// then its neighbours' marks and links, then the marks of theirs.
+// around each triangle of `list` (prefetch.h): the triangle's mark (and its
+// tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and
+// links, then the marks of theirs.
 inline void prefetch_two_rings(__global const int *list, int k, int n,
-                               __global const uint *tri_mark, __global const int *tri_neighbor) {
+                               __global const uint *tri_mark, __global const int *tie_mark,
+                               __global const int *tri_neighbor) {
   const int far = entry_ahead(list, k, 3, n);
   if (far >= 0) {
     warm(tri_mark + far);
+    if (tie_mark)
+      warm(tie_mark + far);
     warm(tri_neighbor + 3 * far);
   }
   const int middle = entry_ahead(list, k, 2, n);
@@ -228,7 +232,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
                                __global const uint *tri_mark, const int rings,
                                __global int *elected, const int n) {
   const int k = get_global_id(0);
-  prefetch_two_rings(bad, k, n, tri_mark, tri_neighbor);
+  prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
   if (k >= n)
     return;
   const int t = bad[k];
@@ -487,10 +491,7 @@ __kernel void insertion_filter(__global const int *container, __global const int
                                const int rings, const int distance_rings, const double near2,
                                const int parallel_midpoints, __global int *survive, const int n) {
   const int k = get_global_id(0);
-  prefetch_two_rings(container, k, n, tri_mark, tri_neighbor);
-  const int far = entry_ahead(container, k, 3, n);
-  if (far >= 0)
-    warm(tie_mark + far);
+  prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k >= n)
     return;
   const int t = container[k];

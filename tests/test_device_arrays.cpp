@@ -4,9 +4,9 @@
 // their range.
 #include <doctest/doctest.h>
 
-#include "device_mesh.hpp"
-#include "opencl_context.hpp"
-#include "prefix_scan.hpp"
+#include "runtime/device_mesh.hpp"
+#include "runtime/opencl_context.hpp"
+#include "runtime/prefix_scan.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>

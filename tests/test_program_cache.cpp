@@ -4,8 +4,8 @@
 #include <doctest/doctest.h>
 
 #include "clmesh/device.hpp"
-#include "opencl_context.hpp"
-#include "program_cache.hpp"
+#include "runtime/opencl_context.hpp"
+#include "runtime/program_cache.hpp"
 
 #include <cstdlib>
 #include <filesystem>

@@ -1,0 +1,132 @@
+// clmesh — GPU-CDT entry point (thesis chapter 4): GPU-DT phases, then the
+// constraints inserted by marking and flipping, then constrained Delaunay
+// flipping, then the exterior and holes removed.
+#include "clmesh/constrained.hpp"
+
+#include "cdt/constraint_insertion.hpp"
+#include "dt/delaunay_scheduler.hpp"
+#include "cdt/exterior_removal.hpp"
+
+#include <algorithm>
+
+namespace clmesh {
+
+namespace {
+
+// Drops zero-length and repeated segments (first occurrence kept, its marker too).
+std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
+                                       ConstrainedStats &stats) {
+  const std::vector<char> first = first_occurrences(segments);
+  std::vector<Segment> kept;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    if (segments[i].a == segments[i].b || !first[i]) {
+      ++stats.dropped_segments;
+      continue;
+    }
+    kept.push_back(segments[i]);
+  }
+  return kept;
+}
+
+} // namespace
+
+ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
+                                       const ConstrainedOptions &options) {
+  ConstrainedResult result;
+  ConstrainedStats &stats = result.stats;
+  const auto n = static_cast<int32_t>(pslg.points.size());
+  for (std::size_t i = 0; i < pslg.segments.size(); ++i) {
+    const Segment &s = pslg.segments[i];
+    if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n)
+      throw InputError("segment " + std::to_string(i), 0,
+                       "endpoint out of range (" + std::to_string(s.a) + ", " +
+                           std::to_string(s.b) + " of " + std::to_string(n) + " points)");
+  }
+  const std::size_t crossing_room = 1024 + pslg.segments.size();
+  DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats,
+                              crossing_room);
+  device.program("constraint_marking.cl", "setup");
+  device.program("exterior_removal.cl", "setup");
+  if (!scheduler.triangulate()) {
+    scheduler.download_collinear(result.mesh);
+    result.segments = distinct_segments(pslg.segments, stats);
+    return result;
+  }
+
+  // Constraints in device numbering, duplicate endpoints resolved.
+  std::vector<Segment> segments = pslg.segments;
+  for (Segment &s : segments) {
+    s.a = scheduler.device_point(s.a);
+    s.b = scheduler.device_point(s.b);
+  }
+  std::vector<Segment> constraints; // as they stand in the mesh, device numbering
+  DeviceArray<cl_int> touched;      // slots the insertion flipped
+  {
+    ConstraintInsertion insertion(device, scheduler.mesh());
+    segments = distinct_segments(insertion.resolve_duplicates(segments), stats);
+    stats.segments = static_cast<long>(segments.size());
+    insertion.set_constraints(segments);
+    insertion.run(stats, [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
+      return scheduler.insert_points(added, near);
+    });
+    result.added_points = insertion.added_points();
+    constraints = insertion.segments();
+    touched = insertion.take_touched();
+    scheduler.timer().charge(ConstraintInsertion::kPhase);
+  } // its device lists are released here; the constraints stay in the mesh
+
+  FlipCounts flips;
+  scheduler.flip_flagged(touched, flips, "constrained_flipping");
+  stats.delaunay_flips = flips.flips;
+
+  ExteriorRemoval removal(device, scheduler.mesh());
+  const bool from_hull = !options.keep_convex_hull;
+  const std::vector<Point> no_holes;
+  const auto &holes = options.ignore_holes ? no_holes : pslg.holes;
+  const bool eat = from_hull || !holes.empty();
+  if (eat) {
+    stats.eaten_triangles = removal.run(from_hull, holes);
+    scheduler.timer().charge(ExteriorRemoval::kPhase);
+  }
+  const DeviceArray<cl_int> *label = nullptr;
+  if (options.regional_attributes) {
+    std::vector<Point> seeds;
+    for (const Region &region : pslg.regions)
+      seeds.push_back(region.seed);
+    label = &removal.label_regions(seeds);
+    scheduler.timer().charge(ExteriorRemoval::kPhase);
+  }
+  std::vector<int32_t> labels;
+  scheduler.download(result.mesh, eat ? &removal.removed() : nullptr, label, &labels);
+  if (options.regional_attributes) {
+    result.triangle_attributes.resize(labels.size());
+    for (std::size_t t = 0; t < labels.size(); ++t)
+      result.triangle_attributes[t] = labels[t] >= 0 ? pslg.regions[labels[t]].attribute : 0.0;
+  }
+
+  // The segments as they stand, in input numbering; with -c the hull too.
+  const auto &original = scheduler.original_ids();
+  const auto &duplicate_of = result.mesh.duplicate_of;
+  auto input_point = [&](int32_t device_point) {
+    const int32_t input = original[device_point];
+    return duplicate_of[input] >= 0 ? duplicate_of[input] : input;
+  };
+  for (const Segment &s : constraints)
+    result.segments.push_back({input_point(s.a), input_point(s.b), s.marker});
+  if (options.keep_convex_hull) {
+    // Hull edges that are not constraints already.
+    std::vector<Segment> all = result.segments;
+    const auto &mesh = result.mesh;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i)
+        if (mesh.neighbors[t][i] < 0)
+          all.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+    const std::vector<char> first = first_occurrences(all);
+    for (std::size_t k = result.segments.size(); k < all.size(); ++k)
+      if (first[k])
+        result.segments.push_back(all[k]);
+  }
+  return result;
+}
+
+} // namespace clmesh

@@ -1,0 +1,342 @@
+#include "cdt/constraint_insertion.hpp"
+
+#include "priority.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "constraint_marking.cl";
+constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
+constexpr std::size_t kCounters = 3;    // see mark_constraint_triangles
+constexpr std::size_t kRunCounters = 3; // see find_run_starts
+} // namespace
+
+ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
+    : device_(device), mesh_(mesh),
+      resolve_duplicates_(device.kernel(kFile, "resolve_duplicate_endpoints", kPhase)),
+      record_vertex_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
+      mark_(device.kernel(kFile, "mark_constraint_triangles", kPhase)),
+      find_run_starts_(device.kernel(kFile, "find_run_starts", kPhase)),
+      claim_runs_(device.kernel(kFile, "claim_runs", kPhase)),
+      flip_along_runs_(device.kernel(kFile, "flip_along_runs", kPhase)),
+      relink_run_boundaries_(device.kernel(kFile, "relink_run_boundaries", kPhase)),
+      counters_(device, kCounters), constraint_mark_(device, mesh.triangle_capacity),
+      run_start_(device, mesh.triangle_capacity), run_of_(device, mesh.triangle_capacity),
+      boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity),
+      touched_(device, mesh.triangle_capacity), run_counters_(device, kRunCounters) {}
+
+std::vector<char> first_occurrences(const std::vector<Segment> &segments) {
+  // Sorting (edge, position) pairs: a std::set of 100k edges costs ten times more.
+  std::vector<std::pair<std::pair<int32_t, int32_t>, std::size_t>> keyed(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    keyed[i] = {std::minmax(segments[i].a, segments[i].b), i};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<char> first(segments.size(), 0);
+  for (std::size_t k = 0; k < keyed.size(); ++k)
+    first[keyed[k].second] = k == 0 || keyed[k].first != keyed[k - 1].first;
+  return first;
+}
+
+std::vector<cl_int> ConstraintInsertion::download_by_segment(const DeviceArray<cl_int> &array) {
+  const std::size_t m = segments_.size();
+  const auto by_priority = array.download(device_, m);
+  std::vector<cl_int> by_segment(m);
+  for (std::size_t d = 0; d < m; ++d)
+    by_segment[priority_order_[d]] = by_priority[d];
+  return by_segment;
+}
+
+std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<Segment> &segments) {
+  const std::size_t m = segments.size();
+  if (m == 0)
+    return {};
+  std::vector<cl_int> a(m), b(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    a[i] = segments[i].a;
+    b[i] = segments[i].b;
+  }
+  DeviceArray<cl_int> device_a(device_, m), device_b(device_, m);
+  device_a.upload(device_, a);
+  device_b.upload(device_, b);
+  set_args(resolve_duplicates_, mesh_.duplicate_of.buffer(), device_a.buffer(), device_b.buffer(),
+           static_cast<cl_int>(m));
+  launch(device_, resolve_duplicates_, m, kPhase);
+  a = device_a.download(device_, m);
+  b = device_b.download(device_, m);
+  std::vector<Segment> resolved(segments);
+  for (std::size_t i = 0; i < m; ++i) {
+    resolved[i].a = a[i];
+    resolved[i].b = b[i];
+  }
+  return resolved;
+}
+
+void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
+  // Overlapping collinear segments split at each other's vertices repeat pieces.
+  const std::vector<char> distinct = first_occurrences(pieces);
+  std::vector<Segment> segments;
+  std::vector<int32_t> origin;
+  const bool first = origin_.empty();
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (distinct[i]) {
+      segments.push_back(pieces[i]);
+      origin.push_back(first ? static_cast<int32_t>(i) : origin_[i]);
+    }
+  if (first)
+    split_origin_.assign(pieces.size(), 0);
+  if (segments.size() >= (std::size_t{1} << 27))
+    throw InputError("segments", 0, "more than 2^27 segments (a triangle's mark holds 27 bits)");
+  segments_ = segments;
+  origin_ = origin;
+  const std::size_t n = mesh_.point_capacity, m = segments.size();
+  std::vector<cl_int> start(n + 1, 0), adjacent(2 * m), a(m), b(m);
+  for (const Segment &s : segments) {
+    ++start[s.a + 1];
+    ++start[s.b + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  std::vector<cl_int> cursor(start.begin(), start.end() - 1);
+  for (const Segment &s : segments) {
+    adjacent[cursor[s.a]++] = s.b;
+    adjacent[cursor[s.b]++] = s.a;
+  }
+  // Marks keep the constraint of smallest device index. Input files list
+  // segments along chains and contours, so neighbouring constraints would
+  // have neighbouring priorities and each would wait for the one beside it:
+  // the device holds them in a scrambled (fixed) order instead.
+  std::vector<std::pair<unsigned, int32_t>> keyed(m); // a bijection: keys are distinct
+  for (std::size_t i = 0; i < m; ++i)
+    keyed[i] = {clm_priority_of(static_cast<unsigned>(i)), static_cast<int32_t>(i)};
+  std::sort(keyed.begin(), keyed.end());
+  // The marking walks run in the order of the segments' first endpoints (the
+  // device numbers points along a Hilbert curve), so that neighbouring walks
+  // read the same triangles: walk_order[k] is the device index of the k-th.
+  priority_order_.resize(m);
+  std::vector<cl_int> device_index(m);
+  for (std::size_t d = 0; d < m; ++d) {
+    priority_order_[d] = keyed[d].second;
+    a[d] = segments[priority_order_[d]].a;
+    b[d] = segments[priority_order_[d]].b;
+    device_index[priority_order_[d]] = static_cast<cl_int>(d);
+  }
+  std::vector<cl_int> walk_order(m);
+  std::iota(walk_order.begin(), walk_order.end(), 0);
+  std::sort(walk_order.begin(), walk_order.end(), [&](cl_int i, cl_int j) {
+    return std::make_pair(segments[i].a, segments[i].b) <
+           std::make_pair(segments[j].a, segments[j].b);
+  });
+  for (cl_int &i : walk_order)
+    i = device_index[i];
+  mesh_.constraint_start.upload(device_, start);
+  mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
+  mesh_.constraint_adjacent.upload(device_, adjacent);
+  mesh_.has_constraints = !adjacent.empty();
+  segment_a_ = DeviceArray<cl_int>(device_, m);
+  segment_b_ = DeviceArray<cl_int>(device_, m);
+  segment_state_ = DeviceArray<cl_int>(device_, m);
+  walk_order_ = DeviceArray<cl_int>(device_, m);
+  walk_order_.upload(device_, walk_order);
+  split_vertex_ = DeviceArray<cl_int>(device_, m);
+  crossed_vertex_ = DeviceArray<cl_int>(device_, m);
+  crossed_triangle_ = DeviceArray<cl_int>(device_, m);
+  segment_a_.upload(device_, a);
+  segment_b_.upload(device_, b);
+  segment_state_.fill(device_, 0, m);
+}
+
+long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
+                               const PointInserter &insert_points) {
+  const std::size_t slots = mesh_.triangle_count, m = segments_.size();
+  if (!vertex_triangles_recorded_) {
+    // Afterwards the flips keep vertex_triangle up to date.
+    set_args(record_vertex_triangles_, mesh_.tri_vertex.buffer(), mesh_.vertex_triangle.buffer(),
+             static_cast<cl_int>(slots));
+    launch(device_, record_vertex_triangles_, slots, kPhase);
+    vertex_triangles_recorded_ = true;
+  }
+  constraint_mark_.fill(device_, 0x7fffffff, slots);
+  counters_.fill(device_, 0, kCounters);
+  set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
+           mesh_.constraint_adjacent.buffer(), walk_order_.buffer(), segment_a_.buffer(),
+           segment_b_.buffer(), segment_state_.buffer(), split_vertex_.buffer(),
+           crossed_vertex_.buffer(), crossed_triangle_.buffer(), constraint_mark_.buffer(),
+           counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
+  launch(device_, mark_, m, kPhase);
+  const auto counters = counters_.download(device_, kCounters);
+  if (first)
+    stats.intersections = counters[1];
+  if (counters[2] == 0)
+    return counters[0];
+  // Splits and crossings are rare: only then is the segment state read back.
+  const auto state = download_by_segment(segment_state_);
+  const auto vertex = download_by_segment(split_vertex_);
+  if (std::find(state.begin(), state.end(), kCrossing) != state.end()) {
+    split_crossings(state, vertex, stats, insert_points);
+    return -1;
+  }
+  std::vector<Segment> pieces;
+  std::vector<int32_t> origin; // input segment of each piece
+  for (std::size_t i = 0; i < m; ++i) {
+    const Segment &s = segments_[i];
+    if (state[i] == kSplit) {
+      pieces.push_back({s.a, vertex[i], s.marker});
+      pieces.push_back({vertex[i], s.b, s.marker});
+      origin.insert(origin.end(), 2, origin_[i]);
+      if (!split_origin_[origin_[i]]) {
+        split_origin_[origin_[i]] = 1;
+        ++stats.split_segments;
+      }
+    } else if (state[i] != 0 && state[i] != kPresent) {
+      throw InternalError("constraint marking: a walk along a segment did not end");
+    } else {
+      pieces.push_back(s);
+      origin.push_back(origin_[i]);
+    }
+  }
+  origin_ = origin;
+  set_constraints(pieces);
+  return -1;
+}
+
+void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
+                                          const std::vector<cl_int> &vertex,
+                                          ConstrainedStats &stats,
+                                          const PointInserter &insert_points) {
+  const std::size_t m = segments_.size();
+  const auto other = download_by_segment(crossed_vertex_);
+  const auto triangle = download_by_segment(crossed_triangle_);
+  std::map<std::pair<int32_t, int32_t>, std::size_t> piece_of;
+  for (std::size_t i = 0; i < m; ++i)
+    piece_of[std::minmax(segments_[i].a, segments_[i].b)] = i;
+  auto coordinates = [&](int32_t v) {
+    const cl_double2 p = mesh_.points.read(device_, static_cast<std::size_t>(v));
+    return Point{p.s[0], p.s[1]};
+  };
+  // Each crossing splits two segments: s (walking) and the piece p-q it met.
+  std::vector<char> busy(m, 0);
+  std::vector<std::pair<std::size_t, std::size_t>> crossings; // (s, piece)
+  std::vector<Point> where;
+  std::vector<int32_t> near;
+  for (std::size_t s = 0; s < m; ++s) {
+    if (state[s] != kCrossing)
+      continue;
+    const auto found = piece_of.find(std::minmax(vertex[s], other[s]));
+    if (found == piece_of.end())
+      throw InternalError("constraint marking: a crossed constraint edge is no constraint");
+    const std::size_t piece = found->second;
+    if (busy[s] || busy[piece])
+      continue; // split in a later round
+    busy[s] = busy[piece] = 1;
+    const Point a = coordinates(segments_[s].a), b = coordinates(segments_[s].b);
+    const Point p = coordinates(segments_[piece].a), q = coordinates(segments_[piece].b);
+    // a + t (b - a) on line p-q, in extended precision, rounded once.
+    const long double dx = static_cast<long double>(b.x) - a.x,
+                      dy = static_cast<long double>(b.y) - a.y;
+    const long double ex = static_cast<long double>(q.x) - p.x,
+                      ey = static_cast<long double>(q.y) - p.y;
+    const long double t =
+        ((static_cast<long double>(p.x) - a.x) * ey - (static_cast<long double>(p.y) - a.y) * ex) /
+        (dx * ey - dy * ex);
+    where.push_back({static_cast<double>(a.x + t * dx), static_cast<double>(a.y + t * dy)});
+    near.push_back(triangle[s]);
+    crossings.emplace_back(s, piece);
+  }
+  const std::vector<int32_t> added = insert_points(where, near);
+  vertex_triangles_recorded_ = false;
+  added_points_.insert(added_points_.end(), where.begin(), where.end());
+  stats.crossings += static_cast<long>(crossings.size());
+  std::vector<Segment> pieces;
+  std::vector<int32_t> origin;
+  std::vector<int32_t> split_at(m, -1);
+  for (std::size_t k = 0; k < crossings.size(); ++k)
+    split_at[crossings[k].first] = split_at[crossings[k].second] = added[k];
+  for (std::size_t i = 0; i < m; ++i) {
+    const Segment &s = segments_[i];
+    if (split_at[i] < 0) {
+      pieces.push_back(s);
+      origin.push_back(origin_[i]);
+      continue;
+    }
+    for (const Segment &piece :
+         {Segment{s.a, split_at[i], s.marker}, Segment{split_at[i], s.b, s.marker}})
+      if (piece.a != piece.b) { // the new vertex may coincide with an endpoint
+        pieces.push_back(piece);
+        origin.push_back(origin_[i]);
+      }
+    if (!split_origin_[origin_[i]]) {
+      split_origin_[origin_[i]] = 1;
+      ++stats.split_segments;
+    }
+  }
+  origin_ = origin;
+  set_constraints(pieces);
+}
+
+ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
+  const std::size_t slots = mesh_.triangle_count;
+  const auto max_steps = static_cast<cl_int>(4 * slots + 64);
+  run_counters_.fill(device_, 0, kRunCounters);
+  run_of_.fill(device_, -1, slots);
+  set_args(find_run_starts_, constraint_mark_.buffer(), mesh_.tri_neighbor.buffer(),
+           run_start_.buffer(), run_counters_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, find_run_starts_, slots, kPhase);
+  const auto runs = static_cast<std::size_t>(run_counters_.read(device_, 0));
+  set_args(claim_runs_, run_start_.buffer(), mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(),
+           run_of_.buffer(), max_steps, static_cast<cl_int>(runs));
+  launch(device_, claim_runs_, runs, kPhase);
+  const auto log_capacity = static_cast<cl_int>(boundary_log_.size());
+  set_args(flip_along_runs_, run_start_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
+           segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), run_counters_.buffer(),
+           touched_.buffer(), mesh_.vertex_triangle.buffer(), log_capacity, max_steps,
+           static_cast<cl_int>(runs));
+  launch(device_, flip_along_runs_, runs, kPhase);
+  const auto counts = run_counters_.download(device_, kRunCounters);
+  const std::size_t logged =
+      std::min<std::size_t>(static_cast<std::size_t>(counts[1]), boundary_log_.size());
+  if (logged > 0) {
+    std::size_t table = 1;
+    while (table < 2 * logged)
+      table *= 2;
+    if (edge_table_.size() < table)
+      edge_table_ = DeviceArray<cl_int>(device_, table);
+    edge_table_.fill(device_, -1, table);
+    set_args(relink_run_boundaries_, boundary_log_.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), run_of_.buffer(), edge_table_.buffer(),
+             static_cast<cl_uint>(table - 1), static_cast<cl_int>(logged));
+    launch(device_, relink_run_boundaries_, logged, kPhase);
+  }
+  return {static_cast<long>(runs), counts[2]};
+}
+
+void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &insert_points) {
+  touched_.fill(device_, 0, touched_.size());
+  bool first = true;
+  // Each outer iteration either inserts a segment, splits one, or flips; the
+  // bound only turns a bug into an error instead of a hang.
+  const long max_outer = 64 + 4 * static_cast<long>(segments_.size() + mesh_.triangle_count);
+  for (long outer = 0; outer < max_outer; ++outer) {
+    const long pending = mark(stats, first, insert_points);
+    first = false;
+    if (pending < 0)
+      continue; // segments were split: mark again
+    if (pending == 0)
+      return;
+    ++stats.outer_iterations;
+    const RunPass pass = flip_runs();
+    stats.inner_iterations += pass.runs;
+    stats.constraint_flips += pass.flips;
+    if (pass.flips == 0)
+      throw InternalError("constraint insertion made no progress");
+  }
+  throw InternalError("constraint insertion did not finish");
+}
+
+} // namespace clmesh

@@ -1,0 +1,78 @@
+#include "cdt/exterior_removal.hpp"
+
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "exterior_removal.cl";
+}
+
+ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
+    : device_(device), mesh_(mesh), seed_from_hull_(device.kernel(kFile, "seed_from_hull", kPhase)),
+      seed_from_points_(device.kernel(kFile, "seed_from_points", kPhase)),
+      spread_(device.kernel(kFile, "spread_flood", kPhase)),
+      seed_label_(device.kernel(kFile, "seed_label", kPhase)),
+      removed_(device, mesh.triangle_capacity), label_(device, 1),
+      frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
+      count_(device, 1) {
+  removed_.fill(device_, 0, mesh.triangle_capacity);
+}
+
+long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
+  const std::size_t slots = mesh_.triangle_count;
+  count_.fill(device_, 0, 1);
+  if (from_hull) {
+    set_args(seed_from_hull_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), removed_.buffer(),
+             frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+    launch(device_, seed_from_hull_, slots, kPhase);
+  }
+  if (!holes.empty()) {
+    std::vector<cl_double2> seeds;
+    for (const Point &p : holes)
+      seeds.push_back({{p.x, p.y}});
+    DeviceArray<cl_double2> seed_buffer(device_, seeds.size());
+    seed_buffer.upload(device_, seeds);
+    set_args(seed_from_points_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), seed_buffer.buffer(), static_cast<cl_int>(0),
+             static_cast<cl_int>(slots + 8), removed_.buffer(), frontier_.buffer(), count_.buffer(),
+             static_cast<cl_int>(seeds.size()));
+    launch(device_, seed_from_points_, seeds.size(), kPhase);
+  }
+  return flood(-1);
+}
+
+long ExteriorRemoval::flood(int region) {
+  long reached = 0;
+  for (int front = count_.read(device_, 0); front > 0;) {
+    reached += front;
+    count_.fill(device_, 0, 1);
+    set_args(spread_, frontier_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), removed_.buffer(),
+             static_cast<cl_int>(region), label_.buffer(), next_frontier_.buffer(), count_.buffer(),
+             static_cast<cl_int>(front));
+    launch(device_, spread_, static_cast<std::size_t>(front), kPhase);
+    std::swap(frontier_, next_frontier_);
+    front = count_.read(device_, 0);
+  }
+  return reached;
+}
+
+const DeviceArray<cl_int> &ExteriorRemoval::label_regions(const std::vector<Point> &seeds) {
+  const std::size_t slots = mesh_.triangle_count;
+  label_ = DeviceArray<cl_int>(device_, mesh_.triangle_capacity);
+  label_.fill(device_, -1, mesh_.triangle_capacity);
+  for (std::size_t r = 0; r < seeds.size(); ++r) {
+    count_.fill(device_, 0, 1);
+    set_args(seed_label_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), removed_.buffer(), cl_double2{{seeds[r].x, seeds[r].y}},
+             static_cast<cl_int>(0), static_cast<cl_int>(slots + 8), static_cast<cl_int>(r),
+             label_.buffer(), frontier_.buffer(), count_.buffer());
+    launch(device_, seed_label_, 1, kPhase);
+    flood(static_cast<int>(r));
+  }
+  return label_;
+}
+
+} // namespace clmesh

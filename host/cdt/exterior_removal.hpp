@@ -1,0 +1,39 @@
+// clmesh — removing the exterior and the holes of a CDT by parallel flood
+// fills (Triangle's -p domain semantics). Kernels: cl/exterior_removal.cl.
+#pragma once
+
+#include "runtime/prefix_scan.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <vector>
+
+namespace clmesh {
+
+class ExteriorRemoval {
+public:
+  static constexpr const char *kPhase = "exterior_removal";
+
+  ExteriorRemoval(Device &device, DeviceMesh &mesh);
+
+  // Eats from the hull inwards when `from_hull`, and from every hole seed;
+  // returns how many triangles were removed. removed() flags them per slot.
+  long run(bool from_hull, const std::vector<Point> &holes);
+  const DeviceArray<cl_int> &removed() const { return removed_; }
+
+  // Labels every triangle with the index of the region whose seed reaches it
+  // without crossing a constraint (-1: none); later regions win.
+  const DeviceArray<cl_int> &label_regions(const std::vector<Point> &seeds);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  // Runs waves from the current frontier until it is empty: removal when
+  // region < 0, else labelling with `region`. Returns the triangles reached.
+  long flood(int region);
+
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_;
+  DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
+};
+
+} // namespace clmesh

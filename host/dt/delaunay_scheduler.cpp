@@ -1,0 +1,618 @@
+// clmesh — the GPU-DT scheduler (thesis §4.1.2): runs the phases on one
+// device, keeping the mesh resident from the upload of the points to the
+// download of the triangles; between kernels only small counters come back.
+#include "dt/delaunay_scheduler.hpp"
+
+#include "predicates.h"
+#include "dt/shifting.hpp"
+#include "dt/triangulation_construction.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+
+namespace clmesh {
+
+namespace {
+
+void check_coordinates(const std::vector<Point> &points) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (const double value : {points[i].x, points[i].y}) {
+      const double magnitude = std::fabs(value);
+      if (!std::isfinite(value) || magnitude > kMaxCoordinate ||
+          (value != 0 && magnitude < kMinCoordinate)) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.17g", value);
+        throw InputError("point " + std::to_string(i), 0,
+                         std::string("coordinate ") + text +
+                             " is outside what exact arithmetic carries (non-zero magnitudes "
+                             "from 1e-50 to 1e50)");
+      }
+    }
+}
+
+bool lexicographically_less(const Point &a, const Point &b) {
+  return a.x < b.x || (a.x == b.x && a.y < b.y);
+}
+
+int orient(const Point &a, const Point &b, const Point &c) {
+  return clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+}
+
+// Duplicates of a point set with no triangle (all points collinear).
+std::vector<int32_t> duplicates_on_host(const std::vector<Point> &points) {
+  std::vector<int32_t> order(points.size()), duplicate_of(points.size(), -1);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return lexicographically_less(points[a], points[b]);
+  });
+  for (std::size_t i = 1; i < order.size(); ++i) {
+    const Point &p = points[order[i]], &q = points[order[i - 1]];
+    if (p.x == q.x && p.y == q.y)
+      duplicate_of[order[i]] =
+          duplicate_of[order[i - 1]] >= 0 ? duplicate_of[order[i - 1]] : order[i - 1];
+  }
+  return duplicate_of;
+}
+
+// The Hilbert curve on a 2^16 x 2^16 grid, four bits of x and y at a time:
+// for each orientation of the curve (x and y swapped, both complemented) and
+// each 4x4-bit input, the eight bits of curve position it contributes and the
+// orientation that follows.
+struct HilbertTable {
+  std::array<std::array<uint8_t, 256>, 4> digits{}, next{};
+  HilbertTable() {
+    for (uint32_t orientation = 0; orientation < 4; ++orientation)
+      for (uint32_t in = 0; in < 256; ++in) {
+        uint32_t swapped = orientation & 1, complemented = orientation >> 1, d = 0;
+        for (int b = 3; b >= 0; --b) {
+          const uint32_t bx = (in >> (4 + b)) & 1, by = (in >> b) & 1;
+          const uint32_t x = (swapped ? by : bx) ^ complemented,
+                         y = (swapped ? bx : by) ^ complemented;
+          d = (d << 2) | ((3 * x) ^ y); // quadrants 0, 1, 2, 3 along the curve
+          if (y == 0) {                 // lower quadrants turn the curve
+            complemented ^= x;
+            swapped ^= 1;
+          }
+        }
+        digits[orientation][in] = static_cast<uint8_t>(d);
+        next[orientation][in] = static_cast<uint8_t>(swapped | (complemented << 1));
+      }
+  }
+};
+
+// Position along the Hilbert curve of a point quantized to the 2^16 x 2^16 grid.
+uint32_t hilbert_index(uint32_t x, uint32_t y) {
+  static const HilbertTable table;
+  uint32_t d = 0, orientation = 0;
+  for (int b = 12; b >= 0; b -= 4) {
+    const uint32_t in = (((x >> b) & 15) << 4) | ((y >> b) & 15);
+    d = (d << 8) | table.digits[orientation][in];
+    orientation = table.next[orientation][in];
+  }
+  return d;
+}
+
+// Input indices sorted along a Hilbert curve (stable, so ties keep input order).
+std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
+  const auto [low, span] = bounding_square(points);
+  const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
+  // (key, index) pairs, sorted by three stable counting passes of 11 bits
+  // over the key (the index in the low half keeps ties in input order).
+  std::vector<uint64_t> entry(points.size()), buffer(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - low.x) * scale));
+    const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - low.y) * scale));
+    entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
+  }
+  constexpr int kDigitBits = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+  for (int shift = 32; shift < 64; shift += kDigitBits) {
+    std::vector<std::size_t> start(kBuckets + 1, 0);
+    for (const uint64_t e : entry)
+      ++start[((e >> shift) & (kBuckets - 1)) + 1];
+    for (std::size_t b = 1; b <= kBuckets; ++b)
+      start[b] += start[b - 1];
+    for (const uint64_t e : entry)
+      buffer[start[(e >> shift) & (kBuckets - 1)]++] = e;
+    entry.swap(buffer);
+  }
+  std::vector<int32_t> order(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    order[k] = static_cast<int32_t>(entry[k] & 0xffffffffu);
+  return order;
+}
+
+// Quickhull's elimination (Eddy; Barber, Dobkin and Huhdanpaa) as a filter:
+// of the points `outside` (none strictly left of hull chord a -> b), drops
+// those strictly inside the triangle of a, b and the farthest of them, f, and
+// goes on with the points beyond a -> f and f -> b, until a group is small;
+// appends what is left to `kept`. The farthest is chosen in rounded
+// arithmetic; what is dropped is decided exactly, so that no hull vertex is
+// ever dropped (the monotone chain sorts out the rest). A thin ring keeps
+// all its points outside the octagon: this leaves about the hull.
+void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
+                        std::vector<int32_t> outside, std::vector<int32_t> &kept) {
+  constexpr std::size_t kSmall = 64; // sorted as they are
+  struct Group {
+    int32_t a, b;
+    std::vector<int32_t> members;
+  };
+  std::vector<Group> stack;
+  stack.push_back({a, b, std::move(outside)});
+  while (!stack.empty()) {
+    Group group = std::move(stack.back());
+    stack.pop_back();
+    const Point &pa = points[group.a], &pb = points[group.b];
+    int32_t far = -1;
+    double farthest = 0;
+    for (const int32_t v : group.members) {
+      // Twice the area of (a, v, b): how far v lies beyond a -> b, rounded.
+      const Point &p = points[v];
+      const double d = (pb.x - pa.x) * (pa.y - p.y) - (pb.y - pa.y) * (pa.x - p.x);
+      if (d > farthest) {
+        farthest = d;
+        far = v;
+      }
+    }
+    if (group.members.size() <= kSmall || far < 0) {
+      kept.insert(kept.end(), group.members.begin(), group.members.end());
+      continue;
+    }
+    const Point &pf = points[far];
+    Group before{group.a, far, {}}, after{far, group.b, {}};
+    for (const int32_t v : group.members) {
+      if (v == far)
+        continue;
+      if (orient(pa, pf, points[v]) <= 0)
+        before.members.push_back(v);
+      else if (orient(pf, pb, points[v]) <= 0)
+        after.members.push_back(v);
+    }
+    kept.push_back(far);
+    stack.push_back(std::move(after));
+    stack.push_back(std::move(before));
+  }
+}
+
+// Vertices of the convex hull, counter-clockwise, without collinear points
+// (Andrew's monotone chain with the exact orientation predicate).
+// Points strictly inside the octagon of the extreme points in eight
+// directions are dropped first (Akl-Toussaint), which leaves few points to
+// sort (a quadrilateral of four keeps half a square's points), then those
+// inside chords of the hull (drop_inside_chords).
+std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
+  // Extremes counter-clockwise: min y, max x-y, max x, max x+y, max y,
+  // max y-x, min x, min x+y. Rounded sums only choose which points; the
+  // octagon's corners are input points either way.
+  const auto key = [&](int32_t i, int k) {
+    const Point &p = points[i];
+    switch (k) {
+    case 0:
+      return -p.y;
+    case 1:
+      return p.x - p.y;
+    case 2:
+      return p.x;
+    case 3:
+      return p.x + p.y;
+    case 4:
+      return p.y;
+    case 5:
+      return p.y - p.x;
+    case 6:
+      return -p.x;
+    default:
+      return -p.x - p.y;
+    }
+  };
+  std::array<int32_t, 8> extreme{};
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
+    for (int k = 0; k < 8; ++k)
+      if (key(i, k) > key(extreme[k], k))
+        extreme[k] = i;
+  // Each point outside the octagon goes with the first side it is not
+  // strictly inside of.
+  std::array<std::vector<int32_t>, 8> outside;
+  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
+    for (int k = 0; k < 8; ++k) {
+      const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
+      if ((a.x != b.x || a.y != b.y) && orient(a, b, points[i]) <= 0) { // corners may repeat
+        outside[k].push_back(i);
+        break;
+      }
+    }
+  std::vector<int32_t> order;
+  for (int k = 0; k < 8; ++k)
+    drop_inside_chords(points, extreme[k], extreme[(k + 1) % 8], std::move(outside[k]), order);
+  std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
+    return lexicographically_less(points[a], points[b]) ||
+           (!lexicographically_less(points[b], points[a]) && a < b);
+  });
+  std::vector<int32_t> hull(2 * order.size() + 1);
+  std::size_t k = 0;
+  auto push = [&](int32_t v, std::size_t floor) {
+    while (k >= floor + 2 && orient(points[hull[k - 2]], points[hull[k - 1]], points[v]) <= 0)
+      --k;
+    hull[k++] = v;
+  };
+  for (const int32_t v : order)
+    push(v, 0);
+  const std::size_t lower = k - 1;
+  for (auto it = order.rbegin() + 1; it != order.rend(); ++it)
+    push(*it, lower);
+  hull.resize(k > 1 ? k - 1 : k);
+  return hull;
+}
+
+// Whether every point lies on one line (no triangle at all).
+bool all_collinear(const std::vector<Point> &points) {
+  std::size_t second = 1;
+  while (second < points.size() && points[second].x == points[0].x &&
+         points[second].y == points[0].y)
+    ++second;
+  for (std::size_t i = second + 1; i < points.size(); ++i)
+    if (orient(points[0], points[second], points[i]) != 0)
+      return false;
+  return true;
+}
+
+// The hull polygon fanned from its first vertex, closed by one ghost triangle
+// per hull edge; links are (triangle << 2) | edge.
+struct HullFan {
+  std::vector<cl_int> vertices, neighbors;
+};
+
+HullFan hull_fan(const std::vector<int32_t> &hull) {
+  const int h = static_cast<int>(hull.size()), real = h - 2;
+  HullFan fan;
+  fan.vertices.resize(3 * (real + h));
+  fan.neighbors.resize(3 * (real + h));
+  auto set = [&](int t, int i, int vertex, int neighbor, int neighbor_edge) {
+    fan.vertices[3 * t + i] = vertex;
+    fan.neighbors[3 * t + i] = (neighbor << 2) | neighbor_edge;
+  };
+  // Ghost g (slot real + g) stands on hull edge hull[g] -> hull[g+1]:
+  // vertices (hull[g+1], hull[g], infinite).
+  auto ghost = [&](int g) { return real + (g % h); };
+  // Real triangle k (1 <= k+1 < h-1) = (hull[0], hull[k+1], hull[k+2]).
+  for (int k = 0; k < real; ++k) {
+    // Opposite hull[0]: edge hull[k+1] -> hull[k+2] is hull edge k+1.
+    set(k, 0, hull[0], ghost(k + 1), 2);
+    // Opposite hull[k+1]: edge hull[k+2] -> hull[0]: next fan triangle or hull edge h-1.
+    if (k + 1 < real)
+      set(k, 1, hull[k + 1], k + 1, 2);
+    else
+      set(k, 1, hull[k + 1], ghost(h - 1), 2);
+    // Opposite hull[k+2]: edge hull[0] -> hull[k+1]: previous fan triangle or hull edge 0.
+    if (k > 0)
+      set(k, 2, hull[k + 2], k - 1, 1);
+    else
+      set(k, 2, hull[k + 2], ghost(0), 2);
+  }
+  for (int g = 0; g < h; ++g) {
+    const int t = ghost(g);
+    // Real triangle holding hull edge g: edge 0 of fan triangle g-1 for
+    // 1 <= g <= h-2, edge 2 of triangle 0 for g = 0, edge 1 of the last for g = h-1.
+    const int real_t = g == 0 ? 0 : (g == h - 1 ? real - 1 : g - 1);
+    const int real_e = g == 0 ? 2 : (g == h - 1 ? 1 : 0);
+    // (hull[g+1], hull[g], inf): opposite hull[g+1] is edge hull[g] -> inf,
+    // shared with the previous ghost's edge inf -> hull[g] (its edge 1).
+    set(t, 0, hull[(g + 1) % h], ghost(g + h - 1), 1);
+    // Opposite hull[g] is edge inf -> hull[g+1], shared with the next ghost's edge 0.
+    set(t, 1, hull[g], ghost(g + 1), 0);
+    set(t, 2, -1, real_t, real_e);
+  }
+  return fan;
+}
+
+} // namespace
+
+std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
+  const auto [low_x, high_x] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
+  const auto [low_y, high_y] = std::minmax_element(
+      points.begin(), points.end(), [](const Point &a, const Point &b) { return a.y < b.y; });
+  return {{low_x->x, low_y->y}, std::max(high_x->x - low_x->x, high_y->y - low_y->y)};
+}
+
+void PhaseTimer::charge(const std::string &name) {
+  device_.queue().finish();
+  const auto now = Clock::now();
+  const double seconds = std::chrono::duration<double>(now - last_).count();
+  last_ = now;
+  for (auto &phase : stats_.phases)
+    if (phase.name == name) {
+      phase.seconds += seconds;
+      return;
+    }
+  stats_.phases.push_back({name, seconds});
+}
+
+DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &points,
+                                     const DelaunayOptions &options, DelaunayStats &stats,
+                                     std::size_t extra_points)
+    : device_(device), points_(points), options_(options), extra_points_(extra_points),
+      stats_(stats) {
+  if (points.size() < 3)
+    throw InputError("input", 0, "fewer than three points");
+  if (points.size() > (std::size_t{1} << 28))
+    throw InputError("input", 0, "more than 2^28 points");
+  check_coordinates(points);
+  if (options.work_group)
+    device.set_work_group(options.work_group);
+  stats.device = describe(device);
+  stats.input_points = static_cast<long>(points.size());
+  // Build every program before the clock starts.
+  for (const char *file :
+       {"scan.cl", "voronoi_banding.cl", "triangulation_construction.cl", "shifting.cl",
+        "missing_point_insertion.cl", "flipping.cl", "mesh_output.cl", "fill.cl"})
+    device.program(file, "setup");
+  start_ = Clock::now();
+}
+
+DelaunayScheduler::~DelaunayScheduler() = default;
+
+bool DelaunayScheduler::triangulate() {
+  const std::vector<Point> &points = points_;
+  const std::size_t n = points.size();
+  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
+  if (all_collinear(points))
+    return false; // no triangle
+
+  mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
+  scan_ = std::make_unique<PrefixScan>(device_);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
+  MissingPointInsertion insertion(device_, *mesh_, *scan_);
+  Device &device = device_;
+  DeviceMesh &mesh = *mesh_;
+
+  // Device points follow a Hilbert curve, so that neighbouring work-items
+  // touch neighbouring memory; the output goes back to the input numbering.
+  original_id_ = spatial_order(points);
+  const std::vector<int32_t> &original_id = original_id_;
+  device_id_.assign(n, 0);
+  std::vector<cl_double2> coordinates(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    device_id_[original_id[k]] = static_cast<int32_t>(k);
+    coordinates[k] = {{points[original_id[k]].x, points[original_id[k]].y}};
+  }
+  mesh.points.upload(device, coordinates);
+  std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
+  mesh.original_id.upload(device, original_id);
+  mesh.tri_mark.fill(device, -1, mesh.triangle_capacity); // no mark: all bits set
+  mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+  mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
+  mesh.location.fill(device, 0, mesh.point_capacity);
+  mesh.constraint_start.fill(device, 0, mesh.point_capacity + 1);
+  timer_->charge("upload");
+
+  // Phases 1-3 build the first triangulation and list the missing points;
+  // when their result cannot be used, the hull is fanned instead.
+  if (!options_.voronoi_construction && options_.want_voronoi_image) {
+    const auto [low, span] = bounding_square(points);
+    stats_.grid = texture_side(low, span);
+    VoronoiBanding banding(device, mesh, *scan_);
+    stats_.pixel_collisions = static_cast<long>(banding.run(stats_.grid, low, span));
+    voronoi_ = banding.download_image();
+    timer_->charge(VoronoiBanding::kPhase);
+  }
+  if (!options_.voronoi_construction || !construct_from_voronoi(insertion)) {
+    // The hull only now: the Voronoi construction does without it.
+    const std::vector<int32_t> hull = convex_hull(points);
+    std::vector<int32_t> device_hull(hull.size());
+    for (std::size_t i = 0; i < hull.size(); ++i)
+      device_hull[i] = device_id_[hull[i]];
+    const HullFan fan = hull_fan(device_hull);
+    timer_->charge("upload");
+    mesh.tri_vertex.upload(device, fan.vertices);
+    mesh.tri_neighbor.upload(device, fan.neighbors);
+    mesh.triangle_count = fan.vertices.size() / 3;
+    mesh.tri_mark.fill(device, -1, mesh.triangle_capacity);
+    mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+    mesh.location.fill(device, 0, mesh.point_capacity);
+    std::vector<char> in_mesh(n, 0);
+    for (const int32_t v : device_hull)
+      in_mesh[v] = 1;
+    std::vector<cl_int> missing;
+    missing.reserve(n - hull.size());
+    for (std::size_t i = 0; i < n; ++i)
+      if (!in_mesh[i])
+        missing.push_back(static_cast<cl_int>(i));
+    insertion.set_points(missing);
+    stats_.construction = "hull_fan";
+    flips_ = FlipCounts{};
+    // The fan is a triangulation, not yet a Delaunay one: flip it first.
+    flip_all(flips_);
+  }
+  stats_.missing_points = static_cast<long>(insertion.pending());
+
+  // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so that
+  // the next round's walks run in a Delaunay triangulation.
+  while (insertion.pending() > 0) {
+    const std::size_t inserted = insertion.run_round(stamp_++);
+    ++stats_.insertion_rounds;
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (inserted == 0 && insertion.pending() > 0)
+      throw InternalError("missing-point insertion made no progress");
+    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    timer_->charge(Flipping::kPhase);
+  }
+  stats_.duplicates = static_cast<long>(insertion.duplicates());
+  stats_.flips = flips_.flips;
+  stats_.flip_passes = flips_.passes;
+  stats_.exact_predicate_calls = flips_.exact_checks;
+  return true;
+}
+
+int DelaunayScheduler::texture_side(Point low, double span) const {
+  return options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points_, low, span);
+}
+
+bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
+  const std::vector<Point> &points = points_;
+  const std::size_t n = points.size();
+  DeviceMesh &mesh = *mesh_;
+  const auto [low, span] = bounding_square(points);
+  stats_.grid = texture_side(low, span);
+  VoronoiBanding banding(device_, mesh, *scan_);
+  TriangulationConstruction construction(device_, mesh, *scan_);
+  Shifting shifting(device_, mesh, *scan_);
+  DeviceArray<cl_int> site_state(device_, n), bad(device_, n);
+  site_state.fill(device_, 0, n); // CLM_SITE (cl/common.h)
+  bad.fill(device_, 0, n);
+  TriangulationConstruction::Built built;
+  bool settled = false;
+  long left_out_before = 0;
+  stats_.dropped_sites = 0;
+  for (int round = 0; round < kConstructionRounds && !settled; ++round) {
+    // Phase 1: the digital Voronoi diagram of the sites not left out.
+    const std::size_t not_sites = banding.run(stats_.grid, low, span, &site_state);
+    if (round == 0) {
+      stats_.pixel_collisions = static_cast<long>(not_sites);
+      if (options_.want_voronoi_image) // the diagram of every point
+        voronoi_ = banding.download_image();
+    }
+    ++stats_.construction_rounds;
+    timer_->charge(VoronoiBanding::kPhase);
+    // Phase 2: triangles from its vertices, ghosts along the border, links.
+    built = construction.run(banding.diagram(), stats_.grid, bad);
+    timer_->charge(TriangulationConstruction::kPhase);
+    if (!built.fits)
+      break;
+    // Phase 3: at the real coordinates; sites of turned-over or unmatched
+    // triangles are left out of the next diagram.
+    shifting.flag_inverted(built.real, bad);
+    const long left_out = shifting.leave_out_flagged(bad, site_state);
+    stats_.dropped_sites += left_out;
+    timer_->charge(Shifting::kPhase);
+    settled = left_out == 0;
+    // Each round should fix a good part of what is left (a dense hull turns
+    // over layer after layer, a few sites fewer each time); when it does not,
+    // the hull fan is cheaper than more rounds.
+    if (round >= 2 && left_out > kStalledSites && 4 * left_out > 3 * left_out_before)
+      break;
+    left_out_before = left_out;
+  }
+  if (!settled)
+    return false;
+  stats_.constructed_triangles = static_cast<long>(built.real);
+  mesh.triangle_count = built.real + built.ghosts;
+
+  // Phase 5 on the whole construction: the ghost flips make the outer cycle
+  // convex. A structure that is no triangulation may flip on and on: a bound
+  // on the passes, then the check that the cycle winds around once.
+  flips_ = FlipCounts{};
+  const long max_passes = 64 + 4 * static_cast<long>(std::sqrt(static_cast<double>(n)));
+  const bool flipped = flip_all(flips_, Flipping::kPhase, max_passes);
+  if (!flipped || !shifting.boundary_winds_once())
+    return false;
+  DeviceArray<cl_int> missing(device_, n);
+  const std::size_t count =
+      shifting.collect_missing(banding.diagram(), banding.pixel_of(), missing);
+  insertion.set_points(missing, count);
+  timer_->charge(Shifting::kPhase);
+  stats_.construction = "voronoi";
+  return true;
+}
+
+std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &added,
+                                                      const std::vector<int32_t> &start_triangles) {
+  DeviceMesh &mesh = *mesh_;
+  check_coordinates(added);
+  if (mesh.point_count + added.size() > mesh.point_capacity)
+    throw InputError("input", 0,
+                     "more than " + std::to_string(extra_points_) +
+                         " points to add where segments cross (not supported yet)");
+  const auto first = static_cast<int32_t>(mesh.point_count);
+  std::vector<cl_double2> coordinates;
+  std::vector<cl_int> ids;
+  for (std::size_t i = 0; i < added.size(); ++i) {
+    coordinates.push_back({{added[i].x, added[i].y}});
+    ids.push_back(first + static_cast<cl_int>(i)); // numbered after the input
+  }
+  mesh.points.upload(device_, coordinates, first);
+  mesh.original_id.upload(device_, ids, first);
+  mesh.location.upload(device_, std::vector<cl_int>(start_triangles.begin(), start_triangles.end()),
+                       first);
+  insert_appended(added.size());
+  const auto duplicates = mesh.duplicate_of.download(device_, added.size(), first);
+  std::vector<int32_t> result(added.size());
+  for (std::size_t i = 0; i < added.size(); ++i)
+    result[i] = duplicates[i] >= 0 ? duplicates[i] : ids[i];
+  return result;
+}
+
+std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
+  DeviceMesh &mesh = *mesh_;
+  const auto first = static_cast<int32_t>(mesh.point_count);
+  std::vector<cl_int> ids(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    ids[i] = first + static_cast<cl_int>(i);
+    original_id_.push_back(ids[i]);
+  }
+  mesh.point_count += count;
+  MissingPointInsertion insertion(device_, mesh, *scan_);
+  insertion.set_points(ids);
+  while (insertion.pending() > 0) {
+    const std::size_t inserted = insertion.run_round(stamp_++);
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (inserted == 0 && insertion.pending() > 0)
+      throw InternalError("point insertion made no progress");
+    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    timer_->charge(Flipping::kPhase);
+  }
+  stats_.flips = flips_.flips;
+  stats_.flip_passes = flips_.passes;
+  stats_.exact_predicate_calls = flips_.exact_checks;
+  return insertion.duplicates();
+}
+
+void DelaunayScheduler::grow(std::size_t extra_points) {
+  mesh_->grow(device_, extra_points);
+  const bool fixed = flipping_->fixed_boundary();
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
+  flipping_->set_fixed_boundary(fixed);
+}
+
+bool DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase, long max_passes) {
+  std::vector<cl_int> every_triangle(mesh_->triangle_count);
+  std::iota(every_triangle.begin(), every_triangle.end(), 0);
+  DeviceArray<cl_int> active(device_, every_triangle.size());
+  active.upload(device_, every_triangle);
+  const bool done = flipping_->run(active, every_triangle.size(), stamp_, counts, max_passes);
+  timer_->charge(phase);
+  return done;
+}
+
+void DelaunayScheduler::flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts,
+                                     const std::string &phase) {
+  const std::size_t slots = mesh_->triangle_count;
+  DeviceArray<cl_int> offsets(device_, slots), active(device_, slots);
+  const auto n =
+      static_cast<std::size_t>(scan_->compact_indices(flags, offsets, active, slots, phase));
+  flipping_->run(active, n, stamp_, counts);
+  timer_->charge(phase);
+}
+
+void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
+                                 const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
+  flipping_.reset(); // its lists are not needed any more: room for the output's
+  MeshOutput output(device_, *mesh_, *scan_);
+  output.download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  result.voronoi = std::move(voronoi_);
+  timer_->charge(MeshOutput::kPhase);
+  stats_.triangles = static_cast<long>(result.triangles.size());
+  stats_.compute_seconds = seconds_since(start_);
+}
+
+void DelaunayScheduler::download_collinear(DelaunayResult &result) {
+  result.duplicate_of = duplicates_on_host(points_);
+  stats_.duplicates = std::count_if(result.duplicate_of.begin(), result.duplicate_of.end(),
+                                    [](int32_t d) { return d >= 0; });
+  stats_.compute_seconds = seconds_since(start_);
+}
+
+} // namespace clmesh

@@ -1,0 +1,125 @@
+// clmesh — the GPU-DT scheduler: owns the device mesh and the phase objects,
+// runs Phases 1, 4 and 5, and hands the resident mesh to later phases (CDT).
+#pragma once
+
+#include "dt/flipping.hpp"
+#include "dt/mesh_output.hpp"
+#include "dt/missing_point_insertion.hpp"
+#include "dt/voronoi_banding.hpp"
+
+#include "clmesh/delaunay.hpp"
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace clmesh {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Lower-left corner and side of the square around the points (non-empty):
+// the digital Voronoi texture's, and the cells of refinement's triangle order.
+std::pair<Point, double> bounding_square(const std::vector<Point> &points);
+
+// Charges wall time to named phases, waiting for the device at each boundary.
+class PhaseTimer {
+public:
+  PhaseTimer(Device &device, DelaunayStats &stats) : device_(device), stats_(stats) {}
+  void charge(const std::string &name);
+
+private:
+  Device &device_;
+  DelaunayStats &stats_;
+  Clock::time_point last_ = Clock::now();
+};
+
+class DelaunayScheduler {
+public:
+  // Checks the points and builds the programs; the compute clock starts here.
+  // extra_points: room for points added after the triangulation (insert_points).
+  DelaunayScheduler(Device &device, const std::vector<Point> &points,
+                    const DelaunayOptions &options, DelaunayStats &stats,
+                    std::size_t extra_points = 0);
+  ~DelaunayScheduler();
+
+  // Phases 1-5; false when all points are collinear (no triangle).
+  bool triangulate();
+  // Inserts new points (numbered after every earlier one, in the device and
+  // in the output), each walking from the given triangle, and restores the
+  // (constrained) Delaunay property. Returns their device numbers, or the
+  // number of the point already there for one that coincides with it.
+  std::vector<int32_t> insert_points(const std::vector<Point> &added,
+                                     const std::vector<int32_t> &start_triangles);
+
+  // Inserts the points point_count .. point_count + count - 1, already on the
+  // device with their start triangles in location[], and restores the
+  // Delaunay property. Returns how many coincided with a vertex already there.
+  std::size_t insert_appended(std::size_t count);
+
+  // Makes room for `extra_points` more points; the phase objects that size
+  // their lists by the mesh are rebuilt.
+  void grow(std::size_t extra_points);
+
+  // Flips every triangle until locally (constrained) Delaunay; false when
+  // `max_passes` passes (-1: no limit) did not finish.
+  bool flip_all(FlipCounts &counts, const std::string &phase = Flipping::kPhase,
+                long max_passes = -1);
+
+  // Flips the triangles whose slot is flagged (flags[t] != 0) until every
+  // edge they reach is locally (constrained) Delaunay.
+  void flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts, const std::string &phase);
+
+  // Downloads the real triangles not flagged in `removed` (per slot), with
+  // the per-slot `label` of each in `labels` when given.
+  void download(DelaunayResult &result, const DeviceArray<cl_int> *removed = nullptr,
+                const DeviceArray<cl_int> *label = nullptr, std::vector<int32_t> *labels = nullptr);
+  void download_collinear(DelaunayResult &result);
+
+  Device &device() { return device_; }
+  DeviceMesh &mesh() { return *mesh_; }
+  PrefixScan &scan() { return *scan_; }
+  Flipping &flipping() { return *flipping_; }
+  PhaseTimer &timer() { return *timer_; }
+  int &stamp() { return stamp_; }
+  DelaunayStats &stats() { return stats_; }
+  int32_t device_point(int32_t input_index) const { return device_id_[input_index]; }
+  const std::vector<int32_t> &original_ids() const { return original_id_; }
+
+private:
+  // Rounds of Phases 1-3 before the hull fan is used instead.
+  static constexpr int kConstructionRounds = 12;
+  // Sites left out in a round that did not cut the previous round's count by
+  // a quarter: more than this many, and the rounds stop (from the third on).
+  static constexpr long kStalledSites = 64;
+
+  // The Voronoi texture's side: --grid, else VoronoiBanding::choose_grid.
+  int texture_side(Point low, double span) const;
+
+  // Phases 1-3: the first triangulation from the digital Voronoi diagram,
+  // flipped to Delaunay, and the missing points given to `insertion`. False
+  // (the mesh to be rebuilt from the hull fan) when that did not succeed.
+  bool construct_from_voronoi(MissingPointInsertion &insertion);
+
+  Device &device_;
+  const std::vector<Point> &points_;
+  DelaunayOptions options_;
+  std::size_t extra_points_;
+  DelaunayStats &stats_;
+  Clock::time_point start_;
+  std::unique_ptr<PhaseTimer> timer_;
+  std::unique_ptr<DeviceMesh> mesh_;
+  std::unique_ptr<PrefixScan> scan_;
+  std::unique_ptr<Flipping> flipping_;
+  std::vector<int32_t> device_id_;   // input index -> device point
+  std::vector<int32_t> original_id_; // device point -> input index
+  std::vector<int32_t> voronoi_;
+  FlipCounts flips_;
+  int stamp_ = 1;
+};
+
+} // namespace clmesh

@@ -1,0 +1,107 @@
+#include "dt/mesh_output.hpp"
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "mesh_output.cl";
+}
+
+MeshOutput::MeshOutput(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      flag_real_(device.kernel(kFile, "flag_real_triangles", kPhase)),
+      write_real_(device.kernel(kFile, "write_real_triangles", kPhase)),
+      smallest_representative_(device.kernel(kFile, "smallest_representative", kPhase)),
+      redirect_duplicates_(device.kernel(kFile, "redirect_duplicates", kPhase)),
+      rename_vertices_(device.kernel(kFile, "rename_vertices", kPhase)),
+      fill_identity_(device.kernel(kFile, "fill_identity", kPhase)),
+      restore_numbering_(device.kernel(kFile, "restore_input_numbering", kPhase)),
+      invert_numbering_(device.kernel(kFile, "invert_numbering", kPhase)),
+      rotate_(device.kernel(kFile, "rotate_to_smallest", kPhase)),
+      sort_buckets_(device.kernel(kFile, "sort_buckets", kPhase)),
+      write_sorted_(device.kernel(kFile, "write_sorted", kPhase)) {}
+
+void MeshOutput::download(std::vector<Triangle> &triangles,
+                          std::vector<std::array<int32_t, 3>> &neighbors,
+                          std::vector<int32_t> &duplicate_of, const DeviceArray<cl_int> *removed,
+                          const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
+  const std::size_t slots = mesh_.triangle_count;
+  // The output is the last use of the mesh: arrays it no longer needs hold
+  // the output's intermediate results, so the peak memory stays low.
+  const DeviceArray<cl_int> &is_real = mesh_.tri_mark, &new_index = mesh_.modified_stamp;
+  set_args(flag_real_, mesh_.tri_vertex.buffer(), removed ? removed->buffer() : is_real.buffer(),
+           static_cast<cl_int>(removed != nullptr), is_real.buffer(), static_cast<cl_int>(slots));
+  launch(device_, flag_real_, slots, kPhase);
+  const auto count =
+      static_cast<std::size_t>(scan_.exclusive_scan(is_real, new_index, slots, kPhase));
+  const DeviceArray<cl_int> &out_vertex = mesh_.children;
+  DeviceArray<cl_int> sorted_label(device_, label ? count : 1);
+  const DeviceArray<cl_int> &sorted_vertex = mesh_.tri_vertex,
+                            &sorted_neighbor = mesh_.tri_neighbor;
+  { // The scratch arrays of the sort go before the host's copy of the mesh comes.
+    DeviceArray<cl_int> out_neighbor(device_, 3 * count), out_label(device_, label ? count : 1);
+    const auto use_label = static_cast<cl_int>(label != nullptr);
+    set_args(write_real_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), is_real.buffer(),
+             new_index.buffer(), label ? label->buffer() : is_real.buffer(), use_label,
+             out_vertex.buffer(), out_neighbor.buffer(), out_label.buffer(),
+             static_cast<cl_int>(slots));
+    launch(device_, write_real_, slots, kPhase);
+    const std::size_t points = mesh_.point_count;
+    const auto point_count = static_cast<cl_int>(points);
+    DeviceArray<cl_int> input_duplicate_of(device_, points);
+    const DeviceArray<cl_int> &representative = mesh_.location;
+    set_args(restore_numbering_, mesh_.duplicate_of.buffer(), mesh_.original_id.buffer(),
+             input_duplicate_of.buffer(), point_count);
+    launch(device_, restore_numbering_, points, kPhase);
+    set_args(fill_identity_, representative.buffer(), point_count);
+    launch(device_, fill_identity_, points, kPhase);
+    set_args(smallest_representative_, input_duplicate_of.buffer(), representative.buffer(),
+             point_count);
+    launch(device_, smallest_representative_, points, kPhase);
+    set_args(redirect_duplicates_, input_duplicate_of.buffer(), representative.buffer(),
+             point_count);
+    launch(device_, redirect_duplicates_, points, kPhase);
+    set_args(rename_vertices_, out_vertex.buffer(), mesh_.original_id.buffer(),
+             representative.buffer(), static_cast<cl_int>(3 * count));
+    launch(device_, rename_vertices_, 3 * count, kPhase);
+    duplicate_of = input_duplicate_of.download(device_, points);
+
+    const auto triangle_count = static_cast<cl_int>(count);
+    const DeviceArray<cl_int> &bucket_size = mesh_.location_edge,
+                              &bucket_start = mesh_.vertex_triangle;
+    const DeviceArray<cl_int> &device_of_input = bucket_size; // until the buckets are counted
+    DeviceArray<cl_int> order(device_, count), position(device_, count);
+    const DeviceArray<cl_int> &first_slot = position; // until the buckets are sorted
+    set_args(invert_numbering_, mesh_.original_id.buffer(), device_of_input.buffer(), point_count);
+    launch(device_, invert_numbering_, points, kPhase);
+    set_args(rotate_, out_vertex.buffer(), out_neighbor.buffer(), device_of_input.buffer(),
+             first_slot.buffer(), triangle_count);
+    launch(device_, rotate_, count, kPhase);
+    // representative is reused as the buckets' cursors.
+    scan_.bucket(first_slot, count, points, bucket_size, bucket_start, representative, order,
+                 kPhase);
+    set_args(sort_buckets_, out_vertex.buffer(), bucket_start.buffer(), bucket_size.buffer(),
+             order.buffer(), position.buffer(), point_count);
+    launch(device_, sort_buckets_, points, kPhase);
+    set_args(write_sorted_, order.buffer(), position.buffer(), out_vertex.buffer(),
+             out_neighbor.buffer(), out_label.buffer(), use_label, sorted_vertex.buffer(),
+             sorted_neighbor.buffer(), sorted_label.buffer(), triangle_count);
+    launch(device_, write_sorted_, count, kPhase);
+    guarded(kPhase, "sorting the mesh", [&] { device_.queue().finish(); });
+  }
+  // Triangle and the neighbour triples are three packed ints, as on the device.
+  static_assert(sizeof(Triangle) == 3 * sizeof(cl_int));
+  static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(cl_int));
+  triangles.resize(count);
+  neighbors.resize(count);
+  if (count)
+    guarded(kPhase, "downloading the mesh", [&] {
+      device_.queue().enqueueReadBuffer(sorted_vertex.buffer(), CL_TRUE, 0,
+                                        3 * count * sizeof(cl_int), triangles.data());
+      device_.queue().enqueueReadBuffer(sorted_neighbor.buffer(), CL_TRUE, 0,
+                                        3 * count * sizeof(cl_int), neighbors.data());
+    });
+  if (label && labels)
+    *labels = sorted_label.download(device_, count);
+}
+
+} // namespace clmesh

@@ -1,0 +1,107 @@
+#include "dt/missing_point_insertion.hpp"
+
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "missing_point_insertion.cl";
+}
+
+MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      locate_(device.kernel(kFile, "locate_points", kPhase)),
+      mark_(device.kernel(kFile, "mark_containers", kPhase)),
+      select_(device.kernel(kFile, "select_winners", kPhase)),
+      clear_marks_(device.kernel(kFile, "clear_container_marks", kPhase)),
+      split_(device.kernel(kFile, "split_triangles", kPhase)),
+      relink_(device.kernel(kFile, "relink_split_children", kPhase)),
+      count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
+      remaining_(device, mesh.point_capacity), remaining_next_(device, mesh.point_capacity),
+      status_(device, mesh.point_capacity), winner_(device, mesh.point_capacity),
+      winner_offset_(device, mesh.point_capacity), keep_(device, mesh.point_capacity),
+      keep_offset_(device, mesh.point_capacity), changed_(device, mesh.list_capacity),
+      failures_(device, 1) {
+  failures_.fill(device_, 0, 1);
+}
+
+void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
+  remaining_.upload(device_, points);
+  pending_ = points.size();
+}
+
+void MissingPointInsertion::set_points(const DeviceArray<cl_int> &points, std::size_t count) {
+  if (count > 0)
+    guarded(kPhase, "copying the point list", [&] {
+      device_.queue().enqueueCopyBuffer(points.buffer(), remaining_.buffer(), 0, 0,
+                                        count * sizeof(cl_int));
+    });
+  pending_ = count;
+}
+
+std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
+  const auto n = static_cast<cl_int>(pending_);
+  if (n == 0)
+    return 0;
+  // Any walk in a Delaunay triangulation visits each triangle at most once.
+  const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
+  if (walk) {
+    set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.modified_stamp.buffer(), static_cast<cl_int>(located_since_),
+             remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+             mesh_.duplicate_of.buffer(), status_.buffer(), max_steps, n);
+    launch(device_, locate_, pending_, kPhase);
+    located_since_ = stamp; // this round's changes and later ones move points
+  } else {
+    status_.fill(device_, 0, pending_); // all pending where they stand
+  }
+
+  set_args(mark_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+  launch(device_, mark_, pending_, kPhase);
+  set_args(select_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), winner_.buffer(), n);
+  launch(device_, select_, pending_, kPhase);
+  set_args(clear_marks_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
+           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+  launch(device_, clear_marks_, pending_, kPhase);
+
+  const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
+  const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
+  DeviceMesh::FreeList &free = mesh_.free_triangles;
+  const auto free_first = static_cast<cl_int>(free.first),
+             free_count = static_cast<cl_int>(free.count);
+  const std::size_t new_slots = free.take(2 * static_cast<std::size_t>(winners));
+  if (mesh_.triangle_count + new_slots > mesh_.triangle_capacity ||
+      4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
+    throw InternalError("missing-point insertion: triangle slots exhausted");
+  const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
+  set_args(split_, remaining_.buffer(), winner_.buffer(), winner_offset_.buffer(),
+           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
+           mesh_.vertex_triangle.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
+           free_first, free_count, first_slot, n);
+  launch(device_, split_, pending_, kPhase);
+  mesh_.triangle_count += new_slots;
+  set_args(relink_, changed_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), static_cast<cl_int>(stamp),
+           static_cast<cl_int>(4 * winners));
+  launch(device_, relink_, 4 * static_cast<std::size_t>(winners), kPhase);
+
+  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),
+           n);
+  launch(device_, count_remaining_, pending_, kPhase);
+  const int kept =
+      scan_.compact(remaining_, keep_, keep_offset_, remaining_next_, pending_, kPhase);
+  if (failures_.read(device_, 0) != 0)
+    throw InternalError("missing-point insertion: a point location walk did not end");
+  duplicates_ += pending_ - static_cast<std::size_t>(kept) - static_cast<std::size_t>(winners);
+  std::swap(remaining_, remaining_next_);
+  pending_ = static_cast<std::size_t>(kept);
+  return static_cast<std::size_t>(winners);
+}
+
+} // namespace clmesh

@@ -1,0 +1,185 @@
+#include "refine/offcenter_insertion.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "offcenter_insertion.cl";
+constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_CANDIDATE)
+} // namespace
+
+OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
+                                       double max_area, int filter_rings, int filter_distance_rings,
+                                       double filter_near, bool parallel_midpoints,
+                                       int election_rings)
+    : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
+      filter_distance_rings_(filter_distance_rings),
+      filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
+      parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
+      flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
+      count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
+      find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
+      gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
+      elect_(device.kernel(kFile, "elect_candidates", kPhase)),
+      gather_elected_(device.kernel(kFile, "gather_elected", kPhase)),
+      locate_(device.kernel(kFile, "locate_candidates", kPhase)),
+      mark_(device.kernel(kFile, "mark_candidate_containers", kPhase)),
+      ties_(device.kernel(kFile, "mark_candidate_ties", kPhase)),
+      filter_(device.kernel(kFile, "insertion_filter", kPhase)),
+      clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
+      append_(device.kernel(kFile, "append_survivors", kPhase)),
+      candidate_(device, mesh.triangle_capacity), bad_list_(device, mesh.triangle_capacity),
+      origin_(device, mesh.triangle_capacity), container_(device, mesh.triangle_capacity),
+      split_edge_(device, mesh.triangle_capacity), survive_(device, mesh.triangle_capacity),
+      keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
+      tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
+      priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
+      radius2_(device, mesh.triangle_capacity) {
+  tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
+  last_container_.fill(device_, -1, mesh.triangle_capacity);
+  const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
+  cos_bound_ = std::cos(angle);
+  // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
+  ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
+  // Triangle's diametral lens: a hull edge is encroached by a point that sees
+  // it at an angle whose cosine is at most -cos(2 angle).
+  lens_ = std::cos(2 * angle) * std::cos(2 * angle);
+  // Üngör's off-center distance, as Triangle computes it.
+  offconstant_ =
+      min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
+}
+
+std::size_t OffcenterInsertion::flag_hull_vertices() {
+  const std::size_t slots = mesh_.triangle_count;
+  DeviceArray<cl_int> flagged(device_, 1);
+  flagged.fill(device_, 0, 1);
+  set_args(flag_hull_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.tri_neighbor.buffer(), static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_,
+           mesh_.point_state.buffer(), flagged.buffer(), static_cast<cl_int>(slots));
+  launch(device_, flag_hull_, slots, kPhase);
+  return static_cast<std::size_t>(flagged.read(device_, 0));
+}
+
+std::size_t OffcenterInsertion::count_unfixable() {
+  const std::size_t slots = mesh_.triangle_count;
+  DeviceArray<cl_int> count(device_, 1);
+  count.fill(device_, 0, 1);
+  set_args(count_unfixable_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
+           mesh_.point_state.buffer(), ratio_bound_squared_, max_area_, count.buffer(),
+           static_cast<cl_int>(slots));
+  launch(device_, count_unfixable_, slots, kPhase);
+  return static_cast<std::size_t>(count.read(device_, 0));
+}
+
+std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed,
+                                     int stamp) {
+  // The first search sweeps every slot; the later ones only the last bad
+  // triangles and the changed ones, without duplicates.
+  const bool use_list = searched_ && changed != nullptr;
+  std::size_t entries = mesh_.triangle_count;
+  if (use_list) {
+    search_.size = 0;
+    search_.append(device_, bad_list_, bad_);
+    if (changed->size > 0)
+      search_.append(device_, changed->items, changed->size);
+    if (search_keep_.size() < search_.size) {
+      search_keep_ = DeviceArray<cl_int>(device_, search_.items.size());
+      search_offset_ = DeviceArray<cl_int>(device_, search_.items.size());
+    }
+    entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
+                                                   search_keep_, search_offset_, listed_, kPhase));
+  }
+  searched_ = true;
+  const bool elect = election_rings_ > 0;
+  const auto items = static_cast<cl_int>(entries);
+  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
+           listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
+           offconstant_, keep_.buffer(), static_cast<cl_int>(elect), mesh_.tri_mark.buffer(),
+           items);
+  launch(device_, find_bad_, entries, kPhase);
+  bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
+  candidates_ = 0;
+  if (bad_ == 0)
+    return 0;
+  set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
+           static_cast<cl_int>(use_list), bad_list_.buffer(), items);
+  launch(device_, gather_bad_, entries, kPhase);
+  const auto bad = static_cast<cl_int>(bad_);
+  candidates_ = bad_;
+  const DeviceArray<cl_int> *origin = &bad_list_;
+  if (elect) {
+    set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
+             static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
+    launch(device_, elect_, bad_, kPhase);
+    candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+    set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
+             mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
+    launch(device_, gather_elected_, bad_, kPhase);
+    origin = &origin_;
+  }
+  const auto n = static_cast<cl_int>(candidates_);
+  set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
+           located_stamp_, ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
+           container_.buffer(), split_edge_.buffer(), origin->buffer(), priority_.buffer(),
+           radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
+  launch(device_, locate_, candidates_, kPhase);
+  located_stamp_ = stamp;
+  located_slots_ = std::max(located_slots_, mesh_.triangle_count);
+  set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
+           priority_.buffer(), mesh_.tri_mark.buffer(), n);
+  launch(device_, mark_, candidates_, kPhase);
+  set_args(ties_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
+           priority_.buffer(), mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
+  launch(device_, ties_, candidates_, kPhase);
+  set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
+           mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
+           candidate_.buffer(), radius2_.buffer(), static_cast<cl_int>(filter_rings_),
+           static_cast<cl_int>(filter_distance_rings_), filter_near2_,
+           static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
+  launch(device_, filter_, candidates_, kPhase);
+  set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
+           mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
+  launch(device_, clear_, candidates_, kPhase);
+  return bad_;
+}
+
+void OffcenterInsertion::forget_triangles() {
+  searched_ = false;
+  bad_ = 0;
+  candidates_ = 0;
+  last_container_.fill(device_, -1, located_slots_);
+  located_slots_ = 0;
+}
+
+std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
+                                       const DeviceArray<cl_int> &new_points, std::size_t *wanted) {
+  *wanted = 0;
+  if (candidates_ == 0)
+    return 0;
+  const auto n = static_cast<cl_int>(candidates_);
+  *wanted = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
+  const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
+  if (count == 0)
+    return 0;
+  DeviceMesh::FreeList &free = mesh_.free_points;
+  const auto free_first = static_cast<cl_int>(free.first),
+             free_count = static_cast<cl_int>(free.count);
+  const std::size_t new_slots = free.take(count);
+  const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
+  set_args(append_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
+           radius2_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
+           mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.points.buffer(),
+           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
+           mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
+           mesh_.point_priority.buffer(), free_list, free_first, free_count,
+           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), static_cast<cl_int>(count),
+           n);
+  launch(device_, append_, candidates_, kPhase);
+  mesh_.point_count += new_slots;
+  return count;
+}
+
+} // namespace clmesh

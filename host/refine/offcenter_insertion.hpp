@@ -1,0 +1,89 @@
+// clmesh — GPU-QM step 1: bad triangles, off-centers, boundary midpoints and
+// the insertion filter (thesis §3.3.2, §3.4.1). Kernels: cl/offcenter_insertion.cl.
+#pragma once
+
+#include "runtime/prefix_scan.hpp"
+
+#include "clmesh/geometry.hpp"
+
+#include <vector>
+
+namespace clmesh {
+
+class OffcenterInsertion {
+public:
+  static constexpr const char *kPhase = "offcenter_insertion";
+
+  // filter_rings: how many rings of neighbouring triangles the insertion
+  // filter looks at by priority (2 or 3); filter_distance_rings: how many
+  // more it looks at for predicted dependent pairs (0 or 1; see
+  // insertion_filter); filter_near: how near, in multiples of the
+  // orthogonal distance, a better candidate within the rings must be to keep
+  // one out (0: at any distance); parallel_midpoints: hull midpoints never
+  // keep each other out; election_rings: a bad triangle sends a candidate only
+  // when none within that many rings has a better priority (0: every one, the
+  // thesis's way; see elect_candidates).
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
+                     int filter_rings, int filter_distance_rings, double filter_near,
+                     bool parallel_midpoints, int election_rings);
+
+  // Finds the bad triangles, locates their candidates (hull midpoints where
+  // they fall outside or encroach the hull) and runs the insertion filter.
+  // Returns the number of bad triangles; candidates() says how many of them
+  // sent a candidate (all but those the election left waiting).
+  // The first search examines every slot; a later one the bad triangles of
+  // the last search and the triangles listed in `changed` (rewritten since,
+  // duplicates allowed; every slot when null). `stamp`: the mesh's next
+  // modification stamp; a triangle rewritten later has a larger one.
+  std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
+  std::size_t candidates() const { return candidates_; }
+  // After the triangles moved: the next search examines every slot again.
+  void forget_triangles();
+
+  // Once, on the Delaunay triangulation: flags the hull vertices, and among
+  // them the input points at hull angles below the minimum angle. Bad
+  // triangles whose smallest angle is at one of those cannot be mended and are
+  // left alone; count_unfixable() counts them.
+  std::size_t flag_hull_vertices(); // returns how many are acute
+  std::size_t count_unfixable();
+
+  // Appends the survivors to the mesh's points (free slots first, then from
+  // point_count on; they stay on the device) and lists them in new_points,
+  // not inserted yet; the first `room` of them when more survived. Returns how many were
+  // appended; *wanted: how many survived.
+  std::size_t append(std::size_t room, PrefixScan &scan, const DeviceArray<cl_int> &new_points,
+                     std::size_t *wanted);
+
+  double lens() const { return lens_; }
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;
+  int filter_rings_, filter_distance_rings_;
+  double filter_near2_; // squared; infinite for any distance
+  bool parallel_midpoints_;
+  int election_rings_;
+  cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
+      mark_, ties_, filter_, clear_, append_;
+  std::size_t bad_ = 0, candidates_ = 0;
+  bool searched_ = false;     // the first search examines every slot
+  DeviceList<cl_int> search_; // the next search's triangles, with duplicates
+  DeviceArray<cl_int> search_keep_, search_offset_;
+  DeviceArray<cl_double2> candidate_;
+  DeviceArray<cl_int> bad_list_; // the bad triangles of the last search
+  // Per candidate: its bad triangle (the elected ones; bad_list_ without an
+  // election), container, the edge it lies on, whether it survived the filter.
+  DeviceArray<cl_int> origin_, container_, split_edge_, survive_;
+  DeviceArray<cl_int> keep_, offset_, tie_mark_;
+  DeviceArray<cl_int> listed_; // the triangles of a search after the first
+  DeviceArray<cl_uint> priority_;
+  // Per bad triangle: where the last search located its candidate (-1: not
+  // located), valid while neither triangle is rewritten: a walk of one step.
+  DeviceArray<cl_int> last_container_;
+  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
+  cl_int located_stamp_ = 0;       // the mesh's stamp when the last search located
+  std::size_t located_slots_ = 0;  // last_container_ is -1 from here on
+};
+
+} // namespace clmesh

@@ -1,0 +1,63 @@
+#include "runtime/device_mesh.hpp"
+
+#include <algorithm>
+
+namespace clmesh {
+
+DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t extra_points)
+    : point_capacity(input_points + extra_points), point_count(input_points),
+      triangle_capacity(2 * point_capacity + 2),
+      // Each winner of an insertion round owns a triangle and adds two, so the
+      // 4 entries per winner stay below 4/3 of the triangle slots.
+      list_capacity(4 * triangle_capacity / 3 + 16), points(device, point_capacity),
+      original_id(device, point_capacity), tri_vertex(device, 3 * triangle_capacity),
+      tri_neighbor(device, 3 * triangle_capacity), tri_mark(device, triangle_capacity),
+      modified_stamp(device, triangle_capacity), children(device, 3 * triangle_capacity),
+      vertex_triangle(device, point_capacity), duplicate_of(device, point_capacity),
+      location(device, point_capacity), location_edge(device, point_capacity),
+      constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1) {}
+
+void DeviceMesh::grow(Device &device, std::size_t extra_points) {
+  const std::size_t points_now = point_capacity + extra_points;
+  const std::size_t triangles_now = 2 * points_now + 2;
+  const cl_int constraints_end = constraint_start.read(device, point_capacity);
+  points = points.grown(device, points_now, cl_double2{{0, 0}});
+  original_id = original_id.grown(device, points_now, 0);
+  tri_vertex = tri_vertex.grown(device, 3 * triangles_now, 0);
+  tri_neighbor = tri_neighbor.grown(device, 3 * triangles_now, 0);
+  tri_mark = tri_mark.grown(device, triangles_now, -1); // no mark
+  modified_stamp = modified_stamp.grown(device, triangles_now, 0);
+  children = children.grown(device, 3 * triangles_now, -1);
+  vertex_triangle = vertex_triangle.grown(device, points_now, 0);
+  duplicate_of = duplicate_of.grown(device, points_now, -1);
+  location = location.grown(device, points_now, 0);
+  location_edge = location_edge.grown(device, points_now, -1);
+  constraint_start = constraint_start.grown(device, points_now + 1, constraints_end);
+  if (point_state.size() > 0) {
+    point_state = point_state.grown(device, points_now, 0);
+    insertion_radius2 = insertion_radius2.grown(device, points_now, 0.0);
+    point_priority = point_priority.grown(device, points_now, 0u);
+  }
+  // Past the end of the old ranges there is room again: the free lists start over.
+  free_triangles = FreeList{};
+  free_points = FreeList{};
+  point_capacity = points_now;
+  triangle_capacity = triangles_now;
+  list_capacity = 4 * triangle_capacity / 3 + 16;
+}
+
+std::size_t DeviceMesh::FreeList::take(std::size_t wanted) {
+  const std::size_t reused = std::min(wanted, count);
+  first += reused;
+  count -= reused;
+  return wanted - reused;
+}
+
+void DeviceMesh::enable_refinement(Device &device) {
+  point_state = DeviceArray<cl_int>(device, point_capacity);
+  insertion_radius2 = DeviceArray<cl_double>(device, point_capacity);
+  point_priority = DeviceArray<cl_uint>(device, point_capacity);
+  point_state.fill(device, 0, point_capacity); // every point so far is an input point
+}
+
+} // namespace clmesh

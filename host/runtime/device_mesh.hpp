@@ -1,0 +1,153 @@
+// clmesh — every device buffer of a run, owned in one place (RAII through cl::Buffer).
+#pragma once
+
+#include "runtime/opencl_context.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace clmesh {
+
+template <typename T> class DeviceArray {
+public:
+  DeviceArray() = default;
+  DeviceArray(Device &device, std::size_t size) : size_(size) {
+    buffer_ = guarded("allocation", "allocating a device array",
+                      [&] { return device.allocate(sizeof(T) * (size ? size : 1)); });
+  }
+  std::size_t size() const { return size_; }
+  const cl::Buffer &buffer() const { return buffer_; }
+  operator const cl::Buffer &() const { return buffer_; }
+
+  void upload(Device &device, const std::vector<T> &data, std::size_t offset = 0) const {
+    if (data.empty())
+      return;
+    guarded("transfer", "uploading", [&] {
+      device.queue().enqueueWriteBuffer(buffer_, CL_TRUE, offset * sizeof(T),
+                                        data.size() * sizeof(T), data.data());
+    });
+  }
+  std::vector<T> download(Device &device, std::size_t count, std::size_t offset = 0) const {
+    std::vector<T> data(count);
+    if (count)
+      guarded("transfer", "downloading", [&] {
+        device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T), count * sizeof(T),
+                                         data.data());
+      });
+    return data;
+  }
+  T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }
+
+  // A larger array holding this one's contents, the rest set to `fill`.
+  DeviceArray grown(Device &device, std::size_t size, T fill) const {
+    DeviceArray bigger = enlarged(device, size, size_);
+    if (size > size_)
+      bigger.fill_range(device, fill, size_, size - size_, "allocation");
+    return bigger;
+  }
+  // A larger array holding the first `kept` entries of this one, the rest
+  // not written (so not touched: memory comes to a CPU device when first
+  // written).
+  DeviceArray enlarged(Device &device, std::size_t size, std::size_t kept) const {
+    DeviceArray bigger(device, size);
+    if (kept)
+      guarded("allocation", "growing a device array", [&] {
+        device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, kept * sizeof(T));
+      });
+    return bigger;
+  }
+  void fill(Device &device, T value, std::size_t count) const {
+    fill_range(device, value, 0, count, "setup");
+  }
+
+private:
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8 || sizeof(T) == 16,
+                "Device::fill writes elements of 1, 2 or 4 words");
+  void fill_range(Device &device, T value, std::size_t first, std::size_t count,
+                  const char *phase) const {
+    device.fill(buffer_, &value, sizeof(T), first * sizeof(T), count * sizeof(T), phase);
+  }
+
+  cl::Buffer buffer_;
+  std::size_t size_ = 0;
+};
+
+// A list on the device that grows (amortised doubling): entries appended
+// from other device arrays, or written by kernels into room reserved first.
+template <typename T> struct DeviceList {
+  DeviceArray<T> items;
+  std::size_t size = 0;
+  // Room for `count` more entries after the first `size`.
+  void reserve(Device &device, std::size_t count) {
+    if (size + count > items.size())
+      items = items.enlarged(device, 2 * (size + count), size);
+  }
+  void append(Device &device, const DeviceArray<T> &from, std::size_t count) {
+    if (count == 0)
+      return;
+    reserve(device, count);
+    guarded("transfer", "appending to a device list", [&] {
+      device.queue().enqueueCopyBuffer(from.buffer(), items.buffer(), 0, size * sizeof(T),
+                                       count * sizeof(T));
+    });
+    size += count;
+  }
+};
+
+// The triangulation and the per-point state that stay resident on the device
+// from upload to download (thesis §2.2 data structure).
+struct DeviceMesh {
+  // Room for the input points and `extra_points` points added later (the
+  // intersections of crossing segments).
+  DeviceMesh(Device &device, std::size_t point_count, std::size_t extra_points = 0);
+
+  std::size_t point_capacity;
+  std::size_t point_count;       // points in use: the input, then the added ones
+  std::size_t triangle_capacity; // 2 capacity + 2 slots: ghosts included, enough for every point
+  std::size_t list_capacity;     // active and scratch lists
+
+  DeviceArray<cl_double2> points;      // in spatial (Hilbert) order
+  DeviceArray<cl_int> original_id;     // input index of each device point
+  DeviceArray<cl_int> tri_vertex;      // 3 per triangle
+  DeviceArray<cl_int> tri_neighbor;    // 3 per triangle, (triangle << 2) | edge
+  DeviceArray<cl_int> tri_mark;        // atomic-minimum marks (unsigned on the device)
+  DeviceArray<cl_int> modified_stamp;  // step that last rewrote the slot
+  DeviceArray<cl_int> children;        // 3 per triangle: its replacements
+  DeviceArray<cl_int> vertex_triangle; // one incident triangle per vertex
+  DeviceArray<cl_int> duplicate_of;
+  DeviceArray<cl_int> location;      // containing triangle of each point not yet inserted
+  DeviceArray<cl_int> location_edge; // -1 or the edge the point lies on
+  // Constraints (CDT) as compressed rows per vertex, both directions; empty
+  // rows (all starts 0) for a plain Delaunay triangulation.
+  DeviceArray<cl_int> constraint_start;    // point_capacity + 1
+  DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
+  bool has_constraints = false;            // any row not empty
+
+  std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
+
+  // Empty slots (thesis §3.6.1), in slot order: free_triangles[free_first ..
+  // free_first + free_count), likewise for points. Refinement deletes
+  // triangles and points and collects them here when the room past
+  // triangle_count / point_count runs short.
+  struct FreeList {
+    DeviceArray<cl_int> slots;
+    std::size_t first = 0, count = 0;
+    // Takes `wanted` slots: the free ones first. Returns how many new slots
+    // (past the end of the used range) the batch needs.
+    std::size_t take(std::size_t wanted);
+  };
+  FreeList free_triangles, free_points;
+
+  // Refinement only (allocated by enable_refinement): per point its state
+  // (cl/refinement.h), insertion radius squared and priority (thesis §3.3, §3.5).
+  DeviceArray<cl_int> point_state;
+  DeviceArray<cl_double> insertion_radius2;
+  DeviceArray<cl_uint> point_priority;
+  void enable_refinement(Device &device);
+
+  // Makes room for `extra_points` more points (and their triangles), keeping
+  // every array's contents (thesis §3.6.1: arrays expand when slots run out).
+  void grow(Device &device, std::size_t extra_points);
+};
+
+} // namespace clmesh

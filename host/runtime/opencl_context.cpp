@@ -1,0 +1,417 @@
+// clmesh — device selection, program building and error naming.
+#include "runtime/opencl_context.hpp"
+
+#include "runtime/program_cache.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <sys/mman.h>
+
+namespace clmesh {
+
+const char *opencl_error_name(int code) {
+  switch (code) {
+#define CLMESH_NAME(c)                                                                             \
+  case c:                                                                                          \
+    return #c;
+    CLMESH_NAME(CL_SUCCESS)
+    CLMESH_NAME(CL_DEVICE_NOT_FOUND)
+    CLMESH_NAME(CL_DEVICE_NOT_AVAILABLE)
+    CLMESH_NAME(CL_COMPILER_NOT_AVAILABLE)
+    CLMESH_NAME(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    CLMESH_NAME(CL_OUT_OF_RESOURCES)
+    CLMESH_NAME(CL_OUT_OF_HOST_MEMORY)
+    CLMESH_NAME(CL_PROFILING_INFO_NOT_AVAILABLE)
+    CLMESH_NAME(CL_MEM_COPY_OVERLAP)
+    CLMESH_NAME(CL_IMAGE_FORMAT_MISMATCH)
+    CLMESH_NAME(CL_IMAGE_FORMAT_NOT_SUPPORTED)
+    CLMESH_NAME(CL_BUILD_PROGRAM_FAILURE)
+    CLMESH_NAME(CL_MAP_FAILURE)
+    CLMESH_NAME(CL_MISALIGNED_SUB_BUFFER_OFFSET)
+    CLMESH_NAME(CL_EXEC_STATUS_ERROR_FOR_EVENTS_IN_WAIT_LIST)
+    CLMESH_NAME(CL_COMPILE_PROGRAM_FAILURE)
+    CLMESH_NAME(CL_LINKER_NOT_AVAILABLE)
+    CLMESH_NAME(CL_LINK_PROGRAM_FAILURE)
+    CLMESH_NAME(CL_DEVICE_PARTITION_FAILED)
+    CLMESH_NAME(CL_KERNEL_ARG_INFO_NOT_AVAILABLE)
+    CLMESH_NAME(CL_INVALID_VALUE)
+    CLMESH_NAME(CL_INVALID_DEVICE_TYPE)
+    CLMESH_NAME(CL_INVALID_PLATFORM)
+    CLMESH_NAME(CL_INVALID_DEVICE)
+    CLMESH_NAME(CL_INVALID_CONTEXT)
+    CLMESH_NAME(CL_INVALID_QUEUE_PROPERTIES)
+    CLMESH_NAME(CL_INVALID_COMMAND_QUEUE)
+    CLMESH_NAME(CL_INVALID_HOST_PTR)
+    CLMESH_NAME(CL_INVALID_MEM_OBJECT)
+    CLMESH_NAME(CL_INVALID_IMAGE_FORMAT_DESCRIPTOR)
+    CLMESH_NAME(CL_INVALID_IMAGE_SIZE)
+    CLMESH_NAME(CL_INVALID_SAMPLER)
+    CLMESH_NAME(CL_INVALID_BINARY)
+    CLMESH_NAME(CL_INVALID_BUILD_OPTIONS)
+    CLMESH_NAME(CL_INVALID_PROGRAM)
+    CLMESH_NAME(CL_INVALID_PROGRAM_EXECUTABLE)
+    CLMESH_NAME(CL_INVALID_KERNEL_NAME)
+    CLMESH_NAME(CL_INVALID_KERNEL_DEFINITION)
+    CLMESH_NAME(CL_INVALID_KERNEL)
+    CLMESH_NAME(CL_INVALID_ARG_INDEX)
+    CLMESH_NAME(CL_INVALID_ARG_VALUE)
+    CLMESH_NAME(CL_INVALID_ARG_SIZE)
+    CLMESH_NAME(CL_INVALID_KERNEL_ARGS)
+    CLMESH_NAME(CL_INVALID_WORK_DIMENSION)
+    CLMESH_NAME(CL_INVALID_WORK_GROUP_SIZE)
+    CLMESH_NAME(CL_INVALID_WORK_ITEM_SIZE)
+    CLMESH_NAME(CL_INVALID_GLOBAL_OFFSET)
+    CLMESH_NAME(CL_INVALID_EVENT_WAIT_LIST)
+    CLMESH_NAME(CL_INVALID_EVENT)
+    CLMESH_NAME(CL_INVALID_OPERATION)
+    CLMESH_NAME(CL_INVALID_GL_OBJECT)
+    CLMESH_NAME(CL_INVALID_BUFFER_SIZE)
+    CLMESH_NAME(CL_INVALID_MIP_LEVEL)
+    CLMESH_NAME(CL_INVALID_GLOBAL_WORK_SIZE)
+    CLMESH_NAME(CL_INVALID_PROPERTY)
+    CLMESH_NAME(CL_INVALID_IMAGE_DESCRIPTOR)
+    CLMESH_NAME(CL_INVALID_COMPILER_OPTIONS)
+    CLMESH_NAME(CL_INVALID_LINKER_OPTIONS)
+    CLMESH_NAME(CL_INVALID_DEVICE_PARTITION_COUNT)
+    CLMESH_NAME(CL_PLATFORM_NOT_FOUND_KHR)
+#undef CLMESH_NAME
+  default:
+    return "CL_UNKNOWN_ERROR";
+  }
+}
+
+OpenCLError::OpenCLError(int code, const std::string &what_failed, const std::string &phase,
+                         const std::string &kernel)
+    : Error(std::string(opencl_error_name(code)) + " in " + what_failed + " (phase " + phase +
+            (kernel.empty() ? std::string() : ", kernel " + kernel) + ")"),
+      code_(code) {}
+
+namespace {
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+struct FoundDevice {
+  cl::Device device;
+  DeviceDescription description;
+};
+
+std::vector<FoundDevice> find_devices() {
+  std::vector<FoundDevice> found;
+  std::vector<cl::Platform> platforms;
+  try {
+    cl::Platform::get(&platforms);
+  } catch (const cl::Error &) {
+    return found; // no ICD or no platform: an empty list
+  }
+  for (std::size_t p = 0; p < platforms.size(); ++p) {
+    std::vector<cl::Device> devices;
+    try {
+      platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error &) {
+      continue;
+    }
+    for (std::size_t d = 0; d < devices.size(); ++d) {
+      DeviceDescription description;
+      description.platform_index = static_cast<int>(p);
+      description.device_index = static_cast<int>(d);
+      description.platform_name = platforms[p].getInfo<CL_PLATFORM_NAME>();
+      description.device_name = devices[d].getInfo<CL_DEVICE_NAME>();
+      description.version = devices[d].getInfo<CL_DEVICE_VERSION>();
+      const std::string extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
+      description.has_fp64 = extensions.find("cl_khr_fp64") != std::string::npos ||
+                             devices[d].getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
+      found.push_back({devices[d], description});
+    }
+  }
+  return found;
+}
+
+bool is_number(const std::string &text) {
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+bool matches(const FoundDevice &found, const std::string &spec, std::size_t list_position) {
+  const auto colon = spec.find(':');
+  if (colon != std::string::npos && is_number(spec.substr(0, colon)) &&
+      is_number(spec.substr(colon + 1)))
+    return found.description.platform_index == std::stoi(spec.substr(0, colon)) &&
+           found.description.device_index == std::stoi(spec.substr(colon + 1));
+  if (is_number(spec))
+    return list_position == std::stoul(spec);
+  const std::string haystack =
+      lower(found.description.platform_name + " " + found.description.device_name);
+  return haystack.find(lower(spec)) != std::string::npos;
+}
+
+std::string read_kernel_file(const std::string &name) {
+  if (const char *dir = std::getenv("CLMESH_KERNEL_DIR"); dir && *dir) {
+    std::ifstream in(std::string(dir) + "/" + name);
+    if (!in)
+      throw DeviceError("kernel source " + std::string(dir) + "/" + name +
+                        " not found (CLMESH_KERNEL_DIR is set)");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+  const char *text = detail::embedded_source(name.c_str());
+  if (!text)
+    throw InternalError("kernel source " + name + " is not embedded in this build");
+  return text;
+}
+
+void expand_includes(const std::string &name, std::set<std::string> &included, std::string &out) {
+  if (!included.insert(name).second)
+    return; // every header once
+  std::istringstream in(read_kernel_file(name));
+  std::string line;
+  int number = 0;
+  out += "#line 1 \"" + name + "\"\n";
+  while (std::getline(in, line)) {
+    ++number;
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line.compare(first, 8, "#include") == 0) {
+      const auto open = line.find('"'), close = line.rfind('"');
+      if (open != std::string::npos && close > open) {
+        expand_includes(line.substr(open + 1, close - open - 1), included, out);
+        out += "#line " + std::to_string(number + 1) + " \"" + name + "\"\n";
+        continue;
+      }
+    }
+    out += line;
+    out += '\n';
+  }
+}
+
+} // namespace
+
+std::string kernel_source(const std::string &file) {
+  std::set<std::string> included;
+  std::string out;
+  expand_includes(file, included, out);
+  return out;
+}
+
+std::vector<DeviceDescription> list_devices() {
+  std::vector<DeviceDescription> descriptions;
+  for (const auto &found : find_devices())
+    descriptions.push_back(found.description);
+  return descriptions;
+}
+
+std::shared_ptr<Device> open_device(const std::string &requested) {
+  std::string spec = requested;
+  if (spec.empty())
+    if (const char *env = std::getenv("CLMESH_DEVICE"))
+      spec = env;
+  const auto found = find_devices();
+  if (found.empty())
+    throw DeviceError("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    if (spec.empty() ? !found[i].description.has_fp64 : !matches(found[i], spec, i))
+      continue;
+    if (!found[i].description.has_fp64)
+      throw DeviceError("device '" + found[i].description.device_name +
+                        "' lacks double precision (cl_khr_fp64), which clmesh's exact "
+                        "predicates require");
+    return std::make_shared<Device>(found[i].device, found[i].description);
+  }
+  if (spec.empty())
+    throw DeviceError("no OpenCL device with double precision (cl_khr_fp64) found");
+  throw DeviceError("no OpenCL device matches '" + spec + "' (see clmesh --list-devices)");
+}
+
+std::string describe(const Device &device) {
+  return device.description().device_name + " (" + device.description().platform_name + ")";
+}
+
+std::size_t max_work_group_size(const Device &device) { return device.max_work_group(); }
+
+Device::Device(cl::Device device, DeviceDescription description)
+    : device_(device), description_(std::move(description)) {
+  guarded("setup", "creating the context", [&] {
+    context_ = cl::Context(device_);
+    queue_ = cl::CommandQueue(context_, device_);
+    const cl::Platform platform(device_.getInfo<CL_DEVICE_PLATFORM>());
+    build_identity_ =
+        platform.getInfo<CL_PLATFORM_NAME>() + "\n" + platform.getInfo<CL_PLATFORM_VERSION>() +
+        "\n" + device_.getInfo<CL_DEVICE_NAME>() + "\n" + device_.getInfo<CL_DEVICE_VERSION>() +
+        "\n" + device_.getInfo<CL_DRIVER_VERSION>();
+    // A CPU runs a work-group's work-items in turn: they prefetch for the
+    // ones after them (cl/prefetch.h).
+    cpu_ = (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+    if (cpu_)
+      build_options_ += " -DCLM_PREFETCH";
+  });
+  if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
+    set_work_group(std::strtoul(env, nullptr, 10));
+}
+
+cl::Buffer Device::allocate(std::size_t bytes) {
+#ifdef MADV_HUGEPAGE
+  constexpr std::size_t huge_page = std::size_t{2} << 20;
+  if (cpu_ && bytes >= huge_page) {
+    void *memory = nullptr;
+    if (posix_memalign(&memory, huge_page, bytes) == 0) {
+      // Advice only, for the whole huge pages (a partial last one would be
+      // committed whole): the kernel may not follow it.
+      madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+      cl_int error = CL_SUCCESS;
+      cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
+                                     memory, &error);
+      // The memory goes with the buffer (kernels may hold it longer than its owner).
+      auto release = [](cl_mem, void *user_data) { std::free(user_data); };
+      if (error == CL_SUCCESS &&
+          clSetMemObjectDestructorCallback(buffer, release, memory) == CL_SUCCESS)
+        return cl::Buffer(buffer);
+      if (error == CL_SUCCESS)
+        clReleaseMemObject(buffer);
+      std::free(memory); // then the driver's own memory
+    }
+  }
+#endif
+  return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
+}
+
+std::size_t Device::compute_units() const {
+  return std::max<std::size_t>(1, device_.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>());
+}
+
+std::size_t Device::max_work_group() const {
+  return device_.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+}
+
+std::size_t Device::max_allocation() const {
+  return static_cast<std::size_t>(device_.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>());
+}
+
+std::size_t Device::global_memory() const {
+  return static_cast<std::size_t>(device_.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+}
+
+void Device::set_work_group(std::size_t size) {
+  const std::size_t max_size = max_work_group();
+  if (size == 0 || size > max_size)
+    throw UsageError("work-group size must be between 1 and " + std::to_string(max_size));
+  work_group_ = size;
+}
+
+cl::Program &Device::program(const std::string &file, const std::string &phase) {
+  auto it = programs_.find(file);
+  if (it != programs_.end())
+    return it->second;
+  const std::string source = kernel_source(file);
+  // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
+  // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
+  const std::string options = build_options_;
+  const ProgramCache cache(source, options + "\n" + build_identity_);
+  if (const auto binary = cache.load()) {
+    try {
+      cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
+      program.build(std::vector<cl::Device>{device_}, options.c_str());
+      return programs_.emplace(file, program).first->second;
+    } catch (const cl::Error &) {
+      // A binary the driver no longer takes: built again from the source.
+    }
+  }
+  cl::Program program(context_, source);
+  try {
+    program.build(std::vector<cl::Device>{device_}, options.c_str());
+  } catch (const cl::Error &error) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+    } catch (const cl::Error &) {
+    }
+    throw OpenCLError(error.err(), "building " + file + ":\n" + log, phase, "");
+  }
+  try {
+    const auto binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+    if (binaries.size() == 1)
+      cache.store(binaries.front());
+  } catch (const cl::Error &) {
+    // No binary to keep: the next run builds from the source again.
+  }
+  return programs_.emplace(file, program).first->second;
+}
+
+cl::Kernel Device::kernel(const std::string &file, const std::string &name,
+                          const std::string &phase) {
+  cl::Program &built = program(file, phase);
+  return guarded(phase, "creating kernel", [&] { return cl::Kernel(built, name.c_str()); });
+}
+
+void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
+                  std::size_t offset, std::size_t bytes, const std::string &phase) {
+  if (bytes == 0)
+    return;
+  const std::size_t word = sizeof(cl_uint);
+  if ((pattern_size != 4 && pattern_size != 8 && pattern_size != 16) ||
+      offset % pattern_size != 0 || bytes % pattern_size != 0)
+    throw InternalError("a device fill takes whole elements of 4, 8 or 16 bytes, not " +
+                        std::to_string(pattern_size));
+  if (!fill_words_())
+    fill_words_ = kernel("fill.cl", "fill_words", phase);
+  cl_uint4 words{};
+  std::memcpy(&words, pattern, pattern_size);
+  set_args(fill_words_, buffer, words, static_cast<cl_uint>(pattern_size / word),
+           static_cast<cl_ulong>(offset / word), static_cast<cl_ulong>(bytes / word));
+  launch(*this, fill_words_, bytes / word, phase);
+}
+
+void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase) {
+  launch(device, kernel, items, phase, device.work_group());
+}
+
+void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
+            std::size_t group) {
+  if (items == 0)
+    return;
+  const std::size_t global = (items + group - 1) / group * group;
+  static const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
+                                        cl::NDRange(group));
+    if (profile)
+      device.queue().finish();
+  } catch (const cl::Error &error) {
+    throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
+  }
+  if (profile) {
+    // CLMESH_PROFILE=1: per-kernel seconds, launches and work-items on
+    // stderr at exit (development aid).
+    struct Total {
+      double seconds = 0;
+      long launches = 0;
+      double items = 0;
+    };
+    static std::map<std::string, Total> totals;
+    static struct Report {
+      ~Report() {
+        for (const auto &[name, total] : totals)
+          std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
+                       total.seconds, total.launches, total.items);
+      }
+    } report;
+    Total &total = totals[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
+    total.seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++total.launches;
+    total.items += static_cast<double>(items);
+  }
+}
+
+} // namespace clmesh

@@ -11,7 +11,7 @@
 #include <doctest/doctest.h>
 
 #include "clmesh/check.hpp"
-#include "clmesh/constrained.hpp"
+#include "cdt/constrained.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
 #include "mesh_fixtures.hpp"
@@ -575,11 +575,11 @@ TEST_CASE("cdt: random points with non-crossing segments of many lengths") {
     pslg.points = fixtures::disk(5000, 25);
     pslg.segments = random_segments(pslg.points, 1000, 0.01, 2, 26);
     auto options = whole_hull_options();
-    options.delaunay.work_group = 1;
+    options.delaunay.tuning.work_group = 1;
     const auto first = clmesh::constrained_delaunay(device(), pslg, options);
-    options.delaunay.work_group = 256;
+    options.delaunay.tuning.work_group = 256;
     const auto second = clmesh::constrained_delaunay(device(), pslg, options);
-    options.delaunay.work_group = clmesh::max_work_group_size(device());
+    options.delaunay.tuning.work_group = clmesh::max_work_group_size(device());
     const auto largest = clmesh::constrained_delaunay(device(), pslg, options);
     CHECK(first.mesh.triangles == second.mesh.triangles);
     CHECK(first.mesh.neighbors == second.mesh.neighbors);
@@ -648,7 +648,7 @@ TEST_CASE("cdt: dense parallel chains (runs of many constraints side by side)") 
                                << ", outer iterations " << result.stats.outer_iterations);
   CHECK(result.stats.intersections > 20 * static_cast<long>(pslg.segments.size()));
   CHECK(result.stats.split_segments == 0);
-  options.delaunay.work_group = 1;
+  options.delaunay.tuning.work_group = 1;
   const auto single = clmesh::constrained_delaunay(device(), pslg, options);
   CHECK(single.mesh.triangles == result.mesh.triangles);
   CHECK(single.mesh.neighbors == result.mesh.neighbors);

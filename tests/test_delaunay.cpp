@@ -5,7 +5,7 @@
 #include <doctest/doctest.h>
 
 #include "clmesh/check.hpp"
-#include "clmesh/delaunay.hpp"
+#include "dt/delaunay.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
 #include "mesh_fixtures.hpp"
@@ -221,15 +221,15 @@ TEST_CASE("delaunay: reference inputs") {
 TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   const auto points = fixtures::gaussian(20000, 8);
   clmesh::DelaunayOptions options;
-  options.work_group = 1;
+  options.tuning.work_group = 1;
   const auto first = clmesh::delaunay(device(), points, options);
-  options.work_group = 256;
+  options.tuning.work_group = 256;
   const auto second = clmesh::delaunay(device(), points, options);
-  options.work_group = 64;
+  options.tuning.work_group = 64;
   const auto third = clmesh::delaunay(device(), points, options);
   // The largest the device allows (PoCL: 4096; private arrays of every
   // work-item of a group must then fit a worker thread's stack).
-  options.work_group = clmesh::max_work_group_size(device());
+  options.tuning.work_group = clmesh::max_work_group_size(device());
   const auto largest = clmesh::delaunay(device(), points, options);
   CHECK(first.triangles == second.triangles);
   CHECK(first.neighbors == second.neighbors);
@@ -250,11 +250,11 @@ TEST_CASE("delaunay: the same triangles whether short flip passes run in one wor
   for (const auto &[name, points] : inputs) {
     CAPTURE(name);
     clmesh::DelaunayOptions options;
-    options.group_pass_limit = 0;
+    options.tuning.group_pass_limit = 0;
     const auto by_kernels = clmesh::delaunay(device(), points, options);
-    options.group_pass_limit = std::size_t{1} << 30;
+    options.tuning.group_pass_limit = std::size_t{1} << 30;
     const auto in_group = clmesh::delaunay(device(), points, options);
-    options.group_pass_limit = clmesh::DelaunayOptions{}.group_pass_limit;
+    options.tuning.group_pass_limit = clmesh::Tuning{}.group_pass_limit;
     const auto mixed = triangulate_and_check(points, options);
     CHECK(by_kernels.triangles == in_group.triangles);
     CHECK(by_kernels.neighbors == in_group.neighbors);
@@ -280,11 +280,12 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
       CAPTURE(name);
       CAPTURE(grid);
       clmesh::DelaunayOptions options;
-      options.voronoi_construction = false;
+      options.tuning.voronoi_construction = false;
       const auto fan = clmesh::delaunay(device(), points, options);
       CHECK(fan.stats.construction == "hull_fan");
-      options.voronoi_construction = true;
-      options.grid = grid;
+      options.tuning.voronoi_construction = true;
+      if (grid > 0) // 0: the default grid, chosen from the points
+        options.tuning.grid = grid;
       const auto result = triangulate_and_check(points, options);
       CHECK(result.triangles == fan.triangles);
       CHECK(result.stats.construction_rounds >= 1);
@@ -331,7 +332,7 @@ TEST_CASE("voronoi banding: every pixel is coloured with a nearest site") {
     points.push_back(points[5]); // a pixel shared by two points
     clmesh::DelaunayOptions options;
     options.want_voronoi_image = true;
-    options.grid = grid;
+    options.tuning.grid = grid;
     const auto result = clmesh::delaunay(device(), points, options);
     REQUIRE(result.stats.grid == grid);
     REQUIRE(result.voronoi.size() == static_cast<std::size_t>(grid) * grid);

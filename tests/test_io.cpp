@@ -562,7 +562,7 @@ TEST_CASE("writers reproduce Triangle's reference output byte for byte") {
     const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
     const auto neighbors = neighbors_of(triangles);
     MeshView mesh;
-    mesh.points = &input;
+    mesh.set_points(input);
     mesh.triangles = &triangles;
     mesh.neighbors = &neighbors;
     WriteOptions options;
@@ -600,7 +600,7 @@ TEST_CASE("write_node then read_node gives the same points") {
   for (int first : {0, 1}) {
     CAPTURE(first);
     MeshView mesh;
-    mesh.points = &set;
+    mesh.set_points(set);
     WriteOptions options;
     options.first_index = first;
     TempDir dir;
@@ -630,7 +630,7 @@ TEST_CASE("writers: formats, hull markers, numbering") {
   const std::vector<std::array<int32_t, 3>> neighbors = {{-1, 1, -1}, {-1, -1, 0}};
   CHECK(neighbors == neighbors_of(triangles));
   MeshView mesh;
-  mesh.points = &set;
+  mesh.set_points(set);
   mesh.triangles = &triangles;
   mesh.neighbors = &neighbors;
 
@@ -692,7 +692,7 @@ TEST_CASE("writers: formats, hull markers, numbering") {
     const std::vector<Triangle> fan = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
     const auto fan_neighbors = neighbors_of(fan);
     MeshView view;
-    view.points = &marked;
+    view.set_points(marked);
     view.triangles = &fan;
     view.neighbors = &fan_neighbors;
     TempDir dir;
@@ -737,7 +737,7 @@ TEST_CASE("-p writers reproduce Triangle's reference output byte for byte") {
       const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
       const auto neighbors = neighbors_of(triangles);
       MeshView mesh;
-      mesh.points = &input.points;
+      mesh.set_points(input.points);
       mesh.triangles = &triangles;
       mesh.neighbors = &neighbors;
       mesh.segments = &segments;
@@ -763,7 +763,7 @@ TEST_CASE("-p writers reproduce Triangle's reference output byte for byte") {
       const std::vector<Triangle> triangles = read_ele(reference + ".ele", 1);
       const auto neighbors = neighbors_of(triangles);
       MeshView mesh;
-      mesh.points = &output.points;
+      mesh.set_points(output.points);
       mesh.triangles = &triangles;
       mesh.neighbors = &neighbors;
       mesh.segments = &output.segments;
@@ -796,7 +796,7 @@ TEST_CASE("-p writers: markers, -B, -A, -j, eaten segments") {
                                          {0, 4, 0}, {4, 2, 6}, {2, 5, 4}};
   const std::vector<double> attributes = {1.5, 2, -3, 0.1};
   MeshView mesh;
-  mesh.points = &set;
+  mesh.set_points(set);
   mesh.triangles = &triangles;
   mesh.neighbors = &neighbors;
   mesh.segments = &segments;
@@ -929,7 +929,7 @@ TEST_CASE("write_poly and write_node, then read_poly, give the same PSLG") {
   const auto neighbors = neighbors_of(triangles);
   const std::vector<Region> regions = {{{0.5, 0.5}, 2.5, 0.01}, {{0.9, 0.1}, -1, -1}};
   MeshView mesh;
-  mesh.points = &points;
+  mesh.set_points(points);
   mesh.triangles = &triangles;
   mesh.neighbors = &neighbors;
   mesh.segments = &input.segments;
@@ -972,7 +972,7 @@ TEST_CASE("-j drops duplicate vertices and renumbers the rest") {
   const std::vector<Triangle> triangles = {{0, 1, 3}, {0, 3, 5}};
   const auto neighbors = neighbors_of(triangles);
   MeshView mesh;
-  mesh.points = &set;
+  mesh.set_points(set);
   mesh.triangles = &triangles;
   mesh.neighbors = &neighbors;
   mesh.duplicate_of = &duplicate_of;
@@ -1035,7 +1035,7 @@ TEST_CASE("OutputBatch writes all files on commit, none without it") {
   const std::vector<Triangle> triangles = {{0, 1, 2}};
   const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
   MeshView mesh;
-  mesh.points = &set;
+  mesh.set_points(set);
   mesh.triangles = &triangles;
   mesh.neighbors = &neighbors;
 

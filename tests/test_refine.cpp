@@ -2,10 +2,7 @@
 // angle and a maximum area, checked exactly on every output.
 #include <doctest/doctest.h>
 
-#include "clmesh/check.hpp"
-#include "clmesh/constrained.hpp"
-#include "clmesh/errors.hpp"
-#include "clmesh/refine.hpp"
+#include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -40,23 +37,41 @@ double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
 // remaining_allowed: inputs where bad triangles may remain (nearly straight
 // runs of hull points, sharp hull angles): then no more triangles than
 // reported may miss the bound.
-clmesh::RefineResult
-refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
-               clmesh::RefineAlgorithm algorithm = clmesh::RefineAlgorithm::qmv,
-               bool remaining_allowed = false, int filter_rings = 0, int filter_distance_rings = -1,
-               double filter_near = -1, int election_rings = -1) {
-  clmesh::RefineOptions options;
+// The tuning of a refinement algorithm.
+clmesh::Tuning tuning_of(clmesh::RefineAlgorithm algorithm) {
+  clmesh::Tuning tuning;
+  return tuning.use(algorithm);
+}
+
+// The options of -q<angle> (no angle bound for 0) and -a<max_area> (none for <= 0).
+clmesh::Options refine_options(double angle, double max_area = -1,
+                               const clmesh::Tuning &tuning = {}) {
+  clmesh::Options options;
+  options.quality = angle > 0;
   options.min_angle = angle;
-  options.max_area = max_area;
-  options.algorithm = algorithm;
-  options.filter_rings = filter_rings;
-  options.filter_distance_rings = filter_distance_rings;
-  options.filter_near = filter_near;
-  options.election_rings = election_rings;
-  clmesh::RefineResult result = clmesh::refine_delaunay(device(), input, options);
-  std::vector<Point> points = input;
-  points.insert(points.end(), result.added_points.begin(), result.added_points.end());
-  const auto &mesh = result.mesh;
+  if (max_area > 0)
+    options.max_area = max_area;
+  options.tuning = tuning;
+  return options;
+}
+
+clmesh::Mesh refine(const std::vector<Point> &points, const clmesh::Options &options) {
+  clmesh::Input input;
+  input.points = points;
+  return clmesh::triangulate(device(), input, options);
+}
+
+// The Steiner points a refined mesh holds.
+long steiner_points(const clmesh::Mesh &mesh) {
+  return static_cast<long>(mesh.points.size()) - mesh.input_points;
+}
+
+clmesh::Mesh refine_checked(const std::vector<Point> &input, double angle, double max_area = -1,
+                            const clmesh::Tuning &tuning = {}, bool remaining_allowed = false) {
+  const clmesh::Mesh result = refine(input, refine_options(angle, max_area, tuning));
+  const clmesh::RefineStats &stats = result.statistics.refinement;
+  const std::vector<Point> &points = result.points;
+  const clmesh::Mesh &mesh = result;
   REQUIRE(mesh.duplicate_of.size() == points.size());
   std::vector<clmesh::Segment> boundary;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -76,10 +91,10 @@ refine_checked(const std::vector<Point> &input, double angle, double max_area = 
     unused += !used[i] && mesh.duplicate_of[i] < 0;
   CHECK(unused == 0);
   if (!remaining_allowed)
-    CHECK(result.stats.remaining_bad == 0);
+    CHECK(stats.remaining_bad == 0);
   // Every insertion is in the mesh, or was deleted as redundant.
-  CHECK(result.stats.inserted == result.stats.insertions - result.stats.deleted);
-  CHECK(static_cast<long>(result.added_points.size()) == result.stats.inserted);
+  CHECK(stats.inserted == stats.insertions - stats.deleted);
+  CHECK(steiner_points(result) == stats.inserted);
   double worst_angle = 180, largest = 0;
   long below = 0;
   for (const auto &t : mesh.triangles) {
@@ -88,10 +103,10 @@ refine_checked(const std::vector<Point> &input, double angle, double max_area = 
     below += smallest < angle - 1e-6;
     largest = std::max(largest, area(points, t));
   }
-  MESSAGE(input.size() << " points, -q" << angle << ": " << result.added_points.size()
+  MESSAGE(input.size() << " points, -q" << angle << ": " << steiner_points(result)
                        << " Steiner points, smallest angle " << worst_angle);
   if (remaining_allowed)
-    CHECK(below <= result.stats.remaining_bad);
+    CHECK(below <= stats.remaining_bad);
   else
     CHECK(worst_angle >= angle - 1e-6);
   if (max_area > 0)
@@ -106,15 +121,15 @@ TEST_CASE("refine: minimum angles on the thesis distributions, GPU-QM-V and GPU-
     INFO((algorithm == clmesh::RefineAlgorithm::qm ? "GPU-QM" : "GPU-QM-V"));
     for (const double angle : {20.0, 25.0, 30.0}) {
       INFO("angle " << angle);
-      refine_checked(fixtures::uniform(4000, 71), angle, -1, algorithm);
-      refine_checked(fixtures::gaussian(4000, 72), angle, -1, algorithm);
-      refine_checked(fixtures::disk(4000, 73), angle, -1, algorithm);
+      refine_checked(fixtures::uniform(4000, 71), angle, -1, tuning_of(algorithm));
+      refine_checked(fixtures::gaussian(4000, 72), angle, -1, tuning_of(algorithm));
+      refine_checked(fixtures::disk(4000, 73), angle, -1, tuning_of(algorithm));
     }
-    refine_checked(fixtures::circle(1000, 74), 30, -1, algorithm);
-    refine_checked(fixtures::lattice(40), 30, -1, algorithm); // cocircular: already 45 degrees
+    refine_checked(fixtures::circle(1000, 74), 30, -1, tuning_of(algorithm));
+    refine_checked(fixtures::lattice(40), 30, -1, tuning_of(algorithm)); // cocircular: already 45 degrees
     // A lattice cut by an area bound: Steiner points on lattice edges and
     // cocircular with their neighbours, stars where no flop is possible.
-    refine_checked(fixtures::lattice(12), 30, 0.05, algorithm);
+    refine_checked(fixtures::lattice(12), 30, 0.05, tuning_of(algorithm));
   }
 }
 
@@ -126,7 +141,7 @@ TEST_CASE("refine: nearly straight runs of hull points (delaunator fixtures)") {
     INFO(name);
     const auto points = fixtures::json_points(data + "/delaunator/" + name + ".json");
     for (const double angle : {20.0, 25.0})
-      refine_checked(points, angle, -1, clmesh::RefineAlgorithm::qmv, true);
+      refine_checked(points, angle, -1, {}, true);
   }
 }
 
@@ -134,36 +149,42 @@ TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than 
   // The same insertion filter for both (by priority only): only their
   // deletion rules differ.
   const auto points = fixtures::uniform(6000, 80);
-  const auto qmv = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qmv, false, 2, 0);
-  const auto qm = refine_checked(points, 30, -1, clmesh::RefineAlgorithm::qm, false, 2, 0);
-  MESSAGE("GPU-QM-V: " << qmv.stats.insertions << " insertions, " << qmv.stats.deleted
-                       << " deleted; GPU-QM: " << qm.stats.insertions << " insertions, "
-                       << qm.stats.deleted << " deleted");
-  CHECK(qmv.stats.deleted > 0);
-  CHECK(qm.stats.deleted > qmv.stats.deleted);
-  CHECK(qm.stats.non_delaunay_flips > qmv.stats.non_delaunay_flips);
-  CHECK(qmv.stats.delaunay_flips > 0);
+  clmesh::Tuning qmv_tuning = tuning_of(clmesh::RefineAlgorithm::qmv);
+  clmesh::Tuning qm_tuning = tuning_of(clmesh::RefineAlgorithm::qm);
+  qm_tuning.filter_rings = qmv_tuning.filter_rings = 2;
+  qm_tuning.filter_distance_rings = qmv_tuning.filter_distance_rings = 0;
+  const auto qmv = refine_checked(points, 30, -1, qmv_tuning);
+  const auto qm = refine_checked(points, 30, -1, qm_tuning);
+  MESSAGE("GPU-QM-V: " << qmv.statistics.refinement.insertions << " insertions, " << qmv.statistics.refinement.deleted
+                       << " deleted; GPU-QM: " << qm.statistics.refinement.insertions << " insertions, "
+                       << qm.statistics.refinement.deleted << " deleted");
+  CHECK(qmv.statistics.refinement.deleted > 0);
+  CHECK(qm.statistics.refinement.deleted > qmv.statistics.refinement.deleted);
+  CHECK(qm.statistics.refinement.non_delaunay_flips > qmv.statistics.refinement.non_delaunay_flips);
+  CHECK(qmv.statistics.refinement.delaunay_flips > 0);
   // Only a deleted point can come back.
-  CHECK(qm.stats.inserted_more_than_once <= qm.stats.deleted);
-  CHECK(qmv.stats.inserted_more_than_once <= qmv.stats.deleted);
-  CHECK(qm.stats.inserted_more_than_once > 0);
+  CHECK(qm.statistics.refinement.inserted_more_than_once <= qm.statistics.refinement.deleted);
+  CHECK(qmv.statistics.refinement.inserted_more_than_once <= qmv.statistics.refinement.deleted);
+  CHECK(qm.statistics.refinement.inserted_more_than_once > 0);
 }
 
 TEST_CASE("refine: an insertion filter that looks further inserts fewer points") {
   const auto points = fixtures::uniform(6000, 80);
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
-    const auto two = refine_checked(points, 30, -1, algorithm, false, 2);
-    const auto three = refine_checked(points, 30, -1, algorithm, false, 3);
-    MESSAGE("two rings: " << two.stats.inserted << " Steiner points, " << two.stats.iterations
-                          << " iterations; three: " << three.stats.inserted << ", "
-                          << three.stats.iterations);
-    CHECK(three.stats.inserted < two.stats.inserted);
-    CHECK(three.stats.iterations > two.stats.iterations);
+    clmesh::Tuning tuning = tuning_of(algorithm);
+    tuning.filter_rings = 2;
+    const auto two = refine_checked(points, 30, -1, tuning);
+    tuning.filter_rings = 3;
+    const auto three = refine_checked(points, 30, -1, tuning);
+    MESSAGE("two rings: " << two.statistics.refinement.inserted << " Steiner points, " << two.statistics.refinement.iterations
+                          << " iterations; three: " << three.statistics.refinement.inserted << ", "
+                          << three.statistics.refinement.iterations);
+    CHECK(three.statistics.refinement.inserted < two.statistics.refinement.inserted);
+    CHECK(three.statistics.refinement.iterations > two.statistics.refinement.iterations);
   }
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
-  options.filter_rings = 4;
-  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+  clmesh::Options options = refine_options(30);
+  options.tuning.filter_rings = 4;
+  CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
 }
 
 TEST_CASE("refine: the filter leaves out the pairs GPU-QM-V's step 3 would break up") {
@@ -171,19 +192,21 @@ TEST_CASE("refine: the filter leaves out the pairs GPU-QM-V's step 3 would break
   // (equal priorities on either side of a short edge, or a ring further).
   const auto points = fixtures::uniform(6000, 80);
   const auto qmv = clmesh::RefineAlgorithm::qmv;
-  const auto priority_only = refine_checked(points, 30, -1, qmv, false, 2, 0);
-  const auto with_distance = refine_checked(points, 30, -1, qmv, false, 2, 1);
-  MESSAGE("by priority: " << priority_only.stats.insertions << " insertions, "
-                          << priority_only.stats.deleted << " deleted; with distance: "
-                          << with_distance.stats.insertions << ", " << with_distance.stats.deleted);
-  CHECK(with_distance.stats.deleted * 5 < priority_only.stats.deleted);
-  CHECK(with_distance.stats.insertions < priority_only.stats.insertions);
+  clmesh::Tuning tuning = tuning_of(qmv);
+  tuning.filter_distance_rings = 0;
+  const auto priority_only = refine_checked(points, 30, -1, tuning);
+  tuning.filter_distance_rings = 1;
+  const auto with_distance = refine_checked(points, 30, -1, tuning);
+  MESSAGE("by priority: " << priority_only.statistics.refinement.insertions << " insertions, "
+                          << priority_only.statistics.refinement.deleted << " deleted; with distance: "
+                          << with_distance.statistics.refinement.insertions << ", " << with_distance.statistics.refinement.deleted);
+  CHECK(with_distance.statistics.refinement.deleted * 5 < priority_only.statistics.refinement.deleted);
+  CHECK(with_distance.statistics.refinement.insertions < priority_only.statistics.refinement.insertions);
   // No more points in the end (within half a percent).
-  CHECK(with_distance.stats.inserted * 200 < priority_only.stats.inserted * 201);
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
-  options.filter_distance_rings = 2;
-  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+  CHECK(with_distance.statistics.refinement.inserted * 200 < priority_only.statistics.refinement.inserted * 201);
+  clmesh::Options options = refine_options(30);
+  options.tuning.filter_distance_rings = 2;
+  CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
 }
 
 TEST_CASE("refine: far better candidates do not hold GPU-QM-V's insertions back") {
@@ -192,17 +215,19 @@ TEST_CASE("refine: far better candidates do not hold GPU-QM-V's insertions back"
   // distance they went in about one per large triangle and iteration.
   const auto points = fixtures::ring(20000, 1e-3, 81);
   const auto qmv = clmesh::RefineAlgorithm::qmv;
-  const auto any_distance = refine_checked(points, 20, -1, qmv, false, 0, -1, 0);
-  const auto near_only = refine_checked(points, 20, -1, qmv);
-  MESSAGE("at any distance: " << any_distance.stats.iterations << " iterations, "
-                              << any_distance.stats.inserted << " points; near only: "
-                              << near_only.stats.iterations << ", " << near_only.stats.inserted);
-  CHECK(near_only.stats.iterations * 10 < any_distance.stats.iterations * 9);
+  clmesh::Tuning any = tuning_of(qmv);
+  any.filter_near = 0;
+  const auto any_distance = refine_checked(points, 20, -1, any);
+  const auto near_only = refine_checked(points, 20, -1, tuning_of(qmv));
+  MESSAGE("at any distance: " << any_distance.statistics.refinement.iterations << " iterations, "
+                              << any_distance.statistics.refinement.inserted << " points; near only: "
+                              << near_only.statistics.refinement.iterations << ", " << near_only.statistics.refinement.inserted);
+  CHECK(near_only.statistics.refinement.iterations * 10 < any_distance.statistics.refinement.iterations * 9);
   // No more than 1% more points.
-  CHECK(near_only.stats.inserted * 100 < any_distance.stats.inserted * 101);
-  clmesh::RefineOptions options;
-  options.filter_near = 0.5;
-  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+  CHECK(near_only.statistics.refinement.inserted * 100 < any_distance.statistics.refinement.inserted * 101);
+  clmesh::Options options = refine_options(20);
+  options.tuning.filter_near = 0.5;
+  CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
 }
 
 TEST_CASE("refine: midpoints of different hull edges go in the same iteration") {
@@ -213,19 +238,17 @@ TEST_CASE("refine: midpoints of different hull edges go in the same iteration") 
   for (const Point &p : fixtures::uniform(20000, 82))
     points.push_back({0.01 + 0.98 * p.x, 0.01 + 0.98 * p.y});
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
-    clmesh::RefineOptions options;
-    options.min_angle = 20;
-    options.algorithm = algorithm;
-    options.parallel_midpoints = false;
-    const auto one_by_one = clmesh::refine_delaunay(device(), points, options);
-    const auto parallel = refine_checked(points, 20, -1, algorithm);
+    clmesh::Options options = refine_options(20, -1, tuning_of(algorithm));
+    options.tuning.parallel_midpoints = false;
+    const auto one_by_one = refine(points, options);
+    const auto parallel = refine_checked(points, 20, -1, tuning_of(algorithm));
     MESSAGE("midpoints kept out by better ones: "
-            << one_by_one.stats.iterations << " iterations, " << one_by_one.stats.inserted
-            << " points; in parallel: " << parallel.stats.iterations << ", "
-            << parallel.stats.inserted);
-    CHECK(parallel.stats.iterations * 4 < one_by_one.stats.iterations * 3);
+            << one_by_one.statistics.refinement.iterations << " iterations, " << one_by_one.statistics.refinement.inserted
+            << " points; in parallel: " << parallel.statistics.refinement.iterations << ", "
+            << parallel.statistics.refinement.inserted);
+    CHECK(parallel.statistics.refinement.iterations * 4 < one_by_one.statistics.refinement.iterations * 3);
     // No more points (within half a percent).
-    CHECK(parallel.stats.inserted * 200 < one_by_one.stats.inserted * 201);
+    CHECK(parallel.statistics.refinement.inserted * 200 < one_by_one.statistics.refinement.inserted * 201);
   }
 }
 
@@ -240,26 +263,28 @@ TEST_CASE("refine: GPU-QM-V's election locates fewer candidates for the same mes
   const auto qmv = clmesh::RefineAlgorithm::qmv;
   for (const double angle : {20.0, 30.0}) {
     INFO("angle " << angle);
-    const auto all = refine_checked(points, angle, -1, qmv, false, 0, -1, -1, 0);
-    const auto one_ring = refine_checked(points, angle, -1, qmv, false, 0, -1, -1, 1);
-    const auto two_rings = refine_checked(points, angle, -1, qmv);
+    clmesh::Tuning tuning = tuning_of(qmv);
+    tuning.election_rings = 0;
+    const auto all = refine_checked(points, angle, -1, tuning);
+    tuning.election_rings = 1;
+    const auto one_ring = refine_checked(points, angle, -1, tuning);
+    const auto two_rings = refine_checked(points, angle, -1, tuning_of(qmv));
     MESSAGE("candidates, iterations, points: every bad triangle "
-            << all.stats.candidates << ", " << all.stats.iterations << ", " << all.stats.inserted
-            << "; elected in one ring " << one_ring.stats.candidates << ", "
-            << one_ring.stats.iterations << ", " << one_ring.stats.inserted << "; in two "
-            << two_rings.stats.candidates << ", " << two_rings.stats.iterations << ", "
-            << two_rings.stats.inserted);
-    CHECK(one_ring.stats.candidates < all.stats.candidates);
-    CHECK(two_rings.stats.candidates < one_ring.stats.candidates);
-    CHECK(two_rings.stats.candidates * 3 < all.stats.candidates * 2);
+            << all.statistics.refinement.candidates << ", " << all.statistics.refinement.iterations << ", " << all.statistics.refinement.inserted
+            << "; elected in one ring " << one_ring.statistics.refinement.candidates << ", "
+            << one_ring.statistics.refinement.iterations << ", " << one_ring.statistics.refinement.inserted << "; in two "
+            << two_rings.statistics.refinement.candidates << ", " << two_rings.statistics.refinement.iterations << ", "
+            << two_rings.statistics.refinement.inserted);
+    CHECK(one_ring.statistics.refinement.candidates < all.statistics.refinement.candidates);
+    CHECK(two_rings.statistics.refinement.candidates < one_ring.statistics.refinement.candidates);
+    CHECK(two_rings.statistics.refinement.candidates * 3 < all.statistics.refinement.candidates * 2);
     // At most a third more iterations, and 1.5% more points.
-    CHECK(two_rings.stats.iterations * 3 <= all.stats.iterations * 4);
-    CHECK(two_rings.stats.inserted * 200 < all.stats.inserted * 203);
+    CHECK(two_rings.statistics.refinement.iterations * 3 <= all.statistics.refinement.iterations * 4);
+    CHECK(two_rings.statistics.refinement.inserted * 200 < all.statistics.refinement.inserted * 203);
   }
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
-  options.election_rings = 3;
-  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), points, options), clmesh::UsageError);
+  clmesh::Options options = refine_options(30);
+  options.tuning.election_rings = 3;
+  CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
 }
 
 TEST_CASE("refine: maximum area, alone and with an angle") {
@@ -271,8 +296,8 @@ TEST_CASE("refine: a mesh that outgrows its first room, several times") {
   // About 40 times the input's room in Steiner points: the arrays grow while
   // candidates wait, and the search starts over on the grown mesh.
   const auto result = refine_checked(fixtures::uniform(300, 77), 25, 4e-5);
-  CHECK(result.stats.growths >= 2);
-  CHECK(result.added_points.size() > 10000);
+  CHECK(result.statistics.refinement.growths >= 2);
+  CHECK(steiner_points(result) > 10000);
 }
 
 TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
@@ -280,87 +305,83 @@ TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
   std::vector<Point> points = {{0, 0}, {10, 0.25}, {10, -0.25}};
   for (int i = 1; i < 40; ++i)
     points.push_back({i * 0.25, 0});
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
-    options.algorithm = algorithm;
-    const auto result = clmesh::refine_delaunay(device(), points, options);
-    std::vector<Point> all = points;
-    all.insert(all.end(), result.added_points.begin(), result.added_points.end());
-    CHECK(!result.mesh.triangles.empty());
-    MESSAGE(result.stats.remaining_bad << " bad triangles remain after " << result.stats.iterations
-                                       << " iterations, " << result.added_points.size()
+    const auto result = refine(points, refine_options(30, -1, tuning_of(algorithm)));
+    const std::vector<Point> &all = result.points;
+    CHECK(!result.triangles.empty());
+    MESSAGE(result.statistics.refinement.remaining_bad << " bad triangles remain after " << result.statistics.refinement.iterations
+                                       << " iterations, " << steiner_points(result)
                                        << " Steiner points");
     long bad = 0;
-    for (const auto &t : result.mesh.triangles) {
+    for (const auto &t : result.triangles) {
       CHECK(area(all, t) > 0);
       if (smallest_angle_degrees(all, t) < 30) {
         ++bad; // only at the apex, whose angle no refinement can mend
         CHECK((t[0] == 0 || t[1] == 0 || t[2] == 0));
       }
     }
-    CHECK(bad == result.stats.remaining_bad);
+    CHECK(bad == result.statistics.refinement.remaining_bad);
   }
 }
 
 TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
-  options.max_steiner = 50;
-  const auto result = clmesh::refine_delaunay(device(), fixtures::uniform(2000, 77), options);
+  clmesh::Options options = clmesh::parse_switches("q30S50");
+  const auto result = refine(fixtures::uniform(2000, 77), options);
   // Bad triangles remain: the limit is reached, not passed.
-  CHECK(result.stats.remaining_bad > 0);
-  CHECK(result.added_points.size() == 50u);
+  CHECK(result.statistics.refinement.remaining_bad > 0);
+  CHECK(steiner_points(result) == 50);
 }
 
 TEST_CASE("refine: the same mesh whatever the work-group size, grid or construction") {
-  clmesh::RefineOptions options;
-  options.min_angle = 30;
+  clmesh::Options options = refine_options(30);
+  clmesh::Tuning &tuning = options.tuning;
   auto points = fixtures::gaussian(3000, 78);
   for (std::size_t i = 0; i < 3000; i += 10) // duplicates: which copy is meshed must not matter
     points.push_back(points[i]);
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
-    options.algorithm = algorithm;
-    options.delaunay.work_group = 1;
-    const auto first = clmesh::refine_delaunay(device(), points, options);
-    options.delaunay.work_group = 128;
-    const auto second = clmesh::refine_delaunay(device(), points, options);
-    options.delaunay.work_group = clmesh::max_work_group_size(device());
-    const auto largest = clmesh::refine_delaunay(device(), points, options);
-    options.delaunay.work_group = 128;
-    CHECK(first.mesh.triangles == second.mesh.triangles);
-    CHECK(first.mesh.triangles == largest.mesh.triangles);
-    REQUIRE(first.added_points.size() == second.added_points.size());
-    for (std::size_t i = 0; i < first.added_points.size(); ++i)
-      CHECK((first.added_points[i].x == second.added_points[i].x &&
-             first.added_points[i].y == second.added_points[i].y));
-    CHECK(first.stats.deleted == second.stats.deleted);
+    tuning.use(algorithm);
+    tuning.work_group = 1;
+    const auto first = refine(points, options);
+    tuning.work_group = 128;
+    const auto second = refine(points, options);
+    tuning.work_group = clmesh::max_work_group_size(device());
+    const auto largest = refine(points, options);
+    tuning.work_group = 128;
+    CHECK(first.triangles == second.triangles);
+    CHECK(first.triangles == largest.triangles);
+    REQUIRE(first.points.size() == second.points.size());
+    for (std::size_t i = 0; i < first.points.size(); ++i)
+      CHECK((first.points[i].x == second.points[i].x && first.points[i].y == second.points[i].y));
+    CHECK(first.statistics.refinement.deleted == second.statistics.refinement.deleted);
     // Nor on the Voronoi grid or the first triangulation's construction.
-    options.delaunay.grid = 16;
-    const auto third = clmesh::refine_delaunay(device(), points, options);
-    options.delaunay.grid = 0;
-    options.delaunay.voronoi_construction = false;
-    const auto fourth = clmesh::refine_delaunay(device(), points, options);
-    CHECK(first.mesh.stats.construction == "voronoi");
-    CHECK(third.mesh.stats.construction == "voronoi");
-    CHECK(fourth.mesh.stats.construction == "hull_fan");
-    CHECK(first.mesh.triangles == third.mesh.triangles);
-    CHECK(first.mesh.triangles == fourth.mesh.triangles);
-    options.delaunay.voronoi_construction = true;
+    tuning.grid = 16;
+    const auto third = refine(points, options);
+    tuning.grid.reset();
+    tuning.voronoi_construction = false;
+    const auto fourth = refine(points, options);
+    CHECK(first.statistics.delaunay.construction == "voronoi");
+    CHECK(third.statistics.delaunay.construction == "voronoi");
+    CHECK(fourth.statistics.delaunay.construction == "hull_fan");
+    CHECK(first.triangles == third.triangles);
+    CHECK(first.triangles == fourth.triangles);
+    tuning.voronoi_construction = true;
     // Nor on whether flip-flop passes run in one work-group or as separate kernels.
-    options.group_pass_limit = 0;
-    const auto by_kernels = clmesh::refine_delaunay(device(), points, options);
-    options.group_pass_limit = std::size_t{1} << 30;
-    const auto in_group = clmesh::refine_delaunay(device(), points, options);
-    options.group_pass_limit = clmesh::RefineOptions{}.group_pass_limit;
-    CHECK(first.mesh.triangles == by_kernels.mesh.triangles);
-    CHECK(first.mesh.triangles == in_group.mesh.triangles);
+    tuning.group_pass_limit = 0;
+    const auto by_kernels = refine(points, options);
+    tuning.group_pass_limit = std::size_t{1} << 30;
+    const auto in_group = refine(points, options);
+    tuning.group_pass_limit = clmesh::Tuning{}.group_pass_limit;
+    CHECK(first.triangles == by_kernels.triangles);
+    CHECK(first.triangles == in_group.triangles);
   }
 }
 
 TEST_CASE("refine: bad options are refused") {
-  clmesh::RefineOptions options;
-  options.min_angle = 60;
-  CHECK_THROWS_AS(clmesh::refine_delaunay(device(), fixtures::uniform(10, 79), options),
-                  clmesh::UsageError);
+  CHECK_THROWS_AS(refine(fixtures::uniform(10, 79), refine_options(60)), clmesh::OptionError);
+  CHECK_THROWS_AS(refine(fixtures::uniform(10, 79), clmesh::parse_switches("q30a0")),
+                  clmesh::OptionError);
+  CHECK_THROWS_AS(clmesh::parse_switches("q30v"), clmesh::OptionError);
+  CHECK_THROWS_AS(clmesh::parse_switches("qx"), clmesh::OptionError);
+  clmesh::Options pslg_quality = clmesh::parse_switches("pq");
+  CHECK_THROWS_AS(clmesh::validate(pslg_quality), clmesh::OptionError);
 }

@@ -1,7 +1,7 @@
 // clmesh — GPU-CDT entry point (thesis chapter 4): GPU-DT phases, then the
 // constraints inserted by marking and flipping, then constrained Delaunay
 // flipping, then the exterior and holes removed.
-#include "clmesh/constrained.hpp"
+#include "cdt/constrained.hpp"
 
 #include "cdt/constraint_insertion.hpp"
 #include "dt/delaunay_scheduler.hpp"

@@ -4,7 +4,7 @@
 
 #include "runtime/device_mesh.hpp"
 
-#include "clmesh/constrained.hpp"
+#include "cdt/constrained.hpp"
 
 #include <array>
 #include <functional>

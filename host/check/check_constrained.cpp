@@ -19,7 +19,7 @@
 //    locally Delaunay (clm_incircle_sos == -1 for the vertex across it); without whole_hull
 //    every boundary edge is part of a segment.
 #include "clmesh/check.hpp"
-#include "clmesh/constrained.hpp"
+#include "cdt/constrained.hpp"
 
 #include "check/check_support.hpp"
 #include "predicates.h"

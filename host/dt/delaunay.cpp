@@ -1,5 +1,5 @@
 // clmesh — GPU-DT entry point (thesis §4.1.2).
-#include "clmesh/delaunay.hpp"
+#include "dt/delaunay.hpp"
 
 #include "dt/delaunay_scheduler.hpp"
 

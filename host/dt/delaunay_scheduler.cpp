@@ -341,8 +341,8 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   if (points.size() > (std::size_t{1} << 28))
     throw InputError("input", 0, "more than 2^28 points");
   check_coordinates(points);
-  if (options.work_group)
-    device.set_work_group(options.work_group);
+  if (options.tuning.work_group)
+    device.set_work_group(*options.tuning.work_group);
   stats.device = describe(device);
   stats.input_points = static_cast<long>(points.size());
   // Build every program before the clock starts.
@@ -364,7 +364,7 @@ bool DelaunayScheduler::triangulate() {
 
   mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.tuning.group_pass_limit);
   MissingPointInsertion insertion(device_, *mesh_, *scan_);
   Device &device = device_;
   DeviceMesh &mesh = *mesh_;
@@ -391,7 +391,7 @@ bool DelaunayScheduler::triangulate() {
 
   // Phases 1-3 build the first triangulation and list the missing points;
   // when their result cannot be used, the hull is fanned instead.
-  if (!options_.voronoi_construction && options_.want_voronoi_image) {
+  if (!options_.tuning.voronoi_construction && options_.want_voronoi_image) {
     const auto [low, span] = bounding_square(points);
     stats_.grid = texture_side(low, span);
     VoronoiBanding banding(device, mesh, *scan_);
@@ -399,7 +399,7 @@ bool DelaunayScheduler::triangulate() {
     voronoi_ = banding.download_image();
     timer_->charge(VoronoiBanding::kPhase);
   }
-  if (!options_.voronoi_construction || !construct_from_voronoi(insertion)) {
+  if (!options_.tuning.voronoi_construction || !construct_from_voronoi(insertion)) {
     // The hull only now: the Voronoi construction does without it.
     const std::vector<int32_t> hull = convex_hull(points);
     std::vector<int32_t> device_hull(hull.size());
@@ -448,7 +448,7 @@ bool DelaunayScheduler::triangulate() {
 }
 
 int DelaunayScheduler::texture_side(Point low, double span) const {
-  return options_.grid > 0 ? options_.grid : VoronoiBanding::choose_grid(points_, low, span);
+  return options_.tuning.grid ? *options_.tuning.grid : VoronoiBanding::choose_grid(points_, low, span);
 }
 
 bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
@@ -573,7 +573,7 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
 void DelaunayScheduler::grow(std::size_t extra_points) {
   mesh_->grow(device_, extra_points);
   const bool fixed = flipping_->fixed_boundary();
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.group_pass_limit);
+  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.tuning.group_pass_limit);
   flipping_->set_fixed_boundary(fixed);
 }
 

@@ -7,7 +7,7 @@
 #include "dt/missing_point_insertion.hpp"
 #include "dt/voronoi_banding.hpp"
 
-#include "clmesh/delaunay.hpp"
+#include "dt/delaunay.hpp"
 
 #include <chrono>
 #include <memory>

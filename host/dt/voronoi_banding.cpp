@@ -57,7 +57,7 @@ int VoronoiBanding::choose_grid(const std::vector<Point> &points, Point low, dou
 std::size_t VoronoiBanding::run(int grid, Point min, double span,
                                 const DeviceArray<cl_int> *site_state) {
   if (grid < 2 || grid > kMaxGrid)
-    throw UsageError("--grid must be between 2 and " + std::to_string(kMaxGrid));
+    throw OptionError("--grid must be between 2 and " + std::to_string(kMaxGrid));
   const std::size_t pixels = static_cast<std::size_t>(grid) * grid;
   const std::size_t n = mesh_.point_count;
   if (grid != grid_) { // scratch kept between the rounds of Phases 2 and 3

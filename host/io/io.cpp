@@ -1,7 +1,6 @@
 // clmesh — Triangle's file formats, SVG and PGM pictures (see clmesh/io.hpp).
 #include "clmesh/io.hpp"
 
-#include "clmesh/delaunay.hpp"
 #include "clmesh/errors.hpp"
 
 #include <algorithm>
@@ -388,6 +387,31 @@ PolyFile read_poly(const std::string &path) {
   return poly;
 }
 
+Input read_input(const std::string &path, std::string *node_path) {
+  Input input;
+  input.source = path;
+  PointSet points;
+  const bool pslg = path.size() >= 5 && path.compare(path.size() - 5, 5, ".poly") == 0;
+  if (pslg) {
+    PolyFile file = read_poly(path);
+    if (node_path)
+      *node_path = file.node_path;
+    points = std::move(file.points);
+    input.segments = std::move(file.segments);
+    input.holes = std::move(file.holes);
+    input.regions = std::move(file.regions);
+  } else {
+    points = read_node(path);
+  }
+  input.points = std::move(points.points);
+  input.attribute_count = points.attribute_count;
+  input.point_attributes = std::move(points.attributes);
+  if (points.has_markers)
+    input.point_markers = std::move(points.markers);
+  input.first_index = points.first_index;
+  return input;
+}
+
 // ---------------------------------------------------------------------------
 // Mesh helpers
 // ---------------------------------------------------------------------------
@@ -465,11 +489,34 @@ std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
   return edges;
 }
 
+void MeshView::set_points(const PointSet &set) {
+  points = &set.points;
+  attribute_count = set.attribute_count;
+  point_attributes = &set.attributes;
+  point_markers = set.has_markers ? &set.markers : nullptr;
+}
+
+MeshView view_of(const Mesh &mesh) {
+  MeshView view;
+  view.points = &mesh.points;
+  view.attribute_count = mesh.attribute_count;
+  view.point_attributes = &mesh.point_attributes;
+  view.point_markers = &mesh.point_markers;
+  view.triangles = &mesh.triangles;
+  view.neighbors = &mesh.neighbors;
+  view.duplicate_of = &mesh.duplicate_of;
+  if (mesh.statistics.constrained)
+    view.segments = &mesh.segments;
+  if (mesh.triangle_attribute_count > 0)
+    view.triangle_attributes = &mesh.triangle_attributes;
+  return view;
+}
+
 std::vector<int> output_vertex_markers(const MeshView &mesh) {
-  const std::size_t n = mesh.points ? mesh.points->points.size() : 0;
+  const std::size_t n = mesh.points ? mesh.points->size() : 0;
   std::vector<int> markers(n, 0);
-  if (mesh.points && mesh.points->has_markers && mesh.points->markers.size() == n)
-    markers = mesh.points->markers;
+  if (mesh.point_markers && mesh.point_markers->size() == n)
+    markers = *mesh.point_markers;
   auto in_range = [n](int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < n; };
   // As Triangle inserts the segments in order: an endpoint whose marker is
   // still 0 takes the segment's.
@@ -493,7 +540,7 @@ std::vector<int> output_vertex_markers(const MeshView &mesh) {
 }
 
 std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options) {
-  std::size_t n = mesh.points ? mesh.points->points.size() : 0;
+  std::size_t n = mesh.points ? mesh.points->size() : 0;
   std::vector<char> dropped(n, 0);
   if (options.jettison_duplicates) {
     const std::vector<int32_t> *duplicates = mesh.duplicate_of;
@@ -618,7 +665,7 @@ private:
   std::string buffer_;
 };
 
-const PointSet &points_of(const MeshView &mesh) {
+const std::vector<Point> &points_of(const MeshView &mesh) {
   if (!mesh.points)
     throw InternalError("output writer called without points");
   return *mesh.points;
@@ -660,8 +707,8 @@ std::string OutputBatch::temporary_for(const std::string &path) {
 
 void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
                              const WriteOptions &options) {
-  const PointSet &set = points_of(mesh);
-  const std::size_t n = set.points.size();
+  const std::vector<Point> &points = points_of(mesh);
+  const std::size_t n = points.size();
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
   std::size_t written = 0;
   for (int32_t number : numbers)
@@ -669,8 +716,8 @@ void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
   const std::vector<int> markers =
       options.boundary_markers ? output_vertex_markers(mesh) : std::vector<int>();
 
-  const std::size_t attributes = static_cast<std::size_t>(std::max(set.attribute_count, 0));
-  if (set.attributes.size() < n * attributes)
+  const std::size_t attributes = static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
+  if (attributes > 0 && (!mesh.point_attributes || mesh.point_attributes->size() < n * attributes))
     throw InternalError("point set holds fewer attributes than its attribute count says");
   TextFile file(temporary_for(path), path);
   file.format("%zu  2  %zu  %d\n", written, attributes, options.boundary_markers ? 1 : 0);
@@ -680,12 +727,12 @@ void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
     // "%4ld    %.17g  %.17g", then "  %.17g" per attribute, then "    %d"
     file.integer(static_cast<long>(numbers[i]) + options.first_index, 4);
     file.text("    ");
-    file.real(set.points[i].x);
+    file.real(points[i].x);
     file.text("  ");
-    file.real(set.points[i].y);
+    file.real(points[i].y);
     for (std::size_t a = 0; a < attributes; ++a) {
       file.text("  ");
-      file.real(set.attributes[i * attributes + a]);
+      file.real((*mesh.point_attributes)[i * attributes + a]);
     }
     if (options.boundary_markers) {
       file.text("    ");
@@ -753,7 +800,6 @@ void OutputBatch::write_edge(const std::string &path, const MeshView &mesh,
 void OutputBatch::write_poly(const std::string &path, const MeshView &mesh,
                              const std::vector<Point> &holes, const std::vector<Region> &regions,
                              const WriteOptions &options) {
-  const PointSet &set = points_of(mesh);
   if (!mesh.segments)
     throw InternalError("write_poly called without segments");
   const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
@@ -775,7 +821,7 @@ void OutputBatch::write_poly(const std::string &path, const MeshView &mesh,
   const int flag = options.boundary_markers ? 1 : 0;
   TextFile file(temporary_for(path), path);
   // The vertices are in the .node file: 0 of them here.
-  file.format("0  2  %d  %d\n", std::max(set.attribute_count, 0), flag);
+  file.format("0  2  %d  %d\n", std::max(mesh.attribute_count, 0), flag);
   file.format("%zu  %d\n", segments.size(), flag);
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const long id = static_cast<long>(s) + options.first_index;

@@ -3,7 +3,7 @@
 // bad triangles and the insertion filter, (2) their insertion, in place, in
 // one round of 1-3 and 2-4 (1-2 on the hull) flips, (3) flip-flop: Delaunay
 // flips together with the deletion of redundant points.
-#include "clmesh/refine.hpp"
+#include "refine/refine.hpp"
 
 #include "dt/delaunay_scheduler.hpp"
 #include "refine/flipflop_deletion.hpp"
@@ -39,69 +39,26 @@ bool device_holds(const Device &device, std::size_t points) {
 std::size_t first_room(const Device &device, std::size_t n, const RefineOptions &options) {
   const double bound = std::min(options.min_angle, 30.0) / 30.0;
   auto room = static_cast<std::size_t>(static_cast<double>(n) * std::max(1.0, 2.2 * bound * bound));
-  if (options.max_steiner >= 0)
-    room = std::min(room, std::max(n, static_cast<std::size_t>(options.max_steiner)));
+  if (options.max_steiner)
+    room = std::min(room, std::max(n, static_cast<std::size_t>(*options.max_steiner)));
   if (!device_holds(device, n + room + 4096))
     room = n;
   return room + 4096;
-}
-
-// The insertion filter's reach: GPU-QM, the algorithm for the fewest points,
-// looks a ring further than GPU-QM-V, the fast one (circle 100k q30: QM's
-// vertices +2.7% -> +0.5% over Triangle's; uniform 1M q30 QM-V: 17 s -> 23 s).
-int filter_rings(const RefineOptions &options) {
-  if (options.filter_rings != 0)
-    return options.filter_rings;
-  return options.algorithm == RefineAlgorithm::qm ? 3 : 2;
-}
-
-// The insertion filter's reach for predicted dependent pairs: GPU-QM-V, whose
-// step 3 deletes a point less than orthogonal to a connected one of better
-// priority, leaves such pairs out before inserting them, within the priority
-// rings and one ring further (1M disk q30: 199920 of 1962561 insertions
-// deleted again -> 5282 of 1764351, 7% faster; GPU-QM's dependency is being
-// connected at all, which distance does not predict).
-int filter_distance_rings(const RefineOptions &options) {
-  if (options.filter_distance_rings >= 0)
-    return options.filter_distance_rings;
-  return options.algorithm == RefineAlgorithm::qmv ? 1 : 0;
-}
-
-// How near a better candidate within the priority rings must be to keep
-// one out, in multiples of the distance at which the two would be
-// orthogonal; 0: at any distance (the thesis's filter, kept by GPU-QM). Along
-// the thin circle the small triangles send their candidates into the same few
-// large triangles, which took one at a time: 1M points q20 199 -> 129
-// iterations. Nearer than 16 times, the graded layers next to the ring take
-// more points (4 times: +4% at 5000 points, 30 degrees).
-double filter_near(const RefineOptions &options) {
-  if (options.filter_near >= 0)
-    return options.filter_near;
-  return options.algorithm == RefineAlgorithm::qmv ? 16 : 0;
-}
-
-// The election before the location (GPU-QM-V): a bad triangle within two
-// rings of a worse one waits (1M Gaussian q30: 7.1M -> 2.7M candidates located
-// and filtered for about the same 1.75M insertions, 35 -> 38 iterations).
-// GPU-QM keeps the thesis's way, every bad triangle's candidate: with the
-// election it inserts more points (100k circle q30: +1.3%).
-int election_rings(const RefineOptions &options) {
-  if (options.election_rings >= 0)
-    return options.election_rings;
-  return options.algorithm == RefineAlgorithm::qmv ? 2 : 0;
 }
 
 // The phase objects of the three steps, sized by the mesh: built again when
 // the mesh grows.
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
-      : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle, options.max_area,
-                  filter_rings(options), filter_distance_rings(options), filter_near(options),
-                  options.parallel_midpoints, election_rings(options)),
+      : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
+                  options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
+                  options.delaunay.tuning.filter_distance_rings,
+                  options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
+                  options.delaunay.tuning.election_rings),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
-                 options.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
-                 options.group_pass_limit),
+                 options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
+                 options.delaunay.tuning.group_pass_limit),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
@@ -113,16 +70,6 @@ struct RefinementSteps {
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
                              const RefineOptions &options) {
-  if (options.min_angle < 0 || options.min_angle > 45)
-    throw UsageError("the minimum angle (-q) must be between 0 and 45 degrees");
-  if (options.filter_rings != 0 && options.filter_rings != 2 && options.filter_rings != 3)
-    throw UsageError("the insertion filter looks at 2 or 3 rings of triangles");
-  if (options.filter_distance_rings < -1 || options.filter_distance_rings > 1)
-    throw UsageError("the insertion filter looks at most 1 ring further for dependent pairs");
-  if (options.election_rings < -1 || options.election_rings > 2)
-    throw UsageError("the election looks at most 2 rings of triangles");
-  if (options.filter_near != -1 && options.filter_near != 0 && !(options.filter_near >= 1))
-    throw UsageError("the insertion filter's nearness is 0 (any distance) or at least 1");
   RefineResult result;
   const std::size_t n = points.size();
   // Refinement breaks ties by triangle slot; its first compaction gives
@@ -143,8 +90,8 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   const std::size_t acute_hull_vertices = steps->offcenter.flag_hull_vertices();
   RefineStats &stats = result.stats;
   FlipflopCounts flips;
-  const std::size_t limit = options.max_steiner >= 0 ? static_cast<std::size_t>(options.max_steiner)
-                                                     : std::numeric_limits<std::size_t>::max();
+  const std::size_t limit = options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
+                                                : std::numeric_limits<std::size_t>::max();
   DeletionLog deletion_log;
   DeviceList<cl_int> changed; // the triangles rewritten since the last search
   std::size_t steiner = 0;    // Steiner points in the mesh now

@@ -304,7 +304,7 @@ std::size_t Device::global_memory() const {
 void Device::set_work_group(std::size_t size) {
   const std::size_t max_size = max_work_group();
   if (size == 0 || size > max_size)
-    throw UsageError("work-group size must be between 1 and " + std::to_string(max_size));
+    throw OptionError("work-group size must be between 1 and " + std::to_string(max_size));
   work_group_ = size;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "clmesh/geometry.hpp"
+#include "clmesh/input.hpp"
 
 #include <array>
 #include <cstdint>
@@ -26,7 +27,7 @@ CheckReport check_triangulation(const std::vector<Point> &points,
                                 const std::vector<int32_t> &duplicate_of,
                                 bool check_delaunay = true);
 
-struct Segment; // clmesh/constrained.hpp
+// Segments are in input numbering, as Input::segments.
 
 // Checks a constrained Delaunay triangulation of the points and segments (input indices, as in
 // a Pslg; segment endpoints are mapped through duplicate_of, zero-length and repeated segments

@@ -28,8 +28,9 @@ private:
   long line_;
 };
 
-// Wrong switches or option values.
-class UsageError : public Error {
+// Switches or option values that are unknown, malformed, out of range or do
+// not go together.
+class OptionError : public Error {
 public:
   using Error::Error;
 };

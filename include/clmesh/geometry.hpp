@@ -24,4 +24,9 @@ struct PointSet {
   int first_index = 0;      // 0 or 1: numbering used by the input file
 };
 
+// Largest coordinate magnitude the exact predicates carry without overflow,
+// and smallest non-zero magnitude they carry without underflow.
+constexpr double kMaxCoordinate = 1e50;
+constexpr double kMinCoordinate = 1e-50;
+
 } // namespace clmesh

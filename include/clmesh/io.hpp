@@ -5,8 +5,9 @@
 // an InputError naming the file and line.
 #pragma once
 
-#include "clmesh/constrained.hpp"
 #include "clmesh/geometry.hpp"
+#include "clmesh/input.hpp"
+#include "clmesh/mesh.hpp"
 
 #include <array>
 #include <cstdint>
@@ -42,9 +43,17 @@ struct PolyFile {
 // beside the .poly), or the .node file's own errors.
 PolyFile read_poly(const std::string &path);
 
+// Reads a mesher's input: name.poly (a PSLG; its vertices may come from the
+// .node file beside it, whose path then goes to *node_path) or name.node (a
+// point set). Throws InputError as read_poly() and read_node() do.
+Input read_input(const std::string &path, std::string *node_path = nullptr);
+
 // What the writers need of the mesh.
 struct MeshView {
-  const PointSet *points = nullptr; // vertices written to .node
+  const std::vector<Point> *points = nullptr; // vertices written to .node
+  int attribute_count = 0;
+  const std::vector<double> *point_attributes = nullptr; // points * attribute_count, row-major
+  const std::vector<int> *point_markers = nullptr;       // the points' own markers, or none
   const std::vector<Triangle> *triangles = nullptr;
   const std::vector<std::array<int32_t, 3>> *neighbors = nullptr; // -1 on the hull
   const std::vector<int32_t> *duplicate_of = nullptr;             // optional, for -j
@@ -54,7 +63,13 @@ struct MeshView {
   const std::vector<Segment> *segments = nullptr;
   // -A: one attribute per triangle, written as the .ele attribute column.
   const std::vector<double> *triangle_attributes = nullptr;
+
+  // The points, attributes and markers of a point set.
+  void set_points(const PointSet &set);
 };
+
+// The view of a whole mesh (segments and triangle attributes when it has them).
+MeshView view_of(const Mesh &mesh);
 
 struct WriteOptions {
   int first_index = 1;              // numbering of the output (Triangle: the input's; -z: 0)
@@ -65,10 +80,6 @@ struct WriteOptions {
 
 // Edges of the mesh, each once, in Triangle's order (by triangle, then edge),
 // with boundary markers: 1 on the convex hull, 0 inside.
-struct Edge {
-  int32_t a, b;
-  int marker;
-};
 std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
                              const std::vector<std::array<int32_t, 3>> &neighbors);
 // The same edges with Triangle's -p markers: an edge that is a segment gets the

@@ -1,26 +1,16 @@
-// clmesh — GPU-CDT: constrained Delaunay triangulation of a planar
-// straight-line graph (thesis chapter 4) on an OpenCL device.
+// clmesh — GPU-CDT (thesis chapter 4): constrained Delaunay triangulation of
+// a planar straight-line graph, the phase entry point behind
+// clmesh::triangulate() with -p.
 #pragma once
 
-#include "clmesh/delaunay.hpp"
+#include "clmesh/input.hpp"
+#include "dt/delaunay.hpp"
 
-#include <cstdint>
 #include <vector>
 
 namespace clmesh {
 
-struct Segment {
-  int32_t a = 0, b = 0; // 0-based point indices
-  int marker = 0;
-};
-
-struct Region {
-  Point seed;
-  double attribute = 0;
-  double max_area = -1; // -1: no constraint (used by refinement, not by the CDT)
-};
-
-// A PSLG as read from a Triangle .poly file.
+// The constraints of a PSLG.
 struct Pslg {
   std::vector<Point> points;
   std::vector<Segment> segments;
@@ -33,19 +23,6 @@ struct ConstrainedOptions {
   bool keep_convex_hull = false;    // -c: keep every triangle of the convex hull
   bool ignore_holes = false;        // -O
   bool regional_attributes = false; // -A: label triangles with their region's attribute
-};
-
-struct ConstrainedStats {
-  long segments = 0;         // input segments kept (after dropping duplicates/zero length)
-  long dropped_segments = 0; // duplicate or zero-length segments
-  long split_segments = 0;   // input segments split (at a vertex on them or a crossing)
-  long crossings = 0;        // segment-segment crossings, each a new vertex
-  long intersections = 0;    // constraint-triangle intersections found by the first marking
-  long constraint_flips = 0; // flips of the constraint-insertion phase
-  long outer_iterations = 0; // markings that led to flips
-  long inner_iterations = 0; // runs flipped along (the inner loop's work-items), all iterations
-  long delaunay_flips = 0;   // flips of the final constrained Delaunay flipping
-  long eaten_triangles = 0;  // triangles removed as exterior or hole
 };
 
 struct ConstrainedResult {

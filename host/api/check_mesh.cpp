@@ -1,0 +1,33 @@
+// clmesh — -C: a mesh checked against its input with exact predicates.
+#include "clmesh/report.hpp"
+
+namespace clmesh {
+
+CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &options) {
+  if (mesh.statistics.refined) {
+    // Hull edges split at rounded midpoints may leave the boundary a hair
+    // from convex (as Triangle's do), so the boundary edges are checked as
+    // constraints and every other edge as locally Delaunay.
+    std::vector<Segment> boundary;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i)
+        if (mesh.neighbors[t][i] < 0)
+          boundary.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+    return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                             boundary, false);
+  }
+  if (!options.pslg)
+    return check_triangulation(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                               true);
+  // The mesh covers the whole convex hull only with -c and no hole carved.
+  const bool whole_hull = options.convex_hull && (input.holes.empty() || options.ignore_holes);
+  // With -c the hull edges are segments too: those of mesh.segments that are
+  // no input segment (the others are pieces of input segments).
+  std::vector<Segment> segments = input.segments;
+  if (options.convex_hull)
+    segments.insert(segments.end(), mesh.segments.begin(), mesh.segments.end());
+  return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                           segments, whole_hull);
+}
+
+} // namespace clmesh

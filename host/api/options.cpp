@@ -1,0 +1,215 @@
+// clmesh — Triangle's switch letters as Options, and their validation.
+#include "clmesh/options.hpp"
+
+#include "clmesh/errors.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+
+namespace clmesh {
+
+namespace {
+
+const char *const kSupported = "-p -c -O -A -B -q -a -S -z -e -n -N -E -I -j -Q -V -C -h";
+
+// Triangle's switches that clmesh does not implement yet, with what they do.
+const char *unsupported_switch(char letter) {
+  switch (letter) {
+  case 'r':
+    return "refining a previous mesh";
+  case 'u':
+    return "user-defined triangle constraints";
+  case 'D':
+    return "conforming Delaunay triangulation";
+  case 'v':
+    return "Voronoi diagram output";
+  case 'g':
+    return "OFF output for Geomview";
+  case 'P':
+    return "suppressing the .poly output";
+  case 'X':
+    return "disabling exact arithmetic";
+  case 'o':
+    return "higher-order elements";
+  case 'Y':
+    return "no Steiner points on the boundary";
+  case 'i':
+    return "the incremental algorithm";
+  case 'F':
+    return "Fortune's sweepline algorithm";
+  case 'l':
+    return "divide-and-conquer with vertical cuts only";
+  case 's':
+    return "splitting segments";
+  default:
+    return nullptr;
+  }
+}
+
+// The number that follows a switch letter at text[i + 1...] (Triangle's -q30,
+// -a0.01, -S100, -a1e-3), advancing i past it; empty when none follows.
+std::string switch_number(const std::string &text, std::size_t &i) {
+  auto digit = [&](std::size_t k) {
+    return k < text.size() && std::isdigit(static_cast<unsigned char>(text[k]));
+  };
+  std::size_t end = i + 1;
+  while (end < text.size()) {
+    const char c = text[end];
+    const bool exponent = (c == 'e' || c == 'E') && (digit(end + 1) || (end + 1 < text.size() &&
+                                                                         text[end + 1] == '-'));
+    if (!digit(end) && c != '.' && !exponent)
+      break;
+    end += exponent && text[end + 1] == '-' ? 2 : 1;
+  }
+  std::string number = text.substr(i + 1, end - i - 1);
+  i = end - 1;
+  return number;
+}
+
+double switch_value(const std::string &number, char letter) {
+  char *end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (number.empty() || *end != '\0' || !std::isfinite(value))
+    throw OptionError(std::string("-") + letter + ": '" + number + "' is not a number");
+  return value;
+}
+
+} // namespace
+
+const char *supported_switches() { return kSupported; }
+
+void parse_switches(const std::string &switches, Options &options) {
+  char unsupported = 0; // refused once every letter is known to be a switch
+  for (std::size_t i = switches.rfind('-', 0) == 0 ? 1 : 0; i < switches.size(); ++i) {
+    const char letter = switches[i];
+    switch (letter) {
+    case 'q': {
+      options.quality = true;
+      const std::string number = switch_number(switches, i);
+      options.min_angle = number.empty() ? 20 : switch_value(number, 'q');
+      break;
+    }
+    case 'a': {
+      const std::string number = switch_number(switches, i);
+      if (number.empty()) { // Triangle: per-triangle or per-region areas
+        if (!unsupported)
+          unsupported = 'a';
+        break;
+      }
+      options.max_area = switch_value(number, 'a');
+      if (*options.max_area <= 0)
+        throw OptionError("-a: the maximum area must be positive");
+      break;
+    }
+    case 'S': {
+      const std::string number = switch_number(switches, i);
+      const double value = number.empty() ? 0 : switch_value(number, 'S');
+      if (value < 0 || value > 1e18)
+        throw OptionError("-S: '" + number + "' is not a number of points");
+      options.max_steiner = static_cast<long>(value);
+      break;
+    }
+    case 'p':
+      options.pslg = true;
+      break;
+    case 'c':
+      options.convex_hull = true;
+      break;
+    case 'O':
+      options.ignore_holes = true;
+      break;
+    case 'A':
+      options.regional_attributes = true;
+      break;
+    case 'B':
+      options.no_boundary_markers = true;
+      break;
+    case 'z':
+      options.zero_based = true;
+      break;
+    case 'e':
+      options.edges = true;
+      break;
+    case 'n':
+      options.neighbors = true;
+      break;
+    case 'N':
+      options.no_node_file = true;
+      break;
+    case 'E':
+      options.no_ele_file = true;
+      break;
+    case 'I':
+      options.no_iteration_number = true;
+      break;
+    case 'j':
+      options.jettison = true;
+      break;
+    case 'Q':
+      options.quiet = true;
+      break;
+    case 'V':
+      ++options.verbose;
+      break;
+    case 'C':
+      options.check = true;
+      break;
+    case 'h':
+      options.help = true;
+      break;
+    default:
+      if (unsupported_switch(letter)) {
+        if (!unsupported)
+          unsupported = letter;
+        break;
+      }
+      throw OptionError(std::string("unknown switch -") + letter + " in '" + switches +
+                        "'; valid switches: " + kSupported);
+    }
+  }
+  if (unsupported == 'a')
+    throw OptionError("switch -a without a number (area constraints read from an .area file "
+                      "or the regions) is not supported yet; clmesh supports " +
+                      std::string(kSupported));
+  if (unsupported)
+    throw OptionError(std::string("switch -") + unsupported + " (" +
+                      unsupported_switch(unsupported) + ") is not supported yet; clmesh supports " +
+                      kSupported);
+}
+
+Options parse_switches(const std::string &switches) {
+  Options options;
+  parse_switches(switches, options);
+  return options;
+}
+
+void validate(const Options &options) {
+  if (options.pslg && (options.quality || options.max_area))
+    throw OptionError(std::string(options.quality ? "-q" : "-a") +
+                      " with -p (quality meshing of a PSLG) is not supported yet: with -p, clmesh "
+                      "computes the constrained Delaunay triangulation of the PSLG and does not "
+                      "refine it; clmesh supports " +
+                      kSupported);
+  if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
+    throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");
+  if (options.max_area && !(*options.max_area > 0))
+    throw OptionError("-a: the maximum area must be positive");
+  if (options.max_steiner && *options.max_steiner < 0)
+    throw OptionError("-S: the number of Steiner points cannot be negative");
+  const Tuning &tuning = options.tuning;
+  if (tuning.grid && (*tuning.grid < 2 || *tuning.grid > 8192))
+    throw OptionError("the Voronoi grid must be between 2 and 8192");
+  if (tuning.work_group && *tuning.work_group < 1)
+    throw OptionError("the work-group size must be at least 1");
+  if (tuning.filter_rings != 2 && tuning.filter_rings != 3)
+    throw OptionError("the insertion filter looks at 2 or 3 rings of triangles");
+  if (tuning.filter_distance_rings < 0 || tuning.filter_distance_rings > 1)
+    throw OptionError("the insertion filter looks 0 or 1 ring further for dependent pairs");
+  if (tuning.election_rings < 0 || tuning.election_rings > 2)
+    throw OptionError("the election looks at 0, 1 or 2 rings of triangles");
+  if (tuning.filter_near != 0 && !(tuning.filter_near >= 1))
+    throw OptionError("the insertion filter's nearness is 0 (any distance) or at least 1");
+}
+
+} // namespace clmesh

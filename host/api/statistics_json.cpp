@@ -1,0 +1,121 @@
+// clmesh — a run's statistics as JSON (--stats-json, and the Python
+// package's statistics dictionary).
+#include "clmesh/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace clmesh {
+
+namespace {
+
+std::string json_string(const std::string &text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    default:
+      if (c < 0x20) {
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+        out += escaped;
+      } else {
+        out += static_cast<char>(c);
+      }
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(double value) {
+  if (!std::isfinite(value))
+    return "0";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", value);
+  return text;
+}
+
+// One "name": count member of an object, four spaces in.
+std::string count(const char *name, long value, bool last = false) {
+  return "    " + json_string(name) + ": " + std::to_string(value) + (last ? "\n" : ",\n");
+}
+
+} // namespace
+
+std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
+  const DelaunayStats &s = mesh.statistics.delaunay;
+  std::string json = "{\n  \"device\": " + json_string(s.device) + ",\n";
+  json += "  \"seconds\": {\"read\": " + json_number(seconds.read) +
+          ", \"compute\": " + json_number(seconds.compute) +
+          ", \"write\": " + json_number(seconds.write) + "},\n";
+  json += "  \"phases\": [";
+  for (std::size_t i = 0; i < s.phases.size(); ++i)
+    json += std::string(i ? ",\n    " : "\n    ") + "{\"name\": " + json_string(s.phases[i].name) +
+            ", \"seconds\": " + json_number(s.phases[i].seconds) + "}";
+  json += s.phases.empty() ? "],\n" : "\n  ],\n";
+  json += "  \"counts\": {\n";
+  json += count("input_points", s.input_points);
+  json += count("duplicates", s.duplicates);
+  json += count("missing_points", s.missing_points);
+  json += count("flips", s.flips);
+  json += count("triangles", static_cast<long>(mesh.triangles.size()));
+  json += count("construction_rounds", s.construction_rounds);
+  json += count("constructed_triangles", s.constructed_triangles);
+  json += count("dropped_sites", s.dropped_sites);
+  json += count("pixel_collisions", s.pixel_collisions);
+  json += count("insertion_rounds", s.insertion_rounds);
+  json += count("flip_passes", s.flip_passes);
+  json += count("exact_predicate_calls", s.exact_predicate_calls, true);
+  json += "  },\n";
+  if (mesh.statistics.constrained) {
+    const ConstrainedStats &c = mesh.statistics.constraints;
+    json += "  \"constraints\": {\n";
+    json += count("segments", c.segments);
+    json += count("dropped_segments", c.dropped_segments);
+    json += count("split_segments", c.split_segments);
+    json += count("crossings", c.crossings);
+    json += count("intersections", c.intersections);
+    json += count("constraint_flips", c.constraint_flips);
+    json += count("outer_iterations", c.outer_iterations);
+    json += count("inner_iterations", c.inner_iterations);
+    json += count("delaunay_flips", c.delaunay_flips);
+    json += count("eaten_triangles", c.eaten_triangles, true);
+    json += "  },\n";
+  }
+  if (mesh.statistics.refined) {
+    const RefineStats &r = mesh.statistics.refinement;
+    json += "  \"refinement\": {\n";
+    json += count("iterations", r.iterations);
+    json += count("candidates", r.candidates);
+    json += count("insertions", r.insertions);
+    json += count("deleted_redundant", r.deleted);
+    json += count("kept_redundant", r.kept_redundant);
+    json += count("inserted_more_than_once", r.inserted_more_than_once);
+    json += count("steiner_points", r.inserted);
+    json += count("boundary_splits", r.boundary_splits);
+    json += count("delaunay_flips", r.delaunay_flips);
+    json += count("non_delaunay_flips", r.non_delaunay_flips);
+    json += count("growths", r.growths);
+    json += count("remaining_bad_triangles", r.remaining_bad, true);
+    json += "  },\n";
+  }
+  json += "  \"construction\": " + json_string(s.construction) + ",\n";
+  json += "  \"grid\": " + std::to_string(s.grid) + "\n}\n";
+  return json;
+}
+
+} // namespace clmesh

@@ -1,0 +1,60 @@
+// clmesh — the result of a run: one mesh with everything Triangle returns.
+#pragma once
+
+#include "clmesh/geometry.hpp"
+#include "clmesh/input.hpp"
+#include "clmesh/statistics.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace clmesh {
+
+// A mesh edge with its boundary marker: with -p the marker of the segment it
+// lies on (0 promoted to 1 on the mesh boundary), else 1 on the boundary, 0
+// inside.
+struct Edge {
+  int32_t a, b;
+  int marker;
+};
+
+struct Mesh {
+  // Every point: the input's, then those the run added (where segments cross,
+  // Steiner points), numbered on from the input's.
+  std::vector<Point> points;
+  long input_points = 0; // how many of `points` came from the input
+  // attribute_count values per point (added points get zeros).
+  int attribute_count = 0;
+  std::vector<double> point_attributes;
+  // Boundary marker of every point as Triangle reports it: its input marker
+  // when non-zero; else that of the first segment with a non-zero marker
+  // ending at it; else 1 on the mesh boundary; else 0.
+  std::vector<int> point_markers;
+  // -1 for a point in the mesh, else the index of the point with identical
+  // coordinates that stands for it.
+  std::vector<int32_t> duplicate_of;
+  // Counter-clockwise triangles over `points` (0-based), in a canonical order
+  // that depends only on the input: each starts at its smallest vertex; the
+  // triangles of a first vertex come together, sorted by their other two
+  // vertices, and these groups follow the Hilbert curve of the first vertices.
+  std::vector<Triangle> triangles;
+  // -A: the attribute of each triangle's region (triangle_attribute_count 1;
+  // otherwise 0 and empty).
+  int triangle_attribute_count = 0;
+  std::vector<double> triangle_attributes;
+  // neighbors[t][i]: the triangle opposite triangles[t][i], -1 on the boundary.
+  std::vector<std::array<int32_t, 3>> neighbors;
+  // -p: the segments as they stand in the mesh (every input segment, split
+  // into a chain where points lie on it, with its marker; with -c also the
+  // hull edges that are no segment, marker 1). Empty otherwise.
+  std::vector<Segment> segments;
+  // -e: every edge once, in Triangle's order (by triangle, then edge).
+  std::vector<Edge> edges;
+  // With Options::voronoi_image: Phase 1's digital Voronoi diagram
+  // (grid * grid site indices, -1: none; grid is statistics.delaunay.grid).
+  std::vector<int32_t> voronoi_image;
+  Statistics statistics;
+};
+
+} // namespace clmesh

@@ -1,0 +1,72 @@
+// clmesh — the algorithms' tuning: choices that change speed or the number of
+// Steiner points, never what a valid mesh is. The defaults are GPU-QM-V's.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+
+namespace clmesh {
+
+// The thesis's two refinement algorithms (chapter 3) differ in step 3, when
+// two Steiner points of an iteration would be connected: GPU-QM deletes the
+// one of lower priority always, GPU-QM-V only when they are less than
+// orthogonal (§3.5): fewer points inserted twice, slightly more points in
+// the end.
+enum class RefineAlgorithm { qm, qmv };
+
+struct Tuning {
+  // --- Delaunay triangulation (GPU-DT, thesis §4.1.2); the mesh never depends on these.
+  // Side of the digital Voronoi texture of Phase 1; unset: chosen from the points.
+  std::optional<int> grid;
+  // Work-group size of every kernel; unset: the device's default (64).
+  std::optional<std::size_t> work_group;
+  // Build the first triangulation from the digital Voronoi diagram (Phases
+  // 1-3); false starts from a fan of the convex hull instead, as the Voronoi
+  // route itself does when its result cannot be used.
+  bool voronoi_construction = true;
+  // Flip (and flip-flop) passes over at most this many triangles run in one
+  // work-group, pass after pass, in one launch; 0: every pass as separate
+  // kernels.
+  std::size_t group_pass_limit = 2048;
+
+  // --- Quality refinement (-q, -a); see use() for each algorithm's values.
+  RefineAlgorithm algorithm = RefineAlgorithm::qmv;
+  // Rings of neighbouring triangles the insertion filter looks at: 2 or 3.
+  // The further it looks, the closer the parallel insertion comes to the
+  // sequential order of priorities: fewer points, more iterations.
+  int filter_rings = 2;
+  // Rings further, 0 or 1, where the filter also leaves out a candidate that
+  // would form a GPU-QM-V dependent pair (less than orthogonal) with one that
+  // goes first, as step 3 would delete it again (Claim 3.5.1 applied before
+  // inserting instead of after).
+  int filter_distance_rings = 1;
+  // Within the filter's rings, a better candidate keeps one out only when it
+  // is nearer than this multiple of the distance at which the two would be
+  // orthogonal; 0: at any distance (the thesis's filter). Otherwise at
+  // least 1.
+  double filter_near = 16;
+  // Midpoint candidates of different hull edges never keep each other out:
+  // each splits its own edge, so an encroached hull is halved in every
+  // iteration. false: the thesis's filter.
+  bool parallel_midpoints = true;
+  // A bad triangle sends a candidate only when no bad triangle within this
+  // many rings (0, 1 or 2) has a better priority; 0: every bad triangle sends
+  // one (the thesis).
+  int election_rings = 2;
+
+  // Selects a refinement algorithm with its own values of the refinement
+  // fields: GPU-QM-V (filter 2 rings, dependent pairs 1 ring further, near 16,
+  // election 2 rings: the fast one) or the thesis's GPU-QM (filter 3 rings,
+  // no dependent-pair ring, any distance, no election: the fewest points).
+  Tuning &use(RefineAlgorithm refine_algorithm) {
+    const bool qmv = refine_algorithm == RefineAlgorithm::qmv;
+    algorithm = refine_algorithm;
+    filter_rings = qmv ? 2 : 3;
+    filter_distance_rings = qmv ? 1 : 0;
+    filter_near = qmv ? 16 : 0;
+    election_rings = qmv ? 2 : 0;
+    return *this;
+  }
+};
+
+} // namespace clmesh

@@ -103,7 +103,7 @@ DIR/triangle-native and the cached inputs in DIR/bench/), or the binaries with
 
 --markdown FILE (all modes) also writes the table and its notes, with the
 command line, the date, the machine (CPU model, cores) and the clmesh git commit
-(with -dirty when tracked files differ from it), as the section of this mode in
+(with -dirty when its code differs from it), as the section of this mode in
 FILE; the sections of the other modes already in FILE are kept, so
 
   python3 scripts/bench.py --markdown docs/benchmarks.md
@@ -879,19 +879,32 @@ the others. Do not edit it by hand.
 clmesh, Shewchuk's Triangle and CGAL run side by side on the same inputs, each
 in a fresh process, timing the meshing alone (no file reading or writing). The
 ratios are clmesh's time over the other tool's: below 1, clmesh is faster.
-Absolute times drift on a shared 2-core virtual machine (other jobs, the price
-of fresh memory); the ratios of a table come from one run, each tool measured
-right after the others on the same input.
+Absolute times drift on a shared machine such as this project's 2-core virtual
+machines (other jobs, the price of fresh memory; each section gives the load
+average); the ratios of a table come from one run, each tool measured right
+after the others on the same input.
 """
 
 
+START_LOAD = os.getloadavg()  # other jobs on the machine when the run began
+
+
+def load_average(load):
+    return ", ".join(f"{x:.1f}" for x in load)
+
+
+# What the measured binaries are built from: edits elsewhere (documentation)
+# do not make a commit dirty.
+CODE_PATHS = ("cl", "host", "include", "cli", "cmake", "CMakeLists.txt", "scripts")
+
+
 def git_commit():
-    """The clmesh commit measured, with '-dirty' when tracked files differ from it."""
+    """The clmesh commit measured, with '-dirty' when its code (CODE_PATHS) differs from it."""
     try:
         head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
                               capture_output=True, text=True, check=True).stdout.strip()
         dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain",
-                                "--untracked-files=no", "--", ".", ":!docs/benchmarks.md"],
+                                "--untracked-files=no", "--", *CODE_PATHS],
                                capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
@@ -925,6 +938,9 @@ def write_markdown(path, mode, title, table, notes, device):
             f"- Machine: {cpu}, {os.cpu_count()} logical cores, {platform.system()} "
             f"{platform.release()}",
             f"- clmesh commit: {git_commit()}",
+            f"- Load average (1, 5, 15 min) at the start: {load_average(START_LOAD)}; "
+            f"at the end: {load_average(os.getloadavg())}, on {os.cpu_count()} logical cores "
+            "(Triangle and CGAL run on one core, clmesh's kernels on all)",
             f"- clmesh device: {device or 'unknown'}", ""]
     body += table + [""]
     body += [f"- {n}" for n in notes[1:]]  # notes[0] is the machine line, given above

@@ -6,14 +6,20 @@ build/bench/) and then three tools triangulate it, each in a fresh process:
 
   clmesh    build/clmesh -Q --stats-json F.json INPUT.node
             time = seconds.compute from the stats JSON (plus the per-phase times)
-  Triangle  the PyPI package `triangle` (installed with pip if missing) in a
-            child Python that loads the points first and times only
+  Triangle  build/triangle-native -NEP INPUT.node when that binary exists
+            (Shewchuk's triangle.c built by /work/shared/tools/build-triangle.sh,
+            or any binary given with --triangle PATH): time = its own report,
+            Delaunay + Segment + Hole + Quality milliseconds, file reading and
+            writing excluded.  Otherwise (or with --triangle python) the PyPI
+            package `triangle` (installed with pip if missing) in a child
+            Python that loads the points first and times only
             triangle.triangulate({'vertices': pts}, '')
   CGAL      build/cgal_bench dt INPUT.node  (Delaunay_triangulation_2, Epick,
             range insert; times only the construction)
 
 Peak memory is each tool process's maximum resident set size, from GNU time's
-%M when /usr/bin/time exists, otherwise from os.wait4's ru_maxrss.  Triangle's figure includes the Python interpreter, numpy and the
+%M when /usr/bin/time exists, otherwise from os.wait4's ru_maxrss.  With the
+PyPI package, Triangle's figure includes the Python interpreter, numpy and the
 loaded point array.  --repeat K keeps the best time of K runs (and the largest
 peak memory).  With --repeat 1, clmesh first runs once untimed on each input:
 PoCL compiles a kernel's variant at its first launch of a new shape, and that
@@ -27,7 +33,9 @@ hull:
 
   clmesh    build/clmesh -pc -Q --stats-json F.json INPUT.poly
             time = seconds.compute (the constraint phases are in the phases column)
-  Triangle  triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc'),
+  Triangle  triangle-native -NEPpc INPUT.poly (its segment recovery: the
+            Segment and Hole milliseconds), or with the PyPI package
+            triangle.triangulate({'vertices': pts, 'segments': segs}, 'pc'),
             timing only that call
   CGAL      build/cgal_bench cdt INPUT.poly  (Constrained_Delaunay_triangulation_2,
             Epick: range insert of the points, then insert_constraint per segment)
@@ -64,7 +72,9 @@ per minimum angle in --angles (default 20,30 degrees), by four mesh generators:
             again after being deleted (inserted_more_than_once); bad triangles
             left (small hull angles, as Triangle leaves them) are added there
             and listed as warnings.
-  Triangle  triangle.triangulate({'vertices': pts}, 'qANGLE'), timing only
+  Triangle  triangle-native -NEPqANGLE INPUT.node (vertices = its "Mesh
+            vertices"), or with the PyPI package
+            triangle.triangulate({'vertices': pts}, 'qANGLE'), timing only
             that call; vertices = len(result['vertices'])
   CGAL      build/cgal_bench mesh ANGLE INPUT.node  (Constrained_Delaunay_triangulation_2,
             Epick, the points inserted as a range, the convex hull edges made
@@ -82,19 +92,31 @@ per GB drifts from run to run, and it grows with the footprint).  --repeat
 works as above.
 
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
-           [--dists uniform,grid] [--repeat K] [--markdown OUT.md]
+           [--dists uniform,grid] [--repeat K] [--markdown FILE.md]
        python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
        python3 scripts/bench.py --quality [--quick] [--sizes 100000] [--angles 20,30]
            [--dists ...] [--algorithms qmv,qm]
 
-All modes take --build-dir DIR (default build/: DIR/clmesh, DIR/cgal_bench and the
-cached inputs in DIR/bench/), or the binaries with --clmesh and --cgal.
+All modes take --build-dir DIR (default build/: DIR/clmesh, DIR/cgal_bench,
+DIR/triangle-native and the cached inputs in DIR/bench/), or the binaries with
+--clmesh, --cgal and --triangle.
+
+--markdown FILE (all modes) also writes the table and its notes, with the
+command line, the date, the machine (CPU model, cores) and the clmesh git commit
+(with -dirty when its code differs from it), as the section of this mode in
+FILE; the sections of the other modes already in FILE are kept, so
+
+  python3 scripts/bench.py --markdown docs/benchmarks.md
+  python3 scripts/bench.py --quality --markdown docs/benchmarks.md
+
+give one file with both tables.
 """
 import argparse
 import glob
 import json
 import os
 import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -339,15 +361,49 @@ def ensure_triangle_package():
     return subprocess.run(probe, capture_output=True).returncode == 0
 
 
-def run_triangle(available, node, timeout, child=TRIANGLE_CHILD, switches=""):
-    if not available:
+def run_triangle(triangle, node, timeout, child=TRIANGLE_CHILD, switches=""):
+    """Triangle on one input: the native binary when triangle is ("native", PATH),
+    else the PyPI package in a child Python (triangle is ("python", available)).
+    switches are Triangle's without the dash: "" (Delaunay), "pc" (CDT), "q30"."""
+    kind, what = triangle
+    if kind == "native":
+        return run_native_triangle(what, node, timeout, switches)
+    if not what:
         raise ToolFailure("the Python package 'triangle' is not available")
-    cmd = [sys.executable, "-c", child, node] + ([switches] if switches else [])
+    # The CDT child always runs 'pc'; the others take the switches.
+    extra = [switches] if switches and child is TRIANGLE_CHILD else []
+    cmd = [sys.executable, "-c", child, node] + extra
     stdout, peak, system_s = run_measured(cmd, timeout)
     r = last_json_line(stdout)
     return {"seconds": float(r["seconds"]), "peak_mb": peak, "system_s": system_s,
             "triangles": r.get("triangles"), "vertices": r.get("vertices"),
             "dt_seconds": r.get("dt_seconds")}
+
+
+def run_native_triangle(exe, path, timeout, switches):
+    """The native Triangle binary (-NEP: no output files) on path, timed by its own
+    report: seconds = Delaunay + Segment + Hole + Quality milliseconds (file
+    reading and writing excluded); dt_seconds = the Delaunay part alone, so that
+    for -pc the difference is its segment recovery."""
+    if not os.access(exe, os.X_OK):
+        raise ToolFailure(f"{exe} not built (bash /work/shared/tools/build-triangle.sh)")
+    stdout, peak, system_s = run_measured([exe, "-NEP" + switches, path], timeout)
+    ms = {}
+    counts = {}
+    for line in stdout.splitlines():
+        line = line.strip()
+        m = re.match(r"(Delaunay|Segment|Hole|Quality) milliseconds:\s*(\d+)", line)
+        if m:
+            ms[m.group(1)] = int(m.group(2))
+        m = re.match(r"Mesh (vertices|triangles):\s*(\d+)", line)
+        if m:
+            counts[m.group(1)] = int(m.group(2))
+    if "Delaunay" not in ms:
+        raise ToolFailure("no 'Delaunay milliseconds' in Triangle's report "
+                          "(built with -DNO_TIMER?)")
+    return {"seconds": sum(ms.values()) / 1000.0, "dt_seconds": ms["Delaunay"] / 1000.0,
+            "peak_mb": peak, "system_s": system_s,
+            "triangles": counts.get("triangles"), "vertices": counts.get("vertices")}
 
 
 def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
@@ -542,7 +598,31 @@ class Setup:
         self.cgal = a.cgal or os.path.join(a.build_dir, "cgal_bench")
         self.bench_dir = os.path.join(a.build_dir, "bench")
         os.makedirs(self.bench_dir, exist_ok=True)
-        self.have_triangle = ensure_triangle_package()
+        self.triangle = choose_triangle(a.triangle, a.build_dir)
+
+
+def choose_triangle(option, build_dir):
+    """("native", PATH) or ("python", available): --triangle PATH, --triangle python,
+    or by default BUILD/triangle-native when it is built, else the PyPI package."""
+    if option and option != "python":
+        return ("native", option)
+    native = os.path.join(build_dir, "triangle-native")
+    if option is None and os.access(native, os.X_OK):
+        return ("native", native)
+    return ("python", ensure_triangle_package())
+
+
+def triangle_note(triangle):
+    """How Triangle ran and was timed, for the notes under a table."""
+    kind, what = triangle
+    if kind == "native":
+        return (f"Triangle: the native binary {os.path.relpath(what, ROOT)} (triangle.c 1.6, "
+                "-O3 -march=native, built by build-triangle.sh), run with -NEP (no output "
+                "files) and timed by its own report (Delaunay + Segment + Hole + Quality "
+                "milliseconds), file reading and writing excluded.")
+    return ("Triangle: the PyPI package 'triangle' in a child Python, timing only the "
+            "triangle.triangulate call; its peak memory includes Python, numpy and the "
+            "loaded points.")
 
 
 def distributions(a, ap):
@@ -563,7 +643,12 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="10000 points only")
     ap.add_argument("--repeat", type=int, default=1, help="best of K runs (default 1)")
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--markdown", metavar="OUT", help="also write the table to OUT")
+    ap.add_argument("--markdown", metavar="FILE",
+                    help="also write the table, with the command, date, machine and clmesh "
+                         "commit, as this mode's section of FILE (other sections kept)")
+    ap.add_argument("--triangle", metavar="PATH",
+                    help="native Triangle binary (default BUILD/triangle-native when built, "
+                         "else the PyPI package); 'python' forces the PyPI package")
     ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
     ap.add_argument("--clmesh", help="clmesh binary (default BUILD/clmesh)")
     ap.add_argument("--cgal", help="cgal_bench binary (default BUILD/cgal_bench)")
@@ -594,7 +679,7 @@ def main(argv=None):
     dists = distributions(a, ap)
     setup = Setup(a, ap)
     sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
-    have_triangle = setup.have_triangle
+    triangle = setup.triangle
 
     rows, failures, warnings = [], [], []
     device = None
@@ -603,7 +688,7 @@ def main(argv=None):
             node = input_file(bench_dir, dist, n, a.seed)
             results = run_tools(a, f"{dist} n={n}", (
                 ("clmesh", run_clmesh, (clmesh, node, a.timeout)),
-                ("Triangle", run_triangle, (have_triangle, node, a.timeout)),
+                ("Triangle", run_triangle, (triangle, node, a.timeout)),
                 ("CGAL", run_cgal, (cgal, node, a.timeout))), failures)
             cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
             if cl and cl.get("device"):
@@ -617,8 +702,9 @@ def main(argv=None):
     return report(a, header, rows,
                   [f"Best of {a.repeat} run(s), seed {a.seed}; times exclude file reading and writing; "
                    "ratios are clmesh time / other time (below 1: clmesh is faster); "
-                   "peak MB is each process's maximum resident set size (Triangle's includes Python and numpy)."],
-                  device, warnings, failures)
+                   "peak MB is each process's maximum resident set size.",
+                   triangle_note(setup.triangle)],
+                  device, warnings, failures, "dt", "Delaunay triangulation")
 
 
 def main_cdt(a, ap):
@@ -628,7 +714,7 @@ def main_cdt(a, ap):
             ap.error(f"unknown PSLG variant {v!r} (choose from short, long)")
     setup = Setup(a, ap)
     sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
-    have_triangle = setup.have_triangle
+    triangle = setup.triangle
 
     rows, failures, warnings = [], [], []
     device = None
@@ -643,7 +729,8 @@ def main_cdt(a, ap):
                 continue
             results = run_tools(a, f"cdt {variant} n={n} m={m}", (
                 ("clmesh", run_clmesh, (clmesh, poly, a.timeout, ("-pc",))),
-                ("Triangle", run_triangle, (have_triangle, poly, a.timeout, TRIANGLE_CDT_CHILD)),
+                ("Triangle", run_triangle, (triangle, poly, a.timeout, TRIANGLE_CDT_CHILD,
+                                              "pc")),
                 ("CGAL", run_cgal, (cgal, poly, a.timeout, "cdt"))), failures)
             cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
             if cl and cl.get("device"):
@@ -673,8 +760,9 @@ def main_cdt(a, ap):
                    "chains in horizontal strips, segments about 1/11 of the square long); times "
                    "exclude file reading and writing; ratios are clmesh time / other time (below 1: "
                    "clmesh is faster); Triangle's segment recovery is its -pc time less its "
-                   "Delaunay triangulation of the same points, timed just before."],
-                  device, warnings, failures)
+                   "Delaunay triangulation of the same points.",
+                   triangle_note(setup.triangle)],
+                  device, warnings, failures, "cdt", "Constrained Delaunay triangulation")
 
 
 # clmesh's refinement variants in --quality: (--algorithms name, --refine value, label).
@@ -700,7 +788,7 @@ def main_quality(a, ap):
     algorithms = [alg for alg in QUALITY_ALGORITHMS if alg[0] in wanted]  # table order
     setup = Setup(a, ap)
     sizes, clmesh, cgal, bench_dir = setup.sizes, setup.clmesh, setup.cgal, setup.bench_dir
-    have_triangle = setup.have_triangle
+    triangle = setup.triangle
 
     labels = [label for _, _, label in algorithms]
     rows, failures, warnings = [], [], []
@@ -712,7 +800,7 @@ def main_quality(a, ap):
                 tools = [(label, run_clmesh, (clmesh, node, a.timeout,
                                               ("--refine", refine, f"-q{angle}")))
                          for _, refine, label in algorithms]
-                tools += [("Triangle", run_triangle, (have_triangle, node, a.timeout,
+                tools += [("Triangle", run_triangle, (triangle, node, a.timeout,
                                                       TRIANGLE_CHILD, f"q{angle}")),
                           ("CGAL", run_cgal, (cgal, node, a.timeout, "mesh", (angle,)))]
                 results = run_tools(a, f"quality {dist} n={n} q{angle}", tools, failures)
@@ -743,12 +831,12 @@ def main_quality(a, ap):
               + [f"{labels[0]} steps 1/2/3 s, flips"])
     return report(a, header, rows,
                   [f"Quality meshes of the convex hull with minimum angle ANGLE degrees "
-                   f"(clmesh --refine qmv|qm -qANGLE, Triangle 'qANGLE', CGAL "
+                   f"(clmesh --refine qmv|qm -qANGLE, Triangle -qANGLE, CGAL "
                    f"refine_Delaunay_mesh_2 with Delaunay_mesh_criteria_2(sin^2 ANGLE)); best of "
                    f"{a.repeat} run(s), seed {a.seed}; times exclude file reading and writing "
                    "(clmesh: seconds.compute); X/Triangle is the time ratio (below 1: clmesh is "
                    "faster); clmesh vertices = input points + Steiner points, Triangle vertices = "
-                   "len(result['vertices']), CGAL vertices = number_of_vertices(); the vertex "
+                   "its output vertices, CGAL vertices = number_of_vertices(); the vertex "
                    "ratio is clmesh's vertices / Triangle's. Peak MB: the process's maximum "
                    "resident set (the largest of the runs); system s: its system CPU seconds in "
                    "the run whose time is shown, file reading included (mostly the kernel "
@@ -758,24 +846,114 @@ def main_quality(a, ap):
                    "plus the 'flipping' phase timed apart from them (these phases include the "
                    "initial Delaunay triangulation's missing point insertion and flipping); "
                    "step 3's Delaunay (D) and non-Delaunay (ND) flips; redundant Steiner points "
-                   "deleted; points inserted again after a deletion; refinement iterations."],
-                  device, warnings, failures)
+                   "deleted; points inserted again after a deletion; refinement iterations.",
+                   triangle_note(setup.triangle)],
+                  device, warnings, failures, "quality", "Quality meshes")
 
 
-def report(a, header, rows, description, device, warnings, failures):
-    """Prints (and with --markdown saves) a markdown table with its notes."""
+def report(a, header, rows, description, device, warnings, failures, mode, title):
+    """Prints a markdown table with its notes; with --markdown FILE also writes
+    them, with the command line, date, machine and clmesh commit, as the section
+    of this mode in FILE (see write_markdown)."""
     lines = ["| " + " | ".join(header) + " |",
              "|" + "|".join("---" for _ in header) + "|"]
     lines += ["| " + " | ".join(r) + " |" for r in rows]
-    notes = ["", machine_line(device)] + description
+    notes = [machine_line(device)] + description
     notes += [f"Warning: {w}" for w in warnings]
     notes += [f"Failed: {f}" for f in failures]
-    text = "\n".join(lines + notes) + "\n"
-    print(text, end="")
+    print("\n".join(lines + [""] + notes) + "\n", end="")
     if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(text)
+        write_markdown(a.markdown, mode, title, lines, notes, device)
     return 0
+
+
+# ---- the --markdown file --------------------------------------------------
+
+MARKDOWN_MODES = ("dt", "cdt", "quality")  # section order in the file
+MARKDOWN_HEAD = """# Benchmarks
+
+This file is written by `scripts/bench.py --markdown docs/benchmarks.md`: each
+run replaces the section of its mode (Delaunay, `--cdt`, `--quality`) and keeps
+the others. Do not edit it by hand.
+
+clmesh, Shewchuk's Triangle and CGAL run side by side on the same inputs, each
+in a fresh process, timing the meshing alone (no file reading or writing). The
+ratios are clmesh's time over the other tool's: below 1, clmesh is faster.
+Absolute times drift on a shared machine such as this project's 2-core virtual
+machines (other jobs, the price of fresh memory; each section gives the load
+average); the ratios of a table come from one run, each tool measured right
+after the others on the same input.
+"""
+
+
+START_LOAD = os.getloadavg()  # other jobs on the machine when the run began
+
+
+def load_average(load):
+    return ", ".join(f"{x:.1f}" for x in load)
+
+
+# What the measured binaries are built from: edits elsewhere (documentation)
+# do not make a commit dirty.
+CODE_PATHS = ("cl", "host", "include", "cli", "cmake", "CMakeLists.txt", "scripts")
+
+
+def git_commit():
+    """The clmesh commit measured, with '-dirty' when its code (CODE_PATHS) differs from it."""
+    try:
+        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain",
+                                "--untracked-files=no", "--", *CODE_PATHS],
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + ("-dirty" if dirty else "")
+
+
+def command_line():
+    """This run's command line, as typed from the repository root."""
+    args = [os.path.relpath(os.path.abspath(sys.argv[0]), ROOT)] + sys.argv[1:]
+    return " ".join(["python3"] + [arg if re.fullmatch(r"[\w./,=:+-]+", arg) else repr(arg)
+                                   for arg in args])
+
+
+def write_markdown(path, mode, title, table, notes, device):
+    """Writes this mode's section of the markdown file at path: the title, the
+    command, date, machine and commit, the table and its notes. The sections of
+    the other modes already in the file are kept, in MARKDOWN_MODES order."""
+    sections = {}
+    try:
+        with open(path) as f:
+            old = f.read()
+        for m in re.finditer(r"<!-- bench\.py: (\w+) -->\n(.*?)<!-- bench\.py: end -->\n",
+                             old, re.S):
+            sections[m.group(1)] = m.group(2)
+    except OSError:
+        pass
+    cpu = machine_line(None).split(",")[0].removeprefix("Host: ")
+    body = [f"## {title}", "",
+            "```sh", command_line(), "```", "",
+            f"- Date: {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}",
+            f"- Machine: {cpu}, {os.cpu_count()} logical cores, {platform.system()} "
+            f"{platform.release()}",
+            f"- clmesh commit: {git_commit()}",
+            f"- Load average (1, 5, 15 min) at the start: {load_average(START_LOAD)}; "
+            f"at the end: {load_average(os.getloadavg())}, on {os.cpu_count()} logical cores "
+            "(Triangle and CGAL run on one core, clmesh's kernels on all)",
+            f"- clmesh device: {device or 'unknown'}", ""]
+    body += table + [""]
+    body += [f"- {n}" for n in notes[1:]]  # notes[0] is the machine line, given above
+    sections[mode] = "\n".join(body) + "\n"
+    out = [MARKDOWN_HEAD]
+    for m in MARKDOWN_MODES:
+        if m in sections:
+            out.append(f"<!-- bench.py: {m} -->\n{sections[m]}<!-- bench.py: end -->\n")
+    directory = os.path.dirname(os.path.abspath(path))
+    os.makedirs(directory, exist_ok=True)
+    with open(path + ".tmp", "w") as f:
+        f.write("\n".join(out))
+    os.replace(path + ".tmp", path)
 
 
 if __name__ == "__main__":

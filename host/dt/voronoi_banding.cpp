@@ -22,8 +22,8 @@ VoronoiBanding::VoronoiBanding(Device &device, DeviceMesh &mesh, PrefixScan &sca
 int VoronoiBanding::default_grid(std::size_t n) {
   // Four to ten points per pixel: Phases 2 and 3 then build a coarse
   // triangulation of a fraction of the points in few rounds, and Phase 4
-  // inserts the rest into it (the fastest mix measured on PoCL at 100k, 1M
-  // and 10M points): the power of two nearest to sqrt(n) / 2.5.
+  // inserts the rest into it (on PoCL the fastest mix, from 100k to 10M
+  // points): the power of two nearest to sqrt(n) / 2.5.
   const double target = std::log2(std::sqrt(static_cast<double>(n)) / 2.5);
   const int exponent = static_cast<int>(std::lround(std::max(4.0, target)));
   return std::min(kMaxGrid, 1 << std::min(exponent, 13));

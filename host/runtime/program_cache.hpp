@@ -1,8 +1,8 @@
 // clmesh — on-disk cache of built OpenCL programs.
 //
 // Building a program from source costs the OpenCL compiler's front end on
-// every run (PoCL preprocesses the source to look up its own cache: about
-// 50 ms a program, most of a small mesh's run). The cache keeps each
+// every run (PoCL preprocesses the source to look up its own cache, which is
+// most of a small mesh's run). The cache keeps each
 // device's binary (CL_PROGRAM_BINARIES) under a name that hashes everything
 // the binary depends on, so a later run builds from the binary instead.
 // Best effort: a missing, unreadable or rejected entry means a source build,

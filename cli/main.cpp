@@ -30,12 +30,6 @@ struct CommandLine {
   std::string generated_by;
 };
 
-// Malformed command lines (not the mesher's options): exit status 2.
-class UsageError : public clmesh::Error {
-public:
-  using clmesh::Error::Error;
-};
-
 const char *const kLongOptions =
     "--device SPEC, --list-devices, --grid N, --construction voronoi|fan, --work-group N, "
     "--refine qm|qmv, --stats-json FILE, --voronoi-image FILE.pgm, --svg FILE, "
@@ -115,14 +109,7 @@ void print_help() {
 }
 
 void print_usage() {
-  std::printf("clmesh [-pcOABqaSzenNEIjQVCh] [--device SPEC] [--grid N] [--work-group N]\n"
-              "       [--stats-json FILE] [--voronoi-image FILE.pgm] [--svg FILE] input_file\n"
-              "    -p  Triangulates a Planar Straight Line Graph (.poly file).\n"
-              "    -q  Quality mesh generation (point sets).\n"
-              "    -z  Number items starting from zero (rather than one).\n"
-              "    -e  Generates an edge list.\n"
-              "    -n  Generates a list of triangle neighbors.\n"
-              "    -h  Help:  A brief instruction for using clmesh.\n"
+  std::printf("clmesh [-pcOABqaSzenNEIjQVCh] [long options] input_file[.node|.poly]\n"
               "Try 'clmesh -h' for more information.\n");
 }
 
@@ -131,8 +118,8 @@ long parse_count(const std::string &option, const std::string &value, long min, 
   errno = 0;
   const long number = std::strtol(value.c_str(), &end, 10);
   if (value.empty() || *end != '\0' || errno == ERANGE || number < min || number > max)
-    throw UsageError(option + " needs an integer from " + std::to_string(min) + " to " +
-                     std::to_string(max) + ", got '" + value + "'");
+    throw clmesh::OptionError(option + " needs an integer from " + std::to_string(min) + " to " +
+                              std::to_string(max) + ", got '" + value + "'");
   return number;
 }
 
@@ -150,12 +137,12 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
     if (inline_value)
       return value;
     if (i + 1 >= argc)
-      throw UsageError(name + " needs a value");
+      throw clmesh::OptionError(name + " needs a value");
     return argv[++i];
   };
   auto set_flag = [&](bool &flag) {
     if (inline_value)
-      throw UsageError(name + " takes no value");
+      throw clmesh::OptionError(name + " takes no value");
     flag = true;
   };
   if (name == "--device") {
@@ -167,14 +154,14 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
   } else if (name == "--construction") {
     const std::string construction = take_value();
     if (construction != "voronoi" && construction != "fan")
-      throw UsageError("--construction takes voronoi or fan, not '" + construction + "'");
+      throw clmesh::OptionError("--construction takes voronoi or fan, not '" + construction + "'");
     tuning.voronoi_construction = construction == "voronoi";
   } else if (name == "--work-group") {
     tuning.work_group = static_cast<std::size_t>(parse_count(name, take_value(), 1, 1 << 16));
   } else if (name == "--refine") {
     const std::string algorithm = take_value();
     if (algorithm != "qm" && algorithm != "qmv")
-      throw UsageError("--refine takes qm or qmv, not '" + algorithm + "'");
+      throw clmesh::OptionError("--refine takes qm or qmv, not '" + algorithm + "'");
     tuning.use(algorithm == "qm" ? clmesh::RefineAlgorithm::qm : clmesh::RefineAlgorithm::qmv);
     command.generated_by += " --refine " + algorithm; // it changes the mesh
   } else if (name == "--stats-json") {
@@ -189,8 +176,8 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
   } else if (name == "--version") {
     set_flag(command.version);
   } else {
-    throw UsageError("unknown option " + name + "; long options: " + kLongOptions +
-                     "; switches: " + clmesh::supported_switches());
+    throw clmesh::OptionError("unknown option " + name + "; long options: " + kLongOptions +
+                              "; switches: " + clmesh::supported_switches());
   }
   return i;
 }
@@ -214,9 +201,10 @@ CommandLine parse(int argc, char **argv) {
     if (arg.size() > 1 && arg[0] == '-')
       clmesh::parse_switches(arg, command.options);
     else if (!command.input.empty())
-      throw UsageError("more than one input file: '" + command.input + "' and '" + arg + "'");
+      throw clmesh::OptionError("more than one input file: '" + command.input + "' and '" + arg +
+                                "'");
     else if (arg.empty() || arg == "-")
-      throw UsageError("'" + arg + "' is not an input file name");
+      throw clmesh::OptionError("'" + arg + "' is not an input file name");
     else
       command.input = arg;
     command.generated_by += " " + arg;
@@ -244,7 +232,8 @@ FileNames file_names(const CommandLine &command) {
   if (ends_with(base, ".poly"))
     base.resize(base.size() - 5);
   if (ends_with(base, ".ele") || ends_with(base, ".area"))
-    throw UsageError(base + ": .ele/.area input (-r, refining a mesh) is not supported yet");
+    throw clmesh::OptionError(base +
+                              ": .ele/.area input (-r, refining a mesh) is not supported yet");
   FileNames names;
   names.input = base + (command.options.pslg ? ".poly" : ".node");
   if (command.options.no_iteration_number) {
@@ -258,9 +247,10 @@ FileNames file_names(const CommandLine &command) {
       dot != std::string::npos && dot >= 1 && dot + 1 < base.size() && base.size() - dot - 1 <= 18;
   for (std::size_t j = dot + 1; numbered && j < base.size(); ++j)
     numbered = base[j] >= '0' && base[j] <= '9';
-  names.output = numbered ? base.substr(0, dot + 1) +
-                                std::to_string(std::strtoull(base.c_str() + dot + 1, nullptr, 10) + 1)
-                          : base + ".1";
+  names.output = numbered
+                     ? base.substr(0, dot + 1) +
+                           std::to_string(std::strtoull(base.c_str() + dot + 1, nullptr, 10) + 1)
+                     : base + ".1";
   return names;
 }
 
@@ -307,9 +297,9 @@ void write_outputs(const CommandLine &command, const FileNames &names, const clm
   if (options.neighbors)
     batch.write_neigh(announce(out + ".neigh"), view, write);
   if (!command.svg.empty())
-    batch.write_text(announce(command.svg),
-                     clmesh::mesh_svg(mesh.points, mesh.triangles,
-                                      options.pslg ? &mesh.segments : nullptr));
+    batch.write_text(
+        announce(command.svg),
+        clmesh::mesh_svg(mesh.points, mesh.triangles, options.pslg ? &mesh.segments : nullptr));
   if (!command.voronoi_image.empty()) {
     if (mesh.voronoi_image.empty())
       throw clmesh::InternalError("--voronoi-image: no digital Voronoi diagram was returned");
@@ -348,45 +338,6 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
   std::printf("  Mesh exterior boundary edges: %zu\n", hull);
   if (pslg)
     std::printf("  Mesh subsegments (constrained edges): %zu\n", mesh.segments.size());
-  std::printf("\n");
-}
-
-void print_verbose(const clmesh::Mesh &mesh, const clmesh::RunSeconds &seconds,
-                   double device_seconds) {
-  const clmesh::DelaunayStats &s = mesh.statistics.delaunay;
-  std::printf("  Device: %s\n", s.device.c_str());
-  std::printf("  Duplicate vertices: %ld\n", s.duplicates);
-  std::printf("  First triangulation: %s\n", s.construction == "voronoi"
-                                                 ? "from the digital Voronoi diagram"
-                                                 : "fan of the convex hull");
-  if (s.grid > 0) {
-    std::printf("  Voronoi grid: %d x %d, %ld diagram(s)\n", s.grid, s.grid, s.construction_rounds);
-    std::printf("  Triangles from Voronoi vertices: %ld\n", s.constructed_triangles);
-    std::printf("  Sites left out after shifting: %ld\n", s.dropped_sites);
-  }
-  std::printf("  Vertices placed by missing-point insertion: %ld\n", s.missing_points);
-  std::printf("  Insertion rounds: %ld\n", s.insertion_rounds);
-  std::printf("  Flip passes: %ld\n", s.flip_passes);
-  std::printf("  Flips: %ld\n", s.flips);
-  std::printf("  Exact predicate fallbacks: %ld\n\n", s.exact_predicate_calls);
-  if (mesh.statistics.constrained) {
-    const clmesh::ConstrainedStats &c = mesh.statistics.constraints;
-    std::printf("  Constraints:\n");
-    std::printf("    Segments kept: %ld\n", c.segments);
-    std::printf("    Duplicate or zero-length segments dropped: %ld\n", c.dropped_segments);
-    std::printf("    Input segments split: %ld\n", c.split_segments);
-    std::printf("    Segment crossings (new vertices): %ld\n", c.crossings);
-    std::printf("    Segment-triangle intersections: %ld\n", c.intersections);
-    std::printf("    Constraint flips: %ld\n", c.constraint_flips);
-    std::printf("    Outer iterations / runs flipped along: %ld / %ld\n", c.outer_iterations,
-                c.inner_iterations);
-    std::printf("    Constrained Delaunay flips: %ld\n", c.delaunay_flips);
-    std::printf("    Triangles eaten (exterior and holes): %ld\n\n", c.eaten_triangles);
-  }
-  std::printf("  Seconds:  read %.6f  device setup %.6f  compute %.6f  write %.6f\n", seconds.read,
-              device_seconds, seconds.compute, seconds.write);
-  for (const clmesh::PhaseTime &p : s.phases)
-    std::printf("    %-28s %.6f\n", p.name.c_str(), p.seconds);
   std::printf("\n");
 }
 
@@ -472,7 +423,9 @@ int run(const CommandLine &command) {
     std::printf("Total running milliseconds:  %.0f\n", seconds_since(start) * 1000);
     print_statistics(input, mesh, options.pslg);
     if (options.verbose > 0) {
-      print_verbose(mesh, seconds, device_seconds);
+      std::printf("  Seconds:  read %.6f  device setup %.6f  compute %.6f  write %.6f\n",
+                  seconds.read, device_seconds, seconds.compute, seconds.write);
+      std::fputs(clmesh::format_statistics(mesh).c_str(), stdout);
       std::fputs(clmesh::format_quality(clmesh::quality_statistics(mesh)).c_str(), stdout);
     }
   }
@@ -516,13 +469,9 @@ int main(int argc, char **argv) {
       return 0;
     }
     if (command.input.empty())
-      throw UsageError("no input file given (try 'clmesh -h')");
+      throw clmesh::OptionError("no input file given (try 'clmesh -h')");
     return run(command);
-  } catch (const UsageError &error) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "clmesh: %s\n", error.what());
-    return 2;
-  } catch (const clmesh::OptionError &error) {
+  } catch (const clmesh::OptionError &error) { // the command line's mistakes
     std::fflush(stdout);
     std::fprintf(stderr, "clmesh: %s\n", error.what());
     return 2;

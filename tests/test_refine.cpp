@@ -126,7 +126,8 @@ TEST_CASE("refine: minimum angles on the thesis distributions, GPU-QM-V and GPU-
       refine_checked(fixtures::disk(4000, 73), angle, -1, tuning_of(algorithm));
     }
     refine_checked(fixtures::circle(1000, 74), 30, -1, tuning_of(algorithm));
-    refine_checked(fixtures::lattice(40), 30, -1, tuning_of(algorithm)); // cocircular: already 45 degrees
+    refine_checked(fixtures::lattice(40), 30, -1,
+                   tuning_of(algorithm)); // cocircular: already 45 degrees
     // A lattice cut by an area bound: Steiner points on lattice edges and
     // cocircular with their neighbours, stars where no flop is possible.
     refine_checked(fixtures::lattice(12), 30, 0.05, tuning_of(algorithm));
@@ -155,9 +156,10 @@ TEST_CASE("refine: flip-flop deletes redundant points, GPU-QM more eagerly than 
   qm_tuning.filter_distance_rings = qmv_tuning.filter_distance_rings = 0;
   const auto qmv = refine_checked(points, 30, -1, qmv_tuning);
   const auto qm = refine_checked(points, 30, -1, qm_tuning);
-  MESSAGE("GPU-QM-V: " << qmv.statistics.refinement.insertions << " insertions, " << qmv.statistics.refinement.deleted
-                       << " deleted; GPU-QM: " << qm.statistics.refinement.insertions << " insertions, "
-                       << qm.statistics.refinement.deleted << " deleted");
+  MESSAGE("GPU-QM-V: " << qmv.statistics.refinement.insertions << " insertions, "
+                       << qmv.statistics.refinement.deleted
+                       << " deleted; GPU-QM: " << qm.statistics.refinement.insertions
+                       << " insertions, " << qm.statistics.refinement.deleted << " deleted");
   CHECK(qmv.statistics.refinement.deleted > 0);
   CHECK(qm.statistics.refinement.deleted > qmv.statistics.refinement.deleted);
   CHECK(qm.statistics.refinement.non_delaunay_flips > qmv.statistics.refinement.non_delaunay_flips);
@@ -176,7 +178,8 @@ TEST_CASE("refine: an insertion filter that looks further inserts fewer points")
     const auto two = refine_checked(points, 30, -1, tuning);
     tuning.filter_rings = 3;
     const auto three = refine_checked(points, 30, -1, tuning);
-    MESSAGE("two rings: " << two.statistics.refinement.inserted << " Steiner points, " << two.statistics.refinement.iterations
+    MESSAGE("two rings: " << two.statistics.refinement.inserted << " Steiner points, "
+                          << two.statistics.refinement.iterations
                           << " iterations; three: " << three.statistics.refinement.inserted << ", "
                           << three.statistics.refinement.iterations);
     CHECK(three.statistics.refinement.inserted < two.statistics.refinement.inserted);
@@ -198,12 +201,17 @@ TEST_CASE("refine: the filter leaves out the pairs GPU-QM-V's step 3 would break
   tuning.filter_distance_rings = 1;
   const auto with_distance = refine_checked(points, 30, -1, tuning);
   MESSAGE("by priority: " << priority_only.statistics.refinement.insertions << " insertions, "
-                          << priority_only.statistics.refinement.deleted << " deleted; with distance: "
-                          << with_distance.statistics.refinement.insertions << ", " << with_distance.statistics.refinement.deleted);
-  CHECK(with_distance.statistics.refinement.deleted * 5 < priority_only.statistics.refinement.deleted);
-  CHECK(with_distance.statistics.refinement.insertions < priority_only.statistics.refinement.insertions);
+                          << priority_only.statistics.refinement.deleted
+                          << " deleted; with distance: "
+                          << with_distance.statistics.refinement.insertions << ", "
+                          << with_distance.statistics.refinement.deleted);
+  CHECK(with_distance.statistics.refinement.deleted * 5 <
+        priority_only.statistics.refinement.deleted);
+  CHECK(with_distance.statistics.refinement.insertions <
+        priority_only.statistics.refinement.insertions);
   // No more points in the end (within half a percent).
-  CHECK(with_distance.statistics.refinement.inserted * 200 < priority_only.statistics.refinement.inserted * 201);
+  CHECK(with_distance.statistics.refinement.inserted * 200 <
+        priority_only.statistics.refinement.inserted * 201);
   clmesh::Options options = refine_options(30);
   options.tuning.filter_distance_rings = 2;
   CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
@@ -220,11 +228,15 @@ TEST_CASE("refine: far better candidates do not hold GPU-QM-V's insertions back"
   const auto any_distance = refine_checked(points, 20, -1, any);
   const auto near_only = refine_checked(points, 20, -1, tuning_of(qmv));
   MESSAGE("at any distance: " << any_distance.statistics.refinement.iterations << " iterations, "
-                              << any_distance.statistics.refinement.inserted << " points; near only: "
-                              << near_only.statistics.refinement.iterations << ", " << near_only.statistics.refinement.inserted);
-  CHECK(near_only.statistics.refinement.iterations * 10 < any_distance.statistics.refinement.iterations * 9);
+                              << any_distance.statistics.refinement.inserted
+                              << " points; near only: "
+                              << near_only.statistics.refinement.iterations << ", "
+                              << near_only.statistics.refinement.inserted);
+  CHECK(near_only.statistics.refinement.iterations * 10 <
+        any_distance.statistics.refinement.iterations * 9);
   // No more than 1% more points.
-  CHECK(near_only.statistics.refinement.inserted * 100 < any_distance.statistics.refinement.inserted * 101);
+  CHECK(near_only.statistics.refinement.inserted * 100 <
+        any_distance.statistics.refinement.inserted * 101);
   clmesh::Options options = refine_options(20);
   options.tuning.filter_near = 0.5;
   CHECK_THROWS_AS(refine(points, options), clmesh::OptionError);
@@ -243,12 +255,15 @@ TEST_CASE("refine: midpoints of different hull edges go in the same iteration") 
     const auto one_by_one = refine(points, options);
     const auto parallel = refine_checked(points, 20, -1, tuning_of(algorithm));
     MESSAGE("midpoints kept out by better ones: "
-            << one_by_one.statistics.refinement.iterations << " iterations, " << one_by_one.statistics.refinement.inserted
+            << one_by_one.statistics.refinement.iterations << " iterations, "
+            << one_by_one.statistics.refinement.inserted
             << " points; in parallel: " << parallel.statistics.refinement.iterations << ", "
             << parallel.statistics.refinement.inserted);
-    CHECK(parallel.statistics.refinement.iterations * 4 < one_by_one.statistics.refinement.iterations * 3);
+    CHECK(parallel.statistics.refinement.iterations * 4 <
+          one_by_one.statistics.refinement.iterations * 3);
     // No more points (within half a percent).
-    CHECK(parallel.statistics.refinement.inserted * 200 < one_by_one.statistics.refinement.inserted * 201);
+    CHECK(parallel.statistics.refinement.inserted * 200 <
+          one_by_one.statistics.refinement.inserted * 201);
   }
 }
 
@@ -270,17 +285,23 @@ TEST_CASE("refine: GPU-QM-V's election locates fewer candidates for the same mes
     const auto one_ring = refine_checked(points, angle, -1, tuning);
     const auto two_rings = refine_checked(points, angle, -1, tuning_of(qmv));
     MESSAGE("candidates, iterations, points: every bad triangle "
-            << all.statistics.refinement.candidates << ", " << all.statistics.refinement.iterations << ", " << all.statistics.refinement.inserted
-            << "; elected in one ring " << one_ring.statistics.refinement.candidates << ", "
-            << one_ring.statistics.refinement.iterations << ", " << one_ring.statistics.refinement.inserted << "; in two "
-            << two_rings.statistics.refinement.candidates << ", " << two_rings.statistics.refinement.iterations << ", "
+            << all.statistics.refinement.candidates << ", " << all.statistics.refinement.iterations
+            << ", " << all.statistics.refinement.inserted << "; elected in one ring "
+            << one_ring.statistics.refinement.candidates << ", "
+            << one_ring.statistics.refinement.iterations << ", "
+            << one_ring.statistics.refinement.inserted << "; in two "
+            << two_rings.statistics.refinement.candidates << ", "
+            << two_rings.statistics.refinement.iterations << ", "
             << two_rings.statistics.refinement.inserted);
     CHECK(one_ring.statistics.refinement.candidates < all.statistics.refinement.candidates);
     CHECK(two_rings.statistics.refinement.candidates < one_ring.statistics.refinement.candidates);
-    CHECK(two_rings.statistics.refinement.candidates * 3 < all.statistics.refinement.candidates * 2);
+    CHECK(two_rings.statistics.refinement.candidates * 3 <
+          all.statistics.refinement.candidates * 2);
     // At most a third more iterations, and 1.5% more points.
-    CHECK(two_rings.statistics.refinement.iterations * 3 <= all.statistics.refinement.iterations * 4);
-    CHECK(two_rings.statistics.refinement.inserted * 200 < all.statistics.refinement.inserted * 203);
+    CHECK(two_rings.statistics.refinement.iterations * 3 <=
+          all.statistics.refinement.iterations * 4);
+    CHECK(two_rings.statistics.refinement.inserted * 200 <
+          all.statistics.refinement.inserted * 203);
   }
   clmesh::Options options = refine_options(30);
   options.tuning.election_rings = 3;
@@ -309,9 +330,9 @@ TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
     const auto result = refine(points, refine_options(30, -1, tuning_of(algorithm)));
     const std::vector<Point> &all = result.points;
     CHECK(!result.triangles.empty());
-    MESSAGE(result.statistics.refinement.remaining_bad << " bad triangles remain after " << result.statistics.refinement.iterations
-                                       << " iterations, " << steiner_points(result)
-                                       << " Steiner points");
+    MESSAGE(result.statistics.refinement.remaining_bad
+            << " bad triangles remain after " << result.statistics.refinement.iterations
+            << " iterations, " << steiner_points(result) << " Steiner points");
     long bad = 0;
     for (const auto &t : result.triangles) {
       CHECK(area(all, t) > 0);

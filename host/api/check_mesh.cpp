@@ -26,8 +26,8 @@ CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &opti
   std::vector<Segment> segments = input.segments;
   if (options.convex_hull)
     segments.insert(segments.end(), mesh.segments.begin(), mesh.segments.end());
-  return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
-                           segments, whole_hull);
+  return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of, segments,
+                           whole_hull);
 }
 
 } // namespace clmesh

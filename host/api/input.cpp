@@ -28,8 +28,8 @@ void validate(const Input &input) {
       input.point_attributes.size() != n * static_cast<std::size_t>(input.attribute_count))
     throw InputError(source, 0,
                      std::to_string(input.point_attributes.size()) + " point attributes for " +
-                         std::to_string(n) + " points of " +
-                         std::to_string(input.attribute_count) + " attributes each");
+                         std::to_string(n) + " points of " + std::to_string(input.attribute_count) +
+                         " attributes each");
   if (!input.point_markers.empty() && input.point_markers.size() != n)
     throw InputError(source, 0,
                      std::to_string(input.point_markers.size()) + " point markers for " +

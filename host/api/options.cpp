@@ -56,8 +56,8 @@ std::string switch_number(const std::string &text, std::size_t &i) {
   std::size_t end = i + 1;
   while (end < text.size()) {
     const char c = text[end];
-    const bool exponent = (c == 'e' || c == 'E') && (digit(end + 1) || (end + 1 < text.size() &&
-                                                                         text[end + 1] == '-'));
+    const bool exponent = (c == 'e' || c == 'E') &&
+                          (digit(end + 1) || (end + 1 < text.size() && text[end + 1] == '-'));
     if (!digit(end) && c != '.' && !exponent)
       break;
     end += exponent && text[end + 1] == '-' ? 2 : 1;

@@ -11,8 +11,8 @@ namespace clmesh {
 namespace {
 
 // Upper ends of the aspect ratio histogram's bins (the last bin is open).
-constexpr double kRatioBins[] = {1.5, 2,   2.5,  3,    4,     6,     10,    15,
-                                 25,  50,  100,  300,  1000,  10000, 100000};
+constexpr double kRatioBins[] = {1.5, 2,  2.5, 3,   4,    6,     10,    15,
+                                 25,  50, 100, 300, 1000, 10000, 100000};
 constexpr int kRatioCount = sizeof kRatioBins / sizeof kRatioBins[0] + 1;
 constexpr double kPi = 3.14159265358979323846;
 
@@ -85,8 +85,7 @@ std::string format_quality(const QualityStatistics &q) {
         kRatioBins[right - 1], upper, q.aspect_ratio_histogram[right]);
   }
   add("  (Aspect ratio is longest edge divided by shortest altitude)\n\n");
-  add("  Smallest angle: %15.5g   |  Largest angle: %15.5g\n\n", q.smallest_angle,
-      q.largest_angle);
+  add("  Smallest angle: %15.5g   |  Largest angle: %15.5g\n\n", q.smallest_angle, q.largest_angle);
   add("  Angle histogram:\n");
   for (int row = 0; row < 9; ++row)
     add("    %3d - %3d degrees:  %8ld    |    %3d - %3d degrees:  %8ld\n", row * 10, row * 10 + 10,

@@ -30,6 +30,9 @@ QualityStatistics quality_statistics(const Mesh &mesh);
 // The table Triangle prints under "Mesh quality statistics".
 std::string format_quality(const QualityStatistics &quality);
 
+// The counts of a run as text, as -V prints them.
+std::string format_statistics(const Mesh &mesh);
+
 // Seconds of the run's parts that the caller timed (reading, writing).
 struct RunSeconds {
   double read = 0, compute = 0, write = 0;

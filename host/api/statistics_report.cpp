@@ -1,5 +1,4 @@
-// clmesh — a run's statistics as JSON (--stats-json, and the Python
-// package's statistics dictionary).
+// clmesh — a run's statistics as text (-V) and as JSON (--stats-json).
 #include "clmesh/report.hpp"
 
 #include <cmath>
@@ -55,6 +54,58 @@ std::string count(const char *name, long value, bool last = false) {
 }
 
 } // namespace
+
+std::string format_statistics(const Mesh &mesh) {
+  const DelaunayStats &s = mesh.statistics.delaunay;
+  std::string out;
+  char line[200];
+  auto add = [&](const char *format, auto... values) {
+    std::snprintf(line, sizeof line, format, values...);
+    out += line;
+  };
+  add("  Device: %s\n", s.device.c_str());
+  add("  Duplicate vertices: %ld\n", s.duplicates);
+  add("  First triangulation: %s\n",
+      s.construction == "voronoi" ? "from the digital Voronoi diagram" : "fan of the convex hull");
+  if (s.grid > 0) {
+    add("  Voronoi grid: %d x %d, %ld diagram(s)\n", s.grid, s.grid, s.construction_rounds);
+    add("  Triangles from Voronoi vertices: %ld\n", s.constructed_triangles);
+    add("  Sites left out after shifting: %ld\n", s.dropped_sites);
+  }
+  add("  Vertices placed by missing-point insertion: %ld\n", s.missing_points);
+  add("  Insertion rounds: %ld\n", s.insertion_rounds);
+  add("  Flip passes: %ld\n", s.flip_passes);
+  add("  Flips: %ld\n", s.flips);
+  add("  Exact predicate fallbacks: %ld\n\n", s.exact_predicate_calls);
+  if (mesh.statistics.constrained) {
+    const ConstrainedStats &c = mesh.statistics.constraints;
+    add("  Constraints:\n");
+    add("    Segments kept: %ld\n", c.segments);
+    add("    Duplicate or zero-length segments dropped: %ld\n", c.dropped_segments);
+    add("    Input segments split: %ld\n", c.split_segments);
+    add("    Segment crossings (new vertices): %ld\n", c.crossings);
+    add("    Segment-triangle intersections: %ld\n", c.intersections);
+    add("    Constraint flips: %ld\n", c.constraint_flips);
+    add("    Outer iterations / runs flipped along: %ld / %ld\n", c.outer_iterations,
+        c.inner_iterations);
+    add("    Constrained Delaunay flips: %ld\n", c.delaunay_flips);
+    add("    Triangles eaten (exterior and holes): %ld\n\n", c.eaten_triangles);
+  }
+  if (mesh.statistics.refined) {
+    const RefineStats &r = mesh.statistics.refinement;
+    add("  Refinement:\n");
+    add("    Iterations: %ld\n", r.iterations);
+    add("    Candidates located / inserted / deleted again: %ld / %ld / %ld\n", r.candidates,
+        r.insertions, r.deleted);
+    add("    Steiner points: %ld (%ld hull midpoints)\n", r.inserted, r.boundary_splits);
+    add("    Delaunay flips / deleting flips: %ld / %ld\n", r.delaunay_flips, r.non_delaunay_flips);
+    add("    Triangles left below the bounds: %ld\n\n", r.remaining_bad);
+  }
+  add("  Phases (seconds):\n");
+  for (const PhaseTime &p : s.phases)
+    add("    %-28s %.6f\n", p.name.c_str(), p.seconds);
+  return out;
+}
 
 std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
   const DelaunayStats &s = mesh.statistics.delaunay;

@@ -34,6 +34,10 @@ void validate(const Input &input) {
     throw InputError(source, 0,
                      std::to_string(input.point_markers.size()) + " point markers for " +
                          std::to_string(n) + " points");
+  if (!input.triangles.empty() || !input.triangle_max_area.empty())
+    throw InputError(source, 0,
+                     "refining an existing mesh (its triangles or their maximum areas) is not "
+                     "supported yet");
   const auto count = static_cast<long>(n);
   for (std::size_t i = 0; i < input.segments.size(); ++i) {
     const Segment &s = input.segments[i];

@@ -104,18 +104,26 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 
 Mesh triangulate(const Input &input, const Options &options) {
   // One device per process and name: its context and built programs serve
-  // every later call.
+  // every later call, one call at a time.
+  struct Shared {
+    std::shared_ptr<Device> device;
+    std::mutex busy;
+  };
   static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<Device>> devices;
-  std::shared_ptr<Device> device;
+  static std::map<std::string, std::shared_ptr<Shared>> devices;
+  std::shared_ptr<Shared> shared;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    std::shared_ptr<Device> &slot = devices[options.device];
-    if (!slot)
-      slot = open_device(options.device);
-    device = slot;
+    std::shared_ptr<Shared> &slot = devices[options.device];
+    if (!slot) {
+      auto opened = std::make_shared<Shared>();
+      opened->device = open_device(options.device);
+      slot = opened;
+    }
+    shared = slot;
   }
-  return triangulate(*device, input, options);
+  std::lock_guard<std::mutex> lock(shared->busy);
+  return triangulate(*shared->device, input, options);
 }
 
 } // namespace clmesh

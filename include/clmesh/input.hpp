@@ -33,6 +33,11 @@ struct Input {
   std::vector<Segment> segments;
   std::vector<Point> holes;
   std::vector<Region> regions;
+  // An existing mesh to refine (Triangle's -r) and a maximum area per
+  // triangle (its .area file; <= 0: none). Refining is not supported yet:
+  // validate() refuses an input with triangles.
+  std::vector<Triangle> triangles;
+  std::vector<double> triangle_max_area;
   // Numbering of the file the input came from (0 or 1); the output files keep it.
   int first_index = 0;
   // The file the input came from ("" when built in memory), named in messages.
@@ -41,7 +46,8 @@ struct Input {
 
 // Throws InputError when the input cannot be meshed: fewer than three points,
 // coordinates that are not finite or beyond what the exact predicates carry,
-// attributes or markers of the wrong count, segment endpoints out of range.
+// attributes or markers of the wrong count, segment endpoints out of range,
+// triangles (refining a mesh is not supported yet).
 // Messages name input.source, or the point or segment index.
 void validate(const Input &input);
 

@@ -25,7 +25,7 @@ TEST_CASE("device arrays: large arrays keep their contents through kernels and g
   DeviceArray<cl_int> offsets(dev, n);
   {
     DeviceArray<cl_int> device_counts(dev, n);
-    if (dev.is_cpu())
+    if (dev.cpu_paths())
       CHECK((device_counts.buffer().getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) != 0);
     device_counts.upload(dev, counts);
     PrefixScan scan(dev);

@@ -239,7 +239,25 @@ std::string describe(const Device &device) {
 
 std::size_t max_work_group_size(const Device &device) { return device.max_work_group(); }
 
-Device::Device(cl::Device device, DeviceDescription description)
+DevicePaths device_paths_from_environment() {
+  // CLMESH_DEVICE_PATHS=gpu runs the GPU code paths on any device (no
+  // prefetching kernels, no host-memory buffers, scans by blocks), =cpu the
+  // CPU ones; unset, empty or "auto": the device's type decides. Read here
+  // only. The meshes never depend on it: the test suite runs its mesh tests
+  // both ways on PoCL's CPU device (tests/CMakeLists.txt).
+  const char *env = std::getenv("CLMESH_DEVICE_PATHS");
+  const std::string value = env ? lower(env) : std::string();
+  if (value.empty() || value == "auto")
+    return DevicePaths::by_type;
+  if (value == "gpu")
+    return DevicePaths::gpu;
+  if (value == "cpu")
+    return DevicePaths::cpu;
+  throw UsageError("CLMESH_DEVICE_PATHS must be 'gpu', 'cpu' or 'auto', not '" + std::string(env) +
+                   "'");
+}
+
+Device::Device(cl::Device device, DeviceDescription description, DevicePaths paths)
     : device_(device), description_(std::move(description)) {
   guarded("setup", "creating the context", [&] {
     context_ = cl::Context(device_);
@@ -249,10 +267,12 @@ Device::Device(cl::Device device, DeviceDescription description)
         platform.getInfo<CL_PLATFORM_NAME>() + "\n" + platform.getInfo<CL_PLATFORM_VERSION>() +
         "\n" + device_.getInfo<CL_DEVICE_NAME>() + "\n" + device_.getInfo<CL_DEVICE_VERSION>() +
         "\n" + device_.getInfo<CL_DRIVER_VERSION>();
+    cpu_paths_ = paths == DevicePaths::by_type
+                     ? (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0
+                     : paths == DevicePaths::cpu;
     // A CPU runs a work-group's work-items in turn: they prefetch for the
     // ones after them (cl/prefetch.h).
-    cpu_ = (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
-    if (cpu_)
+    if (cpu_paths_)
       build_options_ += " -DCLM_PREFETCH";
   });
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
@@ -262,7 +282,7 @@ Device::Device(cl::Device device, DeviceDescription description)
 cl::Buffer Device::allocate(std::size_t bytes) {
 #ifdef MADV_HUGEPAGE
   constexpr std::size_t huge_page = std::size_t{2} << 20;
-  if (cpu_ && bytes >= huge_page) {
+  if (cpu_paths_ && bytes >= huge_page) {
     void *memory = nullptr;
     if (posix_memalign(&memory, huge_page, bytes) == 0) {
       // Advice only, for the whole huge pages (a partial last one would be

@@ -18,9 +18,23 @@ namespace detail {
 const char *embedded_source(const char *name);
 } // namespace detail
 
+// Which device-type-specific code paths a Device takes: a CPU's (kernels
+// that prefetch, large buffers in host memory the device uses in place,
+// scans by runs) or a GPU's (none of these). by_type: the device's own type.
+// The meshes are the same either way; forcing them tests the GPU paths on a
+// CPU device (and the other way round).
+enum class DevicePaths { by_type, cpu, gpu };
+
+// The paths asked for by the CLMESH_DEVICE_PATHS environment variable:
+// "gpu", "cpu", or unset/empty/"auto" for by_type. Throws UsageError for
+// anything else.
+DevicePaths device_paths_from_environment();
+
 class Device {
 public:
-  Device(cl::Device device, DeviceDescription description);
+  // paths: by default from CLMESH_DEVICE_PATHS (open_device() takes that).
+  Device(cl::Device device, DeviceDescription description,
+         DevicePaths paths = device_paths_from_environment());
 
   const DeviceDescription &description() const { return description_; }
   cl::Context &context() { return context_; }
@@ -34,7 +48,7 @@ public:
   cl::Program &program(const std::string &file, const std::string &phase);
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
-  // A read-write buffer of `bytes`. On a CPU device a large one lives in
+  // A read-write buffer of `bytes`. On the CPU paths a large one lives in
   // host memory that the device uses in place, aligned to 2 MiB with
   // transparent huge pages asked for: the refinement's random accesses then
   // miss the TLB far less often.
@@ -51,7 +65,9 @@ public:
   void set_work_group(std::size_t size);
   std::size_t max_work_group() const;
   std::size_t compute_units() const;
-  bool is_cpu() const { return cpu_; }
+  // Whether this device takes the CPU paths (DevicePaths): true for a CPU
+  // device unless CLMESH_DEVICE_PATHS or the constructor said otherwise.
+  bool cpu_paths() const { return cpu_paths_; }
   // CL_DEVICE_MAX_MEM_ALLOC_SIZE and CL_DEVICE_GLOBAL_MEM_SIZE, in bytes.
   std::size_t max_allocation() const;
   std::size_t global_memory() const;
@@ -65,7 +81,7 @@ private:
   std::map<std::string, cl::Program> programs_;
   cl::Kernel fill_words_;      // created on the first fill
   std::string build_identity_; // platform, device and driver, for the program cache
-  bool cpu_ = false;
+  bool cpu_paths_ = false;
   std::string build_options_ = "-cl-std=CL1.2";
 };
 

@@ -17,7 +17,7 @@ PrefixScan::PrefixScan(Device &device, Method method)
       sum_runs_(device.kernel("scan.cl", "sum_runs", "scan")),
       scan_runs_(device.kernel("scan.cl", "scan_runs", "scan")),
       group_(std::min<std::size_t>(256, device.max_work_group())),
-      by_runs_(method == Method::runs || (method == Method::device_default && device.is_cpu())),
+      by_runs_(method == Method::runs || (method == Method::device_default && device.cpu_paths())),
       max_runs_(4 * device.compute_units()), run_sums_(device, max_runs_), run_total_(device, 1) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {

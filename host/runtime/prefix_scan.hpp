@@ -14,8 +14,10 @@ public:
   // barriers and added up level by level (for GPUs), or runs of consecutive
   // entries, a work-item each, scanned by plain loops (for CPUs, where a
   // work-group's work-items run one after another). The result is the same.
+  // device_default: runs on a device taking the CPU paths (Device::cpu_paths).
   enum class Method { device_default, blocks, runs };
   explicit PrefixScan(Device &device, Method method = Method::device_default);
+  bool by_runs() const { return by_runs_; }
 
   // offsets = exclusive scan of counts[0..n); returns the total (one small read-back).
   int exclusive_scan(const DeviceArray<cl_int> &counts, const DeviceArray<cl_int> &offsets,

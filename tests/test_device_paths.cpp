@@ -1,0 +1,127 @@
+// The device-type code paths (host/runtime/opencl_context.hpp, DevicePaths): a
+// device takes the ones CLMESH_DEVICE_PATHS asks for, and the CPU and the GPU
+// paths give the same meshes byte for byte (the determinism rule: output never
+// depends on such choices). tests/CMakeLists.txt runs the mesh tests a second
+// time with CLMESH_DEVICE_PATHS=gpu, the first test case here among them.
+#include <doctest/doctest.h>
+
+#include "clmesh/constrained.hpp"
+#include "clmesh/delaunay.hpp"
+#include "clmesh/refine.hpp"
+#include "mesh_fixtures.hpp"
+#include "runtime/device_mesh.hpp"
+#include "runtime/opencl_context.hpp"
+#include "runtime/prefix_scan.hpp"
+#include "test_support.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <sys/mman.h>
+
+using namespace clmesh;
+using test_support::device;
+
+namespace {
+
+// Every path a device takes follows Device::cpu_paths().
+void check_paths(Device &dev, bool cpu_paths) {
+  CHECK(dev.cpu_paths() == cpu_paths);
+  // Kernels prefetch on the CPU paths only (cl/prefetch.h).
+  const cl::Program &program = dev.program("scan.cl", "test");
+  const auto options = program.getBuildInfo<CL_PROGRAM_BUILD_OPTIONS>(dev.cl_device());
+  CHECK((options.find("-DCLM_PREFETCH") != std::string::npos) == cpu_paths);
+  // Scans by runs on the CPU paths, by blocks on the GPU ones.
+  CHECK(PrefixScan(dev).by_runs() == cpu_paths);
+#ifdef MADV_HUGEPAGE
+  // A large array lives in host memory on the CPU paths only.
+  const DeviceArray<cl_int> array(dev, std::size_t{1} << 20);
+  CHECK(((array.buffer().getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) != 0) == cpu_paths);
+#endif
+}
+
+bool same_points(const std::vector<Point> &a, const std::vector<Point> &b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0);
+}
+
+void check_same_mesh(const DelaunayResult &a, const DelaunayResult &b) {
+  CHECK(!a.triangles.empty());
+  CHECK(a.triangles == b.triangles);
+  CHECK(a.neighbors == b.neighbors);
+  CHECK(a.duplicate_of == b.duplicate_of);
+}
+
+// Random points with random segments between them (crossings become
+// vertices); the hull is kept, so nothing is eaten.
+Pslg random_pslg(int n, int segments, unsigned seed) {
+  Pslg pslg;
+  pslg.points = fixtures::uniform(n, seed);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int32_t> pick(0, n - 1);
+  for (int s = 0; s < segments; ++s)
+    pslg.segments.push_back({pick(rng), pick(rng), s + 2});
+  return pslg;
+}
+
+} // namespace
+
+TEST_CASE("device paths: the device takes the paths CLMESH_DEVICE_PATHS asks for") {
+  Device &dev = device();
+  const char *env = std::getenv("CLMESH_DEVICE_PATHS");
+  const std::string asked = env ? env : "";
+  CAPTURE(asked);
+  const bool is_cpu = (dev.cl_device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
+  check_paths(dev, asked == "gpu" ? false : asked == "cpu" ? true : is_cpu);
+}
+
+TEST_CASE("device paths: the CPU and the GPU paths give the same meshes") {
+  // Two devices on one OpenCL device, each forced to one kind of path.
+  Device &opened = device();
+  Device cpu(opened.cl_device(), opened.description(), DevicePaths::cpu);
+  Device gpu(opened.cl_device(), opened.description(), DevicePaths::gpu);
+  check_paths(cpu, true);
+  check_paths(gpu, false);
+
+  {
+    auto points = fixtures::uniform(30000, 7);
+    points.insert(points.end(), points.begin(), points.begin() + 50); // duplicates
+    const auto lattice = fixtures::lattice(40, 0.01, {2, 2});         // cocircular
+    points.insert(points.end(), lattice.begin(), lattice.end());
+    INFO("delaunay");
+    check_same_mesh(delaunay(cpu, points), delaunay(gpu, points));
+  }
+  {
+    const Pslg pslg = random_pslg(3000, 60, 11);
+    ConstrainedOptions options;
+    options.keep_convex_hull = true;
+    INFO("constrained delaunay");
+    const auto a = constrained_delaunay(cpu, pslg, options);
+    const auto b = constrained_delaunay(gpu, pslg, options);
+    check_same_mesh(a.mesh, b.mesh);
+    CHECK(same_points(a.added_points, b.added_points));
+    REQUIRE(a.segments.size() == b.segments.size());
+    for (std::size_t i = 0; i < a.segments.size(); ++i) {
+      CHECK(a.segments[i].a == b.segments[i].a);
+      CHECK(a.segments[i].b == b.segments[i].b);
+      CHECK(a.segments[i].marker == b.segments[i].marker);
+    }
+  }
+  {
+    const auto points = fixtures::gaussian(5000, 13);
+    for (const auto algorithm : {RefineAlgorithm::qmv, RefineAlgorithm::qm}) {
+      RefineOptions options;
+      options.min_angle = 30;
+      options.algorithm = algorithm;
+      INFO("refinement, ", algorithm == RefineAlgorithm::qmv ? "GPU-QM-V" : "GPU-QM");
+      const auto a = refine_delaunay(cpu, points, options);
+      const auto b = refine_delaunay(gpu, points, options);
+      CHECK(a.stats.inserted > 0);
+      check_same_mesh(a.mesh, b.mesh);
+      CHECK(same_points(a.added_points, b.added_points));
+    }
+  }
+}

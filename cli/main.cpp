@@ -6,6 +6,7 @@
 // switches are parsed by clmesh::parse_switches() and the mesh comes from
 // clmesh::triangulate().
 #include "clmesh/clmesh.hpp"
+#include "clmesh/version.hpp"
 
 #include <cerrno>
 #include <chrono>
@@ -105,7 +106,7 @@ void print_help() {
       "and no file is written.\n"
       "Built kernels are cached in $CLMESH_CACHE_DIR (default $XDG_CACHE_HOME/clmesh,\n"
       "else ~/.cache/clmesh; set it empty to turn the cache off).\n",
-      CLMESH_VERSION_TEXT);
+      clmesh::version_string);
 }
 
 void print_usage() {
@@ -461,7 +462,7 @@ int main(int argc, char **argv) {
       return 0;
     }
     if (command.version) {
-      std::printf("clmesh %s\n", CLMESH_VERSION_TEXT);
+      std::printf("clmesh %s\n", clmesh::version_string);
       return 0;
     }
     if (command.list_devices) {

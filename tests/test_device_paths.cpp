@@ -5,9 +5,7 @@
 // time with CLMESH_DEVICE_PATHS=gpu, the first test case here among them.
 #include <doctest/doctest.h>
 
-#include "clmesh/constrained.hpp"
-#include "clmesh/delaunay.hpp"
-#include "clmesh/refine.hpp"
+#include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
 #include "runtime/device_mesh.hpp"
 #include "runtime/opencl_context.hpp"
@@ -48,17 +46,24 @@ bool same_points(const std::vector<Point> &a, const std::vector<Point> &b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0);
 }
 
-void check_same_mesh(const DelaunayResult &a, const DelaunayResult &b) {
+void check_same_mesh(const Mesh &a, const Mesh &b) {
   CHECK(!a.triangles.empty());
   CHECK(a.triangles == b.triangles);
   CHECK(a.neighbors == b.neighbors);
   CHECK(a.duplicate_of == b.duplicate_of);
+  CHECK(same_points(a.points, b.points));
+  REQUIRE(a.segments.size() == b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i) {
+    CHECK(a.segments[i].a == b.segments[i].a);
+    CHECK(a.segments[i].b == b.segments[i].b);
+    CHECK(a.segments[i].marker == b.segments[i].marker);
+  }
 }
 
 // Random points with random segments between them (crossings become
 // vertices); the hull is kept, so nothing is eaten.
-Pslg random_pslg(int n, int segments, unsigned seed) {
-  Pslg pslg;
+Input random_pslg(int n, int segments, unsigned seed) {
+  Input pslg;
   pslg.points = fixtures::uniform(n, seed);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int32_t> pick(0, n - 1);
@@ -91,37 +96,28 @@ TEST_CASE("device paths: the CPU and the GPU paths give the same meshes") {
     points.insert(points.end(), points.begin(), points.begin() + 50); // duplicates
     const auto lattice = fixtures::lattice(40, 0.01, {2, 2});         // cocircular
     points.insert(points.end(), lattice.begin(), lattice.end());
+    Input input;
+    input.points = points;
     INFO("delaunay");
-    check_same_mesh(delaunay(cpu, points), delaunay(gpu, points));
+    check_same_mesh(triangulate(cpu, input, ""), triangulate(gpu, input, ""));
   }
   {
-    const Pslg pslg = random_pslg(3000, 60, 11);
-    ConstrainedOptions options;
-    options.keep_convex_hull = true;
+    const Input pslg = random_pslg(3000, 60, 11);
     INFO("constrained delaunay");
-    const auto a = constrained_delaunay(cpu, pslg, options);
-    const auto b = constrained_delaunay(gpu, pslg, options);
-    check_same_mesh(a.mesh, b.mesh);
-    CHECK(same_points(a.added_points, b.added_points));
-    REQUIRE(a.segments.size() == b.segments.size());
-    for (std::size_t i = 0; i < a.segments.size(); ++i) {
-      CHECK(a.segments[i].a == b.segments[i].a);
-      CHECK(a.segments[i].b == b.segments[i].b);
-      CHECK(a.segments[i].marker == b.segments[i].marker);
-    }
+    const Mesh a = triangulate(cpu, pslg, "pc");
+    CHECK(a.points.size() > pslg.points.size()); // crossings
+    check_same_mesh(a, triangulate(gpu, pslg, "pc"));
   }
   {
-    const auto points = fixtures::gaussian(5000, 13);
+    Input input;
+    input.points = fixtures::gaussian(5000, 13);
     for (const auto algorithm : {RefineAlgorithm::qmv, RefineAlgorithm::qm}) {
-      RefineOptions options;
-      options.min_angle = 30;
-      options.algorithm = algorithm;
+      Options options = parse_switches("q30");
+      options.tuning.use(algorithm);
       INFO("refinement, ", algorithm == RefineAlgorithm::qmv ? "GPU-QM-V" : "GPU-QM");
-      const auto a = refine_delaunay(cpu, points, options);
-      const auto b = refine_delaunay(gpu, points, options);
-      CHECK(a.stats.inserted > 0);
-      check_same_mesh(a.mesh, b.mesh);
-      CHECK(same_points(a.added_points, b.added_points));
+      const Mesh a = triangulate(cpu, input, options);
+      CHECK(a.statistics.refinement.inserted > 0);
+      check_same_mesh(a, triangulate(gpu, input, options));
     }
   }
 }

@@ -253,7 +253,7 @@ DevicePaths device_paths_from_environment() {
     return DevicePaths::gpu;
   if (value == "cpu")
     return DevicePaths::cpu;
-  throw UsageError("CLMESH_DEVICE_PATHS must be 'gpu', 'cpu' or 'auto', not '" + std::string(env) +
+  throw OptionError("CLMESH_DEVICE_PATHS must be 'gpu', 'cpu' or 'auto', not '" + std::string(env) +
                    "'");
 }
 

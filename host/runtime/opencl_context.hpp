@@ -26,7 +26,7 @@ const char *embedded_source(const char *name);
 enum class DevicePaths { by_type, cpu, gpu };
 
 // The paths asked for by the CLMESH_DEVICE_PATHS environment variable:
-// "gpu", "cpu", or unset/empty/"auto" for by_type. Throws UsageError for
+// "gpu", "cpu", or unset/empty/"auto" for by_type. Throws OptionError for
 // anything else.
 DevicePaths device_paths_from_environment();
 

@@ -18,3 +18,4 @@
 #include "clmesh/statistics.hpp"
 #include "clmesh/triangulate.hpp"
 #include "clmesh/tuning.hpp"
+#include "clmesh/version.hpp"

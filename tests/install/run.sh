@@ -10,7 +10,7 @@ trap 'rm -rf "$work"' EXIT
 
 "$cmake" --install "$build" --prefix "$work/prefix" > "$work/install.log" ||
   { cat "$work/install.log"; exit 1; }
-for f in bin/clmesh include/clmesh/delaunay.hpp include/clmesh/version.hpp; do
+for f in bin/clmesh include/clmesh/clmesh.hpp include/clmesh/version.hpp; do
   [[ -e "$work/prefix/$f" ]] || { echo "FAIL: $f not installed" >&2; exit 1; }
 done
 "$work/prefix/bin/clmesh" --version

@@ -221,11 +221,13 @@ TEST_CASE("program cache: an entry whose header checks out but that the driver r
   damaged_scan_entry_is_rebuilt(
       "cache-refused", [](const fs::path &entry, const std::string &whole) {
         // The entry's own header (magic, version, key) around a payload that is
-        // no program binary, with its size and FNV-1a 64 checksum.
-        const std::string payload = "not a program binary";
+        // no program binary, with its size and checksum (FNV-1a 64 over
+        // little-endian 8-byte words; three whole words here).
+        const std::string payload = "not a program binary....";
         std::uint64_t hash = 0xcbf29ce484222325ull;
-        for (const unsigned char c : payload) {
-          hash ^= c;
+        for (std::size_t word = 0; word < payload.size(); word += 8) {
+          for (int i = 0; i < 8; ++i)
+            hash ^= std::uint64_t{static_cast<unsigned char>(payload[word + i])} << (8 * i);
           hash *= 0x100000001b3ull;
         }
         std::string damaged = whole.substr(0, 32);

@@ -35,7 +35,8 @@ check() {
 }
 
 # whole_entries WHAT: the cache holds only .bin entries (no partial file),
-# each with clmesh's header, its payload's size and FNV-1a 64 checksum.
+# each with clmesh's header, its payload's size and checksum (FNV-1a 64 over
+# little-endian 8-byte words, then the bytes left).
 whole_entries() {
   python3 - "$CLMESH_CACHE_DIR" <<'PY' || fail "$1: damaged cache entries"
 import os, struct, sys
@@ -49,7 +50,10 @@ for name in names:
     magic, version, header, key0, key1, size, checksum = struct.unpack_from("<8sIIQQQQ", data)
     payload = data[header:]
     hash = 0xcbf29ce484222325
-    for byte in payload:
+    whole = len(payload) // 8 * 8
+    for word in struct.unpack_from("<%dQ" % (whole // 8), payload):
+        hash = ((hash ^ word) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    for byte in payload[whole:]:
         hash = ((hash ^ byte) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
     if (magic != b"clmeshPB" or version != 1 or size != len(payload) or hash != checksum
             or name != "%016x%016x.bin" % (key0, key1)):

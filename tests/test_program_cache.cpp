@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -341,5 +342,24 @@ TEST_CASE("program cache: writers filling one entry at once leave it whole") {
     writer.join();
   CHECK(torn.load() == 0);
   CHECK(entries(dir).size() == 1u);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("program cache: a store removes partial files that killed writers left") {
+  const fs::path dir = fresh_directory("cache-partials");
+  const CacheDirectory set(dir.string());
+  fs::create_directories(dir);
+  const std::string prefix = "0123456789abcdef0123456789abcdef.bin.";
+  for (const char *name : {"1-0-0000000000000000.partial", "2-0-0000000000000000.partial"})
+    write_file(dir / (prefix + name), "half an entry");
+  write_file(dir / "notes.partial", "not clmesh's");
+  const auto old = fs::file_time_type::clock::now() - std::chrono::hours(2);
+  fs::last_write_time(dir / (prefix + "1-0-0000000000000000.partial"), old);
+  fs::last_write_time(dir / "notes.partial", old);
+  clmesh::ProgramCache("source", "identity").store({1, 2, 3});
+  CHECK_FALSE(fs::exists(dir / (prefix + "1-0-0000000000000000.partial"))); // stale
+  CHECK(fs::exists(dir / (prefix + "2-0-0000000000000000.partial")));       // maybe a live writer's
+  CHECK(fs::exists(dir / "notes.partial"));
+  CHECK(entries(dir).size() == 3u);
   fs::remove_all(dir);
 }

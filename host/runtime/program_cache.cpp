@@ -147,6 +147,27 @@ std::string unique_suffix() {
   return suffix;
 }
 
+// Removes the partial files in `folder` that writers killed before their
+// rename left behind: those older than an hour (a live writer takes well
+// under a second).
+void remove_stale_partials(const std::filesystem::path &folder) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const auto now = fs::file_time_type::clock::now();
+  for (fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    const std::string suffix = ".partial";
+    if (name.size() <= suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0 ||
+        name.find(".bin.") == std::string::npos)
+      continue;
+    std::error_code ignored;
+    const auto written = fs::last_write_time(it->path(), ignored);
+    if (!ignored && now - written > std::chrono::hours(1))
+      fs::remove(it->path(), ignored);
+  }
+}
+
 } // namespace
 
 ProgramCache::ProgramCache(const std::string &source, const std::string &identity) {
@@ -235,6 +256,7 @@ void ProgramCache::store(const std::vector<unsigned char> &binary) const noexcep
       if (::rename(partial.c_str(), path_.c_str()) != 0)
         ::unlink(partial.c_str());
     }
+    remove_stale_partials(entry.parent_path());
   } catch (const std::exception &) {
     // Out of memory: no entry this time.
   }

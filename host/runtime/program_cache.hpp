@@ -14,7 +14,8 @@
 // reads as no entry; the caller builds from source and stores the entry again,
 // written aside under a name of its own and renamed over the old one, so that
 // a reader sees the old entry or the new one, never half of one. A failed
-// write leaves things as they were.
+// write leaves things as they were; the partial files of writers killed
+// before their rename go with a later store, once an hour old.
 //
 // Location: $CLMESH_CACHE_DIR, else $XDG_CACHE_HOME/clmesh, else
 // $HOME/.cache/clmesh; CLMESH_CACHE_DIR set to the empty string turns it off.

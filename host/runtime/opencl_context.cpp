@@ -343,7 +343,8 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
       program.build(std::vector<cl::Device>{device_}, options.c_str());
       return programs_.emplace(file, program).first->second;
     } catch (const cl::Error &) {
-      // A binary the driver no longer takes: built again from the source.
+      // A binary the driver no longer takes (CL_INVALID_BINARY, a failed
+      // build): built again from the source, and its entry replaced below.
     }
   }
   cl::Program program(context_, source);

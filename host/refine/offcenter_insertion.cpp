@@ -120,11 +120,10 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
     origin = &origin_;
   }
   const auto n = static_cast<cl_int>(candidates_);
-  set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
-           located_stamp_, ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
-           container_.buffer(), split_edge_.buffer(), origin->buffer(), priority_.buffer(),
-           radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
+  set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
+                ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
+                container_.buffer(), split_edge_.buffer(), origin->buffer(), priority_.buffer(),
+                radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
   located_slots_ = std::max(located_slots_, mesh_.triangle_count);
@@ -169,14 +168,11 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
              free_count = static_cast<cl_int>(free.count);
   const std::size_t new_slots = free.take(count);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
-  set_args(append_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           radius2_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
-           mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.points.buffer(),
-           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
-           mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
-           mesh_.point_priority.buffer(), free_list, free_first, free_count,
-           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), static_cast<cl_int>(count),
-           n);
+  set_args_from(append_, mesh_.bind(append_, 0), candidate_.buffer(), container_.buffer(),
+                split_edge_.buffer(), radius2_.buffer(), priority_.buffer(), survive_.buffer(),
+                offset_.buffer(), free_list, free_first, free_count,
+                static_cast<cl_int>(mesh_.point_count), new_points.buffer(),
+                static_cast<cl_int>(count), n);
   launch(device_, append_, candidates_, kPhase);
   mesh_.point_count += new_slots;
   return count;

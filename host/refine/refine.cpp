@@ -6,9 +6,12 @@
 #include "refine/refine.hpp"
 
 #include "dt/delaunay_scheduler.hpp"
-#include "refine/flipflop_deletion.hpp"
 #include "dt/missing_point_insertion.hpp"
+#include "refine/flip_flop.hpp"
+#include "refine/free_slots.hpp"
 #include "refine/offcenter_insertion.hpp"
+#include "refine/steiner_renumbering.hpp"
+#include "refine/zorder_compaction.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -59,10 +62,16 @@ struct RefinementSteps {
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
+        free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        compaction(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        renumbering(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
-  FlipflopDeletion flipflop;
+  FlipFlop flipflop;
+  FreeSlots free_slots;
+  ZOrderCompaction compaction;
+  SteinerRenumbering renumbering;
   DeviceArray<cl_int> new_points; // the points inserted in this iteration
 };
 
@@ -78,7 +87,9 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats,
                               first_room(device, n, options));
   device.program("offcenter_insertion.cl", "setup");
-  device.program("flipflop_deletion.cl", "setup");
+  for (const char *file : {"flip_flop.cl", "hull_encroachment.cl", "free_slots.cl",
+                           "zorder_compaction.cl", "steiner_renumbering.cl"})
+    device.program(file, "setup");
   if (!scheduler.triangulate()) {
     scheduler.download_collinear(result.mesh);
     return result;
@@ -89,7 +100,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   auto steps = std::make_unique<RefinementSteps>(scheduler, options);
   const std::size_t acute_hull_vertices = steps->offcenter.flag_hull_vertices();
   RefineStats &stats = result.stats;
-  FlipflopCounts flips;
+  FlipFlopCounts flips;
   const std::size_t limit = options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
                                                 : std::numeric_limits<std::size_t>::max();
   DeletionLog deletion_log;
@@ -117,12 +128,12 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   for (long iteration = 0;; ++iteration) {
     if (iteration == 0 || (mesh.triangle_count >= compacted_slots + compacted_slots / 2 &&
                            16 * last_bad >= mesh.triangle_count)) {
-      steps->flipflop.compact(low, side, n);
+      steps->compaction.compact(low, side, n);
       steps->offcenter.forget_triangles();
       changed.size = 0;
       deleted_since_collection = false;
       compacted_slots = mesh.triangle_count;
-      scheduler.timer().charge(FlipflopDeletion::kPhase);
+      scheduler.timer().charge(FlipFlop::kPhase);
     }
     const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed, scheduler.stamp());
     changed.size = 0;
@@ -135,7 +146,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     // then larger arrays (growing invalidates the candidates: found again).
     const std::size_t candidates = steps->offcenter.candidates();
     if (room() < candidates && deleted_since_collection) {
-      steps->flipflop.collect_free_slots();
+      steps->free_slots.collect();
       deleted_since_collection = false;
     }
     if (room() < candidates && steiner + candidates <= limit) {
@@ -168,7 +179,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
     changed.append(device, insertion.changed(), 4 * inserted);
     steps->flipflop.run(insertion.changed(), 4 * inserted, steps->new_points, added,
                         scheduler.stamp(), changed, deletion_log, flips);
-    scheduler.timer().charge(FlipflopDeletion::kPhase);
+    scheduler.timer().charge(FlipFlop::kPhase);
     const auto deleted = static_cast<std::size_t>(flips.deleted - deleted_before);
     deleted_since_collection = deleted_since_collection || deleted > 0;
     stats.insertions += static_cast<long>(added);
@@ -187,7 +198,7 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   mesh_stats.exact_predicate_calls += flips.exact_checks;
 
   // Surviving Steiner points follow the input points, in slot order.
-  result.added_points = steps->flipflop.steiner_points(n);
+  result.added_points = steps->renumbering.number(n);
   const std::size_t survivors = result.added_points.size();
   stats.inserted = static_cast<long>(survivors);
   steps.reset();

@@ -73,8 +73,8 @@ std::size_t OffcenterInsertion::count_unfixable() {
   return static_cast<std::size_t>(count.read(device_, 0));
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed,
-                                     int stamp) {
+std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
+                                                   const DeviceList<cl_int> *changed) {
   // The first search sweeps every slot; the later ones only the last bad
   // triangles and the changed ones, without duplicates.
   const bool use_list = searched_ && changed != nullptr;
@@ -92,12 +92,11 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
                                                    search_keep_, search_offset_, listed_, kPhase));
   }
   searched_ = true;
-  const bool elect = election_rings_ > 0;
   const auto items = static_cast<cl_int>(entries);
   set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
            listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-           offconstant_, keep_.buffer(), static_cast<cl_int>(elect), mesh_.tri_mark.buffer(),
-           items);
+           offconstant_, keep_.buffer(), static_cast<cl_int>(election_rings_ > 0),
+           mesh_.tri_mark.buffer(), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -106,27 +105,39 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
            static_cast<cl_int>(use_list), bad_list_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
-  const auto bad = static_cast<cl_int>(bad_);
+  return bad_;
+}
+
+std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
   candidates_ = bad_;
-  const DeviceArray<cl_int> *origin = &bad_list_;
-  if (elect) {
-    set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-             static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
-    launch(device_, elect_, bad_, kPhase);
-    candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
-    set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
-             mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
-    launch(device_, gather_elected_, bad_, kPhase);
-    origin = &origin_;
-  }
-  const auto n = static_cast<cl_int>(candidates_);
+  if (bad_ == 0 || election_rings_ == 0)
+    return candidates_;
+  const auto bad = static_cast<cl_int>(bad_);
+  set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
+           static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
+  launch(device_, elect_, bad_, kPhase);
+  candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
+           mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
+  launch(device_, gather_elected_, bad_, kPhase);
+  return candidates_;
+}
+
+void OffcenterInsertion::locate_candidates(int stamp) {
+  // Each candidate's bad triangle: the elected ones, or every bad one.
+  const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
   set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
                 ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
-                container_.buffer(), split_edge_.buffer(), origin->buffer(), priority_.buffer(),
-                radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
+                container_.buffer(), split_edge_.buffer(), origin.buffer(), priority_.buffer(),
+                radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8),
+                static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
   located_slots_ = std::max(located_slots_, mesh_.triangle_count);
+}
+
+void OffcenterInsertion::filter_candidates() {
+  const auto n = static_cast<cl_int>(candidates_);
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, candidates_, kPhase);
@@ -142,7 +153,6 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, clear_, candidates_, kPhase);
-  return bad_;
 }
 
 void OffcenterInsertion::forget_triangles() {
@@ -153,14 +163,14 @@ void OffcenterInsertion::forget_triangles() {
   located_slots_ = 0;
 }
 
-std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
-                                       const DeviceArray<cl_int> &new_points, std::size_t *wanted) {
-  *wanted = 0;
+std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &scan,
+                                                 const DeviceArray<cl_int> &new_points) {
   if (candidates_ == 0)
     return 0;
   const auto n = static_cast<cl_int>(candidates_);
-  *wanted = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
-  const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
+  const auto survivors =
+      static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
+  const std::size_t count = std::min(survivors, room); // the first ones when there is less room
   if (count == 0)
     return 0;
   DeviceMesh::FreeList &free = mesh_.free_points;

@@ -1,6 +1,7 @@
 // clmesh — GPU-QM step 3: flip-flop, Delaunay flips together with the
 // deletion of redundant Steiner points (thesis §3.3.2 Algorithms 3.1 and 3.2,
-// §3.5 for GPU-QM-V's orthogonal test). Kernels: cl/flip_flop.cl.
+// §3.5 for GPU-QM-V's orthogonal test), after the boundary routine of §3.4.1
+// (HullEncroachment). Kernels: cl/flip_flop.cl.
 #pragma once
 
 #include "refine/hull_encroachment.hpp"
@@ -39,7 +40,7 @@ public:
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
   // lens: Triangle's encroachment test of hull edges (HullEncroachment).
-  // group_pass_limit: RefineOptions::group_pass_limit.
+  // group_pass_limit: Tuning::group_pass_limit.
   FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test, double lens,
            std::size_t group_pass_limit);
 

@@ -32,9 +32,7 @@ inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCEN
 // cosine; none when acute_bound is 0): no refinement can mend the angle
 // every triangle there has at them (Triangle leaves those too). Run once, on
 // the convex hull of the Delaunay triangulation, ghost by ghost.
-__kernel void flag_hull_vertices(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *tri_neighbor, const int acute_bound,
-                                 const double cos_bound, __global int *point_state,
+__kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const double cos_bound,
                                  volatile __global int *flagged, const int n) {
   const int g = get_global_id(0);
   if (g >= n)
@@ -136,11 +134,9 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
 // triangles changed since: the others are still good (thesis §3.3.2). With an
 // election, each bad triangle also marks its slot with its priority, ranked as
 // a midpoint's when a corner is on the hull (see elect_candidates).
-__kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *point_state, __global const int *list,
-                                 const int use_list, const double ratio_bound_squared,
-                                 const double max_area, const double offconstant,
-                                 __global int *is_bad, const int election, __global uint *tri_mark,
+__kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
+                                 const double ratio_bound_squared, const double max_area,
+                                 const double offconstant, __global int *is_bad, const int election,
                                  const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
@@ -163,11 +159,9 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
 
 // counts[0]: the bad triangles whose smallest angle is at an acute hull
 // vertex (left as they are), counted at the end over every slot.
-__kernel void count_unfixable_triangles(__global const double2 *points,
-                                        __global const int *tri_vertex,
-                                        __global const int *point_state,
-                                        const double ratio_bound_squared, const double max_area,
-                                        volatile __global int *counts, const int n) {
+__kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
+                                        const double max_area, volatile __global int *counts,
+                                        const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;

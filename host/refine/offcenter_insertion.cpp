@@ -55,9 +55,9 @@ std::size_t OffcenterInsertion::flag_hull_vertices() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> flagged(device_, 1);
   flagged.fill(device_, 0, 1);
-  set_args(flag_hull_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_,
-           mesh_.point_state.buffer(), flagged.buffer(), static_cast<cl_int>(slots));
+  set_args_from(flag_hull_, mesh_.bind(flag_hull_, 0),
+                static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_, flagged.buffer(),
+                static_cast<cl_int>(slots));
   launch(device_, flag_hull_, slots, kPhase);
   return static_cast<std::size_t>(flagged.read(device_, 0));
 }
@@ -66,9 +66,8 @@ std::size_t OffcenterInsertion::count_unfixable() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
-  set_args(count_unfixable_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.point_state.buffer(), ratio_bound_squared_, max_area_, count.buffer(),
-           static_cast<cl_int>(slots));
+  set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
+                count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -93,10 +92,9 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   }
   searched_ = true;
   const auto items = static_cast<cl_int>(entries);
-  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
-           listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-           offconstant_, keep_.buffer(), static_cast<cl_int>(election_rings_ > 0),
-           mesh_.tri_mark.buffer(), items);
+  set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
+                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_, offconstant_,
+                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;

@@ -16,6 +16,7 @@
 // Quality decisions use floating point, as Triangle's do; the insertion that follows uses the exact
 // predicates.
 #include "common.h"
+#include "mesh_params.h"
 #include "prefetch.h"
 #include "refinement.h"
 
@@ -31,9 +32,7 @@ inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCEN
 // cosine; none when acute_bound is 0): no refinement can mend the angle
 // every triangle there has at them (Triangle leaves those too). Run once, on
 // the convex hull of the Delaunay triangulation, ghost by ghost.
-__kernel void flag_hull_vertices(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *tri_neighbor, const int acute_bound,
-                                 const double cos_bound, __global int *point_state,
+__kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const double cos_bound,
                                  volatile __global int *flagged, const int n) {
   const int g = get_global_id(0);
   if (g >= n)
@@ -135,11 +134,9 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
 // triangles changed since: the others are still good (thesis §3.3.2). With an
 // election, each bad triangle also marks its slot with its priority, ranked as
 // a midpoint's when a corner is on the hull (see elect_candidates).
-__kernel void find_bad_triangles(__global const double2 *points, __global const int *tri_vertex,
-                                 __global const int *point_state, __global const int *list,
-                                 const int use_list, const double ratio_bound_squared,
-                                 const double max_area, const double offconstant,
-                                 __global int *is_bad, const int election, __global uint *tri_mark,
+__kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
+                                 const double ratio_bound_squared, const double max_area,
+                                 const double offconstant, __global int *is_bad, const int election,
                                  const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
@@ -162,11 +159,9 @@ __kernel void find_bad_triangles(__global const double2 *points, __global const 
 
 // counts[0]: the bad triangles whose smallest angle is at an acute hull
 // vertex (left as they are), counted at the end over every slot.
-__kernel void count_unfixable_triangles(__global const double2 *points,
-                                        __global const int *tri_vertex,
-                                        __global const int *point_state,
-                                        const double ratio_bound_squared, const double max_area,
-                                        volatile __global int *counts, const int n) {
+__kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
+                                        const double max_area, volatile __global int *counts,
+                                        const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -222,12 +217,12 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // neighbours; 2: and theirs) has a better priority (the marks of
 // find_bad_triangles); equal priorities all send theirs. The others, whose
 // candidates the insertion filter would mostly leave out, wait for a later
-// iteration without being located (1M Gaussian q30: 7.1M -> 2.7M candidates,
-// 1.75M inserted either way). The best bad triangle always sends its
-// candidate, so the refinement goes on. So do those with a corner on the hull,
-// whose candidates mostly become hull midpoints, which go first; they rank
-// before the others. Otherwise the bad triangles along the hull would wait for
-// each other in turn (1M uniform q20: 42 -> 55 iterations; 44 with this).
+// iteration without being located, which saves most of the location and
+// filtering work. The best bad triangle always sends its candidate, so the
+// refinement goes on. So do those with a corner on the hull, whose
+// candidates mostly become hull midpoints, which go first; they rank before
+// the others, so that the bad triangles along the hull do not wait for each
+// other in turn.
 __kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
                                __global const uint *tri_mark, const int rings,
                                __global int *elected, const int n) {
@@ -323,9 +318,7 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void locate_candidates(__global const double2 *points, __global const int *tri_vertex,
-                                __global const int *tri_neighbor, __global const int *point_state,
-                                __global const int *modified_stamp, __global int *last_container,
+__kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
                                 const int located_stamp, const double ratio_bound_squared,
                                 const double max_area, const double offconstant,
                                 __global double2 *candidate, __global int *container,
@@ -551,14 +544,10 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // distance to the nearest vertex of its bad triangle; half the hull edge for
 // a midpoint).
 // Only the first `count` survivors are taken (the -S limit).
-__kernel void append_survivors(__global const double2 *candidate, __global const int *container,
-                               __global const int *split_edge, __global const double *radius2,
-                               __global const uint *priority, __global const int *survive,
-                               __global const int *offset, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global double2 *points,
-                               __global int *location, __global int *location_edge,
-                               __global int *original_id, __global int *point_state,
-                               __global double *insertion_radius2, __global uint *point_priority,
+__kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidate,
+                               __global const int *container, __global const int *split_edge,
+                               __global const double *radius2, __global const uint *priority,
+                               __global const int *survive, __global const int *offset,
                                __global const int *free_points, const int free_first,
                                const int free_count, const int first_new, __global int *new_points,
                                const int count, const int n) {

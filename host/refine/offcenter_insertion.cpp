@@ -55,9 +55,9 @@ std::size_t OffcenterInsertion::flag_hull_vertices() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> flagged(device_, 1);
   flagged.fill(device_, 0, 1);
-  set_args(flag_hull_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_,
-           mesh_.point_state.buffer(), flagged.buffer(), static_cast<cl_int>(slots));
+  set_args_from(flag_hull_, mesh_.bind(flag_hull_, 0),
+                static_cast<cl_int>(ratio_bound_squared_ > 0), cos_bound_, flagged.buffer(),
+                static_cast<cl_int>(slots));
   launch(device_, flag_hull_, slots, kPhase);
   return static_cast<std::size_t>(flagged.read(device_, 0));
 }
@@ -66,15 +66,14 @@ std::size_t OffcenterInsertion::count_unfixable() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
-  set_args(count_unfixable_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.point_state.buffer(), ratio_bound_squared_, max_area_, count.buffer(),
-           static_cast<cl_int>(slots));
+  set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
+                count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
 
-std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> *changed,
-                                     int stamp) {
+std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
+                                                   const DeviceList<cl_int> *changed) {
   // The first search sweeps every slot; the later ones only the last bad
   // triangles and the changed ones, without duplicates.
   const bool use_list = searched_ && changed != nullptr;
@@ -92,12 +91,10 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
                                                    search_keep_, search_offset_, listed_, kPhase));
   }
   searched_ = true;
-  const bool elect = election_rings_ > 0;
   const auto items = static_cast<cl_int>(entries);
-  set_args(find_bad_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.point_state.buffer(),
-           listed_.buffer(), static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-           offconstant_, keep_.buffer(), static_cast<cl_int>(elect), mesh_.tri_mark.buffer(),
-           items);
+  set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
+                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_, offconstant_,
+                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -106,28 +103,39 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
            static_cast<cl_int>(use_list), bad_list_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
-  const auto bad = static_cast<cl_int>(bad_);
+  return bad_;
+}
+
+std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
   candidates_ = bad_;
-  const DeviceArray<cl_int> *origin = &bad_list_;
-  if (elect) {
-    set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-             static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
-    launch(device_, elect_, bad_, kPhase);
-    candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
-    set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
-             mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
-    launch(device_, gather_elected_, bad_, kPhase);
-    origin = &origin_;
-  }
-  const auto n = static_cast<cl_int>(candidates_);
-  set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.point_state.buffer(), mesh_.modified_stamp.buffer(), last_container_.buffer(),
-           located_stamp_, ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
-           container_.buffer(), split_edge_.buffer(), origin->buffer(), priority_.buffer(),
-           radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8), n);
+  if (bad_ == 0 || election_rings_ == 0)
+    return candidates_;
+  const auto bad = static_cast<cl_int>(bad_);
+  set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
+           static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
+  launch(device_, elect_, bad_, kPhase);
+  candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
+           mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
+  launch(device_, gather_elected_, bad_, kPhase);
+  return candidates_;
+}
+
+void OffcenterInsertion::locate_candidates(int stamp) {
+  // Each candidate's bad triangle: the elected ones, or every bad one.
+  const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
+  set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
+                ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
+                container_.buffer(), split_edge_.buffer(), origin.buffer(), priority_.buffer(),
+                radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8),
+                static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
   located_slots_ = std::max(located_slots_, mesh_.triangle_count);
+}
+
+void OffcenterInsertion::filter_candidates() {
+  const auto n = static_cast<cl_int>(candidates_);
   set_args(mark_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), n);
   launch(device_, mark_, candidates_, kPhase);
@@ -143,7 +151,6 @@ std::size_t OffcenterInsertion::find(PrefixScan &scan, const DeviceList<cl_int> 
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, clear_, candidates_, kPhase);
-  return bad_;
 }
 
 void OffcenterInsertion::forget_triangles() {
@@ -154,14 +161,14 @@ void OffcenterInsertion::forget_triangles() {
   located_slots_ = 0;
 }
 
-std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
-                                       const DeviceArray<cl_int> &new_points, std::size_t *wanted) {
-  *wanted = 0;
+std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &scan,
+                                                 const DeviceArray<cl_int> &new_points) {
   if (candidates_ == 0)
     return 0;
   const auto n = static_cast<cl_int>(candidates_);
-  *wanted = static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
-  const std::size_t count = std::min(*wanted, room); // the first ones when there is less room
+  const auto survivors =
+      static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
+  const std::size_t count = std::min(survivors, room); // the first ones when there is less room
   if (count == 0)
     return 0;
   DeviceMesh::FreeList &free = mesh_.free_points;
@@ -169,14 +176,11 @@ std::size_t OffcenterInsertion::append(std::size_t room, PrefixScan &scan,
              free_count = static_cast<cl_int>(free.count);
   const std::size_t new_slots = free.take(count);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
-  set_args(append_, candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
-           radius2_.buffer(), priority_.buffer(), survive_.buffer(), offset_.buffer(),
-           mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.points.buffer(),
-           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.original_id.buffer(),
-           mesh_.point_state.buffer(), mesh_.insertion_radius2.buffer(),
-           mesh_.point_priority.buffer(), free_list, free_first, free_count,
-           static_cast<cl_int>(mesh_.point_count), new_points.buffer(), static_cast<cl_int>(count),
-           n);
+  set_args_from(append_, mesh_.bind(append_, 0), candidate_.buffer(), container_.buffer(),
+                split_edge_.buffer(), radius2_.buffer(), priority_.buffer(), survive_.buffer(),
+                offset_.buffer(), free_list, free_first, free_count,
+                static_cast<cl_int>(mesh_.point_count), new_points.buffer(),
+                static_cast<cl_int>(count), n);
   launch(device_, append_, candidates_, kPhase);
   mesh_.point_count += new_slots;
   return count;

@@ -27,16 +27,30 @@ public:
                      int filter_rings, int filter_distance_rings, double filter_near,
                      bool parallel_midpoints, int election_rings);
 
-  // Finds the bad triangles, locates their candidates (hull midpoints where
-  // they fall outside or encroach the hull) and runs the insertion filter.
-  // Returns the number of bad triangles; candidates() says how many of them
-  // sent a candidate (all but those the election left waiting).
-  // The first search examines every slot; a later one the bad triangles of
-  // the last search and the triangles listed in `changed` (rewritten since,
-  // duplicates allowed; every slot when null). `stamp`: the mesh's next
-  // modification stamp; a triangle rewritten later has a larger one.
-  std::size_t find(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
+  // Step 1, in this order. find_bad_triangles: the bad triangles; the first
+  // search examines every slot; a later one the bad triangles of the last
+  // search and the triangles listed in `changed` (rewritten since,
+  // duplicates allowed; every slot when null). Returns how many are bad.
+  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed);
+  // The bad triangles that send a candidate: all of them, or with an
+  // election those that no better one within election_rings rings keeps
+  // waiting (see elect_candidates). Returns how many; candidates() too.
+  std::size_t elect_candidates(PrefixScan &scan);
   std::size_t candidates() const { return candidates_; }
+  // Each candidate's off-center, or the hull midpoint where it falls outside
+  // or encroaches the hull, and the triangle that contains it. `stamp`: the
+  // mesh's next modification stamp; a triangle rewritten later has a larger
+  // one.
+  void locate_candidates(int stamp);
+  // The insertion filter: which candidates survive.
+  void filter_candidates();
+  // Appends the survivors to the mesh's points (free slots first, then from
+  // point_count on; they stay on the device) and lists them in new_points,
+  // not inserted yet; the first `room` of them when more survived. Returns
+  // how many were appended.
+  std::size_t append_survivors(std::size_t room, PrefixScan &scan,
+                               const DeviceArray<cl_int> &new_points);
+
   // After the triangles moved: the next search examines every slot again.
   void forget_triangles();
 
@@ -46,13 +60,6 @@ public:
   // left alone; count_unfixable() counts them.
   std::size_t flag_hull_vertices(); // returns how many are acute
   std::size_t count_unfixable();
-
-  // Appends the survivors to the mesh's points (free slots first, then from
-  // point_count on; they stay on the device) and lists them in new_points,
-  // not inserted yet; the first `room` of them when more survived. Returns how many were
-  // appended; *wanted: how many survived.
-  std::size_t append(std::size_t room, PrefixScan &scan, const DeviceArray<cl_int> &new_points,
-                     std::size_t *wanted);
 
   double lens() const { return lens_; }
 

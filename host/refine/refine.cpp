@@ -1,14 +1,25 @@
-// clmesh — GPU-QM and GPU-QM-V entry point (thesis chapter 3): GPU-DT, then
-// iterations of three steps until no triangle is bad: (1) off-centers of the
-// bad triangles and the insertion filter, (2) their insertion, in place, in
-// one round of 1-3 and 2-4 (1-2 on the hull) flips, (3) flip-flop: Delaunay
-// flips together with the deletion of redundant points.
+// clmesh — GPU-QM and GPU-QM-V (thesis chapter 3): GPU-DT, then iterations
+// until no triangle is bad, each of the three steps of §3.3.2:
+//   1. candidates: the bad triangles are found, elected (GPU-QM-V), their
+//      off-centers located (hull midpoints where they fall outside or
+//      encroach the hull, §3.4.1) and filtered (§3.3.2, §3.5), and the
+//      survivors appended to the points;
+//   2. insertion, in place, in one round of 1-3 and 2-4 (1-2 on the hull)
+//      flips;
+//   3. flip-flop: Delaunay flips together with the deletion of redundant
+//      points (§3.3.2, §3.5), after the boundary routine (§3.4.1).
+// Between iterations the arrays are compacted into spatial order at times,
+// and the empty slots collected or the arrays grown when room runs short
+// (§3.6.1).
 #include "refine/refine.hpp"
 
 #include "dt/delaunay_scheduler.hpp"
-#include "refine/flipflop_deletion.hpp"
 #include "dt/missing_point_insertion.hpp"
+#include "refine/flip_flop.hpp"
+#include "refine/free_slots.hpp"
 #include "refine/offcenter_insertion.hpp"
+#include "refine/steiner_renumbering.hpp"
+#include "refine/zorder_compaction.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -46,8 +57,13 @@ std::size_t first_room(const Device &device, std::size_t n, const RefineOptions 
   return room + 4096;
 }
 
-// The phase objects of the three steps, sized by the mesh: built again when
-// the mesh grows.
+// The programs of the refinement's phases, built with the setup.
+constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachment.cl",
+                                     "flip_flop.cl",           "free_slots.cl",
+                                     "zorder_compaction.cl",   "steiner_renumbering.cl"};
+
+// The phase objects of the steps, sized by the mesh: built again when the
+// mesh grows.
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
@@ -59,11 +75,246 @@ struct RefinementSteps {
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
+        free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        compaction(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        renumbering(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
-  FlipflopDeletion flipflop;
+  FlipFlop flipflop;
+  FreeSlots free_slots;
+  ZOrderCompaction compaction;
+  SteinerRenumbering renumbering;
   DeviceArray<cl_int> new_points; // the points inserted in this iteration
+};
+
+// Termination is guaranteed for angles up to about 30 degrees away from
+// small hull angles; the bound on iterations turns anything else into
+// remaining bad triangles, reported, instead of a hang.
+constexpr long kMaxIterations = 1000;
+
+// One refinement: the mesh, its phase objects and what the iterations count.
+class Refinement {
+public:
+  Refinement(Device &device, const std::vector<Point> &points, const RefineOptions &options,
+             RefineResult &result)
+      : device_(device), points_(points), options_(options), result_(result), stats_(result.stats),
+        // Refinement breaks ties by triangle slot; its first compaction gives
+        // the triangles a layout that depends on them alone, whichever
+        // construction (and grid) built them.
+        scheduler_(device, points, options.delaunay, result.mesh.stats,
+                   first_room(device, points.size(), options)),
+        limit_(options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
+                                   : std::numeric_limits<std::size_t>::max()) {}
+
+  // GPU-DT; false when all points are collinear (the result then holds them
+  // without triangles).
+  bool triangulate() {
+    for (const char *file : kPrograms)
+      device_.program(file, "setup");
+    if (!scheduler_.triangulate()) {
+      scheduler_.download_collinear(result_.mesh);
+      return false;
+    }
+    const auto [low, side] = bounding_square(points_);
+    low_ = low;
+    side_ = side;
+    scheduler_.mesh().enable_refinement(device_);
+    scheduler_.flipping().set_fixed_boundary(true);
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_);
+    acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
+    return true;
+  }
+
+  // The iterations, until no triangle is bad or a limit is reached.
+  void iterate() {
+    for (long iteration = 0;; ++iteration) {
+      if (iteration == 0 || compaction_pays())
+        compact();
+      const std::size_t bad = find_bad_triangles();
+      const std::size_t candidates = elect_candidates();
+      if (bad == 0 || iteration == kMaxIterations || steiner_ >= limit_)
+        break;
+      const Room room = make_room(candidates);
+      if (room == Room::grown)
+        continue; // the candidates are found again in the larger arrays
+      if (room == Room::exhausted)
+        break;
+      ++stats_.iterations;
+      stats_.candidates += static_cast<long>(candidates);
+      locate_candidates();
+      filter_candidates();
+      const std::size_t added = append_survivors();
+      if (added == 0)
+        break; // the -S limit, or every candidate fell on a vertex
+      const std::size_t inserted = insert_survivors(added);
+      flip_flop(inserted, added);
+    }
+  }
+
+  // The statistics, the Steiner points numbered after the input points, and
+  // the mesh downloaded.
+  void finish() {
+    if (acute_hull_vertices_ > 0)
+      stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
+    stats_.deleted = flips_.deleted;
+    stats_.kept_redundant = flips_.kept_redundant;
+    stats_.boundary_splits = flips_.midpoints;
+    stats_.delaunay_flips = flips_.delaunay_flips;
+    stats_.non_delaunay_flips = flips_.non_delaunay_flips;
+    DelaunayStats &mesh_stats = result_.mesh.stats;
+    mesh_stats.flips += flips_.delaunay_flips + flips_.non_delaunay_flips;
+    mesh_stats.flip_passes += flips_.passes;
+    mesh_stats.exact_predicate_calls += flips_.exact_checks;
+
+    const std::size_t n = points_.size();
+    result_.added_points = steps_->renumbering.number(n);
+    const std::size_t survivors = result_.added_points.size();
+    stats_.inserted = static_cast<long>(survivors);
+    steps_.reset();
+    scheduler_.download(result_.mesh);
+    result_.mesh.duplicate_of.resize(n + survivors);
+    stats_.inserted_more_than_once =
+        deletion_log_.points_inserted_more_than_once(device_, result_.added_points);
+  }
+
+private:
+  enum class Room { enough, grown, exhausted };
+
+  DeviceMesh &mesh() { return scheduler_.mesh(); }
+
+  // Point and triangle slots for more points: the free ones, then the ones
+  // past the used ranges.
+  std::size_t room() {
+    const DeviceMesh &m = mesh();
+    return std::min(m.point_capacity - m.point_count + m.free_points.count,
+                    (m.triangle_capacity - m.triangle_count + m.free_triangles.count) / 2);
+  }
+
+  // Triangles move into spatial order at the start, then whenever their
+  // slots grew by half while much work remains: at least one triangle in 16
+  // bad at the last search. With less work left, the move and the search
+  // over every slot that follows it cost more than the order saves.
+  bool compaction_pays() {
+    return mesh().triangle_count >= compacted_slots_ + compacted_slots_ / 2 &&
+           16 * last_bad_ >= mesh().triangle_count;
+  }
+
+  // Thesis §3.6.1: the live triangles and Steiner points move to the front,
+  // in Z-order. Every slot number changes: the lists of triangles are void.
+  void compact() {
+    steps_->compaction.compact(low_, side_, points_.size());
+    steps_->offcenter.forget_triangles();
+    changed_.size = 0;
+    deleted_since_collection_ = false;
+    compacted_slots_ = mesh().triangle_count;
+    scheduler_.timer().charge(FlipFlop::kPhase); // timed with step 3
+  }
+
+  // Step 1: the bad triangles, among those rewritten since the last search
+  // and the bad ones then. Returns how many there are.
+  std::size_t find_bad_triangles() {
+    const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
+    changed_.size = 0;
+    stats_.remaining_bad = static_cast<long>(bad);
+    last_bad_ = bad;
+    return bad;
+  }
+
+  // Step 1: the bad triangles that send a candidate (all, without an election).
+  std::size_t elect_candidates() {
+    const std::size_t candidates = steps_->offcenter.elect_candidates(scheduler_.scan());
+    scheduler_.timer().charge(OffcenterInsertion::kPhase);
+    return candidates;
+  }
+
+  // Room for every candidate: the empty slots when the room past the used
+  // ranges runs short (thesis §3.6.1), then larger arrays. Growing
+  // rebuilds the steps, which voids the candidates.
+  Room make_room(std::size_t candidates) {
+    if (room() < candidates && deleted_since_collection_) {
+      steps_->free_slots.collect();
+      deleted_since_collection_ = false;
+    }
+    if (room() >= candidates || steiner_ + candidates > limit_)
+      return Room::enough;
+    const std::size_t extra = std::max(candidates, mesh().point_capacity / 2);
+    if (!device_holds(device_, mesh().point_capacity + extra)) {
+      // Reported with the bad triangles left (angles above about 33 degrees
+      // may not end).
+      stats_.out_of_memory = true;
+      return Room::exhausted;
+    }
+    steps_.reset(); // before the mesh grows: a lower peak
+    scheduler_.grow(extra);
+    ++stats_.growths;
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_);
+    return Room::grown;
+  }
+
+  // Step 1: each candidate's off-center (or hull midpoint) and the triangle
+  // that contains it.
+  void locate_candidates() { steps_->offcenter.locate_candidates(scheduler_.stamp()); }
+
+  // Step 1: the insertion filter (thesis §3.3.2; §3.5 for GPU-QM-V).
+  void filter_candidates() {
+    steps_->offcenter.filter_candidates();
+    scheduler_.timer().charge(OffcenterInsertion::kPhase);
+  }
+
+  // Step 1: the survivors join the mesh's points, as many as there is room
+  // for within the -S limit. Returns how many.
+  std::size_t append_survivors() {
+    const std::size_t added = steps_->offcenter.append_survivors(
+        std::min(room(), limit_ - steiner_), scheduler_.scan(), steps_->new_points);
+    scheduler_.timer().charge(OffcenterInsertion::kPhase);
+    return added;
+  }
+
+  // Step 2: the `added` new points inserted in one round. Returns how many
+  // triangles they split.
+  std::size_t insert_survivors(std::size_t added) {
+    MissingPointInsertion &insertion = steps_->insertion;
+    insertion.set_points(steps_->new_points, added);
+    const std::size_t inserted = insertion.run_round(scheduler_.stamp()++, false);
+    if (insertion.pending() > 0)
+      throw InternalError("Steiner points placed in place were not all inserted in one round");
+    scheduler_.timer().charge(MissingPointInsertion::kPhase);
+    return inserted;
+  }
+
+  // Step 3: flip-flop from the triangles the insertion rewrote.
+  void flip_flop(std::size_t inserted, std::size_t added) {
+    MissingPointInsertion &insertion = steps_->insertion;
+    const long deleted_before = flips_.deleted;
+    changed_.append(device_, insertion.changed(), 4 * inserted);
+    steps_->flipflop.run(insertion.changed(), 4 * inserted, steps_->new_points, added,
+                         scheduler_.stamp(), changed_, deletion_log_, flips_);
+    scheduler_.timer().charge(FlipFlop::kPhase);
+    const auto deleted = static_cast<std::size_t>(flips_.deleted - deleted_before);
+    deleted_since_collection_ = deleted_since_collection_ || deleted > 0;
+    stats_.insertions += static_cast<long>(added);
+    steiner_ += added - deleted;
+  }
+
+  Device &device_;
+  const std::vector<Point> &points_;
+  const RefineOptions &options_;
+  RefineResult &result_;
+  RefineStats &stats_;
+  DelaunayScheduler scheduler_;
+  std::unique_ptr<RefinementSteps> steps_;
+  const std::size_t limit_; // Steiner points at most (-S)
+  std::size_t acute_hull_vertices_ = 0;
+  Point low_{};
+  double side_ = 0; // the points' bounding square, for the Z-order
+  FlipFlopCounts flips_;
+  DeletionLog deletion_log_;
+  DeviceList<cl_int> changed_; // the triangles rewritten since the last search
+  std::size_t steiner_ = 0;    // Steiner points in the mesh now
+  bool deleted_since_collection_ = false;
+  std::size_t compacted_slots_ = 0; // triangle slots after the last compaction
+  std::size_t last_bad_ = 0;        // bad triangles at the last search
 };
 
 } // namespace
@@ -71,130 +322,11 @@ struct RefinementSteps {
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
                              const RefineOptions &options) {
   RefineResult result;
-  const std::size_t n = points.size();
-  // Refinement breaks ties by triangle slot; its first compaction gives
-  // the triangles a layout that depends on them alone, whichever
-  // construction (and grid) built them.
-  DelaunayScheduler scheduler(device, points, options.delaunay, result.mesh.stats,
-                              first_room(device, n, options));
-  device.program("offcenter_insertion.cl", "setup");
-  device.program("flipflop_deletion.cl", "setup");
-  if (!scheduler.triangulate()) {
-    scheduler.download_collinear(result.mesh);
+  Refinement refinement(device, points, options, result);
+  if (!refinement.triangulate())
     return result;
-  }
-  DeviceMesh &mesh = scheduler.mesh();
-  mesh.enable_refinement(device);
-  scheduler.flipping().set_fixed_boundary(true);
-  auto steps = std::make_unique<RefinementSteps>(scheduler, options);
-  const std::size_t acute_hull_vertices = steps->offcenter.flag_hull_vertices();
-  RefineStats &stats = result.stats;
-  FlipflopCounts flips;
-  const std::size_t limit = options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
-                                                : std::numeric_limits<std::size_t>::max();
-  DeletionLog deletion_log;
-  DeviceList<cl_int> changed; // the triangles rewritten since the last search
-  std::size_t steiner = 0;    // Steiner points in the mesh now
-  bool deleted_since_collection = false;
-  // Point and triangle slots for `wanted` more points: the free ones, then the
-  // ones past the used ranges.
-  auto room = [&mesh] {
-    return std::min(mesh.point_capacity - mesh.point_count + mesh.free_points.count,
-                    (mesh.triangle_capacity - mesh.triangle_count + mesh.free_triangles.count) / 2);
-  };
-  // Termination is guaranteed for angles up to about 30 degrees away from
-  // small hull angles; the bound on iterations turns anything else into
-  // remaining bad triangles, reported, instead of a hang.
-  const long max_iterations = 1000;
-  const auto [low, side] = bounding_square(points); // for the spatial order of the triangles
-  // Triangles move into spatial order at the start, then whenever their
-  // slots grew by half while much work remains: at least one triangle in 16
-  // bad at the last search. Later, the move and the search over every slot
-  // that follows it cost more than the order saves (1M Gaussian q20: the
-  // second move came at 2% bad, 3.75 -> 3.40 s without it, 5 alternating
-  // pairs; q30: 5.7% bad, 7.85 -> 6.9 s, 3 pairs; at 34% bad the move pays).
-  std::size_t compacted_slots = 0, last_bad = 0;
-  for (long iteration = 0;; ++iteration) {
-    if (iteration == 0 || (mesh.triangle_count >= compacted_slots + compacted_slots / 2 &&
-                           16 * last_bad >= mesh.triangle_count)) {
-      steps->flipflop.compact(low, side, n);
-      steps->offcenter.forget_triangles();
-      changed.size = 0;
-      deleted_since_collection = false;
-      compacted_slots = mesh.triangle_count;
-      scheduler.timer().charge(FlipflopDeletion::kPhase);
-    }
-    const std::size_t bad = steps->offcenter.find(scheduler.scan(), &changed, scheduler.stamp());
-    changed.size = 0;
-    scheduler.timer().charge(OffcenterInsertion::kPhase);
-    stats.remaining_bad = static_cast<long>(bad);
-    last_bad = bad;
-    if (bad == 0 || iteration == max_iterations || steiner >= limit)
-      break;
-    // Room for every candidate first: the empty slots when they run short,
-    // then larger arrays (growing invalidates the candidates: found again).
-    const std::size_t candidates = steps->offcenter.candidates();
-    if (room() < candidates && deleted_since_collection) {
-      steps->flipflop.collect_free_slots();
-      deleted_since_collection = false;
-    }
-    if (room() < candidates && steiner + candidates <= limit) {
-      const std::size_t extra = std::max(candidates, mesh.point_capacity / 2);
-      if (!device_holds(device, scheduler.mesh().point_capacity + extra)) {
-        stats.out_of_memory = true;
-        break; // reported with the bad triangles left (angles above about 33 degrees may not end)
-      }
-      steps.reset(); // before the mesh grows: a lower peak
-      scheduler.grow(extra);
-      ++stats.growths;
-      steps = std::make_unique<RefinementSteps>(scheduler, options);
-      continue;
-    }
-    ++stats.iterations;
-    stats.candidates += static_cast<long>(candidates);
-    std::size_t wanted = 0;
-    const std::size_t added = steps->offcenter.append(std::min(room(), limit - steiner),
-                                                      scheduler.scan(), steps->new_points, &wanted);
-    scheduler.timer().charge(OffcenterInsertion::kPhase);
-    if (added == 0)
-      break; // the -S limit, or every candidate fell on a vertex
-    MissingPointInsertion &insertion = steps->insertion;
-    insertion.set_points(steps->new_points, added);
-    const std::size_t inserted = insertion.run_round(scheduler.stamp()++, false);
-    if (insertion.pending() > 0)
-      throw InternalError("Steiner points placed in place were not all inserted in one round");
-    scheduler.timer().charge(MissingPointInsertion::kPhase);
-    const long deleted_before = flips.deleted;
-    changed.append(device, insertion.changed(), 4 * inserted);
-    steps->flipflop.run(insertion.changed(), 4 * inserted, steps->new_points, added,
-                        scheduler.stamp(), changed, deletion_log, flips);
-    scheduler.timer().charge(FlipflopDeletion::kPhase);
-    const auto deleted = static_cast<std::size_t>(flips.deleted - deleted_before);
-    deleted_since_collection = deleted_since_collection || deleted > 0;
-    stats.insertions += static_cast<long>(added);
-    steiner += added - deleted;
-  }
-  if (acute_hull_vertices > 0)
-    stats.remaining_bad += static_cast<long>(steps->offcenter.count_unfixable());
-  stats.deleted = flips.deleted;
-  stats.kept_redundant = flips.kept_redundant;
-  stats.boundary_splits = flips.midpoints;
-  stats.delaunay_flips = flips.delaunay_flips;
-  stats.non_delaunay_flips = flips.non_delaunay_flips;
-  DelaunayStats &mesh_stats = result.mesh.stats;
-  mesh_stats.flips += flips.delaunay_flips + flips.non_delaunay_flips;
-  mesh_stats.flip_passes += flips.passes;
-  mesh_stats.exact_predicate_calls += flips.exact_checks;
-
-  // Surviving Steiner points follow the input points, in slot order.
-  result.added_points = steps->flipflop.steiner_points(n);
-  const std::size_t survivors = result.added_points.size();
-  stats.inserted = static_cast<long>(survivors);
-  steps.reset();
-  scheduler.download(result.mesh);
-  result.mesh.duplicate_of.resize(n + survivors);
-  stats.inserted_more_than_once =
-      deletion_log.points_inserted_more_than_once(device, result.added_points);
+  refinement.iterate();
+  refinement.finish();
   return result;
 }
 

@@ -145,6 +145,11 @@ struct DeviceMesh {
   DeviceArray<cl_uint> point_priority;
   void enable_refinement(Device &device);
 
+  // Sets the buffers of CLM_MESH_PARAMS (cl/mesh_params.h), in its order, as
+  // the arguments of `kernel` from index `first` on; returns the index after
+  // them. Bound at every launch: refinement swaps and grows the buffers.
+  cl_uint bind(cl::Kernel &kernel, cl_uint first) const;
+
   // Makes room for `extra_points` more points (and their triangles), keeping
   // every array's contents (thesis §3.6.1: arrays expand when slots run out).
   void grow(Device &device, std::size_t extra_points);

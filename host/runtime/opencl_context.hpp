@@ -96,9 +96,11 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group);
 
-// Sets kernel arguments in order.
-template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...args) {
-  cl_uint index = 0;
+// Sets kernel arguments in order from index `first`; returns the index after
+// the last one set.
+template <typename... Args>
+cl_uint set_args_from(cl::Kernel &kernel, cl_uint first, const Args &...args) {
+  cl_uint index = first;
   try {
     (kernel.setArg(index++, args), ...);
   } catch (const cl::Error &error) {
@@ -106,6 +108,12 @@ template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...arg
                       std::string(error.what()) + " (argument " + std::to_string(index - 1) + ")",
                       "setting kernel arguments", kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
+  return index;
+}
+
+// Sets kernel arguments in order.
+template <typename... Args> void set_args(cl::Kernel &kernel, const Args &...args) {
+  set_args_from(kernel, 0, args...);
 }
 
 // Runs `body`, turning a cl::Error into an OpenCLError for `phase`.

@@ -1,10 +1,10 @@
 // clmesh — GPU-QM step 3: flip-flop, Delaunay flips together with the
 // deletion of redundant Steiner points (thesis §3.3.2 Algorithms 3.1 and 3.2,
-// §3.5 for GPU-QM-V's orthogonal test), and the free lists of the slots it
-// empties (§3.6.1). Kernels: cl/flipflop_deletion.cl.
+// §3.5 for GPU-QM-V's orthogonal test), after the boundary routine of §3.4.1
+// (HullEncroachment). Kernels: cl/flip_flop.cl.
 #pragma once
 
-#include "dt/flipping.hpp"
+#include "refine/hull_encroachment.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -12,7 +12,7 @@
 
 namespace clmesh {
 
-struct FlipflopCounts {
+struct FlipFlopCounts {
   long delaunay_flips = 0;
   long non_delaunay_flips = 0; // flops and 3-1 flips
   long deleted = 0;            // redundant points deleted
@@ -33,16 +33,16 @@ struct DeletionLog {
   long points_inserted_more_than_once(Device &device, const std::vector<Point> &survivors) const;
 };
 
-class FlipflopDeletion {
+class FlipFlop {
 public:
   static constexpr const char *kPhase = "flipflop_deletion";
 
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
-  // lens: Triangle's encroachment test of hull edges (offcenter_insertion.cl).
-  // group_pass_limit: RefineOptions::group_pass_limit.
-  FlipflopDeletion(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test,
-                   double lens, std::size_t group_pass_limit);
+  // lens: Triangle's encroachment test of hull edges (HullEncroachment).
+  // group_pass_limit: Tuning::group_pass_limit.
+  FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test, double lens,
+           std::size_t group_pass_limit);
 
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
@@ -51,41 +51,9 @@ public:
   // deletes to `deleted`.
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
            std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, DeletionLog &deleted,
-           FlipflopCounts &counts);
-
-  // Collects the empty triangle and point slots into the mesh's free lists.
-  void collect_free_slots();
-  // Moves the live triangles to the front, in the order of a Z-order curve
-  // over the square of side `side` from `low` (the points' bounding box),
-  // then the live Steiner points (slots `first` ..) likewise, and empties
-  // both free lists. Every triangle and Steiner slot number changes: lists
-  // of them kept elsewhere are void.
-  void compact(Point low, double side, std::size_t first);
-
-  // Numbers the surviving Steiner points (slots first ..) after the input
-  // points in slot order, the deleted ones after them, and returns the
-  // survivors' coordinates in that order.
-  std::vector<Point> steiner_points(std::size_t first);
+           FlipFlopCounts &counts);
 
 private:
-  // A Z-order grid over the bounding box with about `per_cell` of `items`
-  // in each cell.
-  struct ZGrid {
-    cl_double2 low;
-    double scale; // cells per unit
-    int bits;     // 2^bits cells a side
-    std::size_t cells;
-  };
-  static ZGrid z_grid(Point low, double side, std::size_t items, std::size_t per_cell);
-  // From the cells of `items` (-1: left out): order[k], the item that goes
-  // to place k, and new_slot[item], its place, cell by cell, in the order of
-  // key[item] inside a cell; `rotated` (triangles): new_slot[item] is the
-  // link (place, rotation in key's low two bits). Returns how many are placed.
-  std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
-                      const DeviceArray<cl_ulong> &key, bool rotated, std::size_t items,
-                      const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
-  void compact_triangles(Point low, double side);
-  void compact_steiner_points(Point low, double side, std::size_t first);
   // What a pass leaves: `next` entries in next_active_ (its results and
   // losers); when stars were looked for, the next list (those and the
   // redundant points' stars, without repeats) in active_, `length` long.
@@ -100,10 +68,17 @@ private:
   // when the points to track are few too.
   static constexpr std::size_t kTrackedInGroup = 8192;
   PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
-                             FlipflopCounts &counts);
+                             FlipFlopCounts &counts);
   PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                           FlipflopCounts &counts);
+                           FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
+  // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
+  // argument `first` on; returns the index after them.
+  cl_uint bind_lists(cl::Kernel &kernel, cl_uint first) const;
+  // Sets a kernel's arguments: CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, then `scalars`.
+  template <typename... Scalars> void bind(cl::Kernel &kernel, const Scalars &...scalars) {
+    set_args_from(kernel, bind_lists(kernel, mesh_.bind(kernel, 0)), scalars...);
+  }
   // Tracks the redundant points, lists their stars after the pass's `next`
   // entries (*stars of them) and removes repeats into active_; returns the length.
   std::size_t find_stars(int stamp, std::size_t next, std::size_t *stars);
@@ -111,20 +86,17 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
+  HullEncroachment encroachment_;
   cl_int orthogonal_test_;
-  double lens_;
   std::size_t group_pass_limit_;
   std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_pass_in_group
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
-  cl::Kernel mark_encroaching_, clear_claims_, propose_, propose_exact_, apply_, relink_,
-      gather_next_, track_, emit_, finish_, keep_stuck_, flag_dead_, flag_deleted_, number_,
-      triangle_cells_, point_cells_, move_points_, renumber_vertices_, sort_cells_, move_triangles_,
-      pass_in_group_, log_deleted_;
+  cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,
+      keep_stuck_, pass_in_group_, log_deleted_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
-  DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_,
-      encroach_claim_;
+  DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult

@@ -1,0 +1,86 @@
+// clmesh — the boundary routine of thesis §3.4.1 (Mechanisms for GPU-QM to
+// handle boundary refining), run at the start of step 3: the old Steiner
+// points that encroach a hull edge split in this iteration are marked
+// redundant, for flip-flop (flip_flop.cl) to delete.
+#include "common.h"
+#include "mesh_params.h"
+#include "refinement.h"
+#include "vertex_star.h"
+
+// For each hull midpoint v of this iteration, on the former hull edge a-b with apex c, the
+// off-centers among c and c's neighbours that encroach a-b are marked
+// redundant (Triangle would not have inserted them: it splits the edge
+// instead). Three kernels over the new points, so that the list of the old
+// points marked is the same on every run: each encroacher is claimed by the
+// smallest midpoint (claim), the midpoints count the old ones they own
+// (count), and write them after a prefix sum (write).
+#define CLM_ENCROACH_CLAIM 0
+#define CLM_ENCROACH_COUNT 1
+#define CLM_ENCROACH_WRITE 2
+
+__kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_points,
+                                      const double lens, const int step,
+                                      volatile __global int *claim, __global int *redundant_mark,
+                                      __global int *redundant_anchor, __global int *owned,
+                                      __global const int *offset, __global int *tracked,
+                                      const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k >= n)
+    return;
+  const int v = new_points[k];
+  if (step == CLM_ENCROACH_COUNT)
+    owned[k] = 0;
+  if (point_state[v] != CLM_POINT_NEW_MIDPOINT)
+    return;
+  // Just after its 1-2 split, v has two real triangles (v,a,c) and (v,c,b).
+  const int t = vertex_triangle[v], i = index_in(tri_vertex, t, v);
+  const int x = tri_vertex[3 * t + next3(i)], y = tri_vertex[3 * t + prev3(i)];
+  const int across_vx = link_triangle(tri_neighbor[3 * t + prev3(i)]);
+  const int across_yv = link_triangle(tri_neighbor[3 * t + next3(i)]);
+  const bool x_on_hull = is_ghost(load_vertices(tri_vertex, across_vx));
+  const int a = x_on_hull ? x : y, c = x_on_hull ? y : x, other = x_on_hull ? across_yv : across_vx;
+  const int j = index_in(tri_vertex, other, v);
+  int b = tri_vertex[3 * other + next3(j)];
+  if (b == c)
+    b = tri_vertex[3 * other + prev3(j)];
+  if (a < 0 || b < 0 || c < 0)
+    return;
+  // c, then its neighbours around it.
+  int s = t, q = c, count = 0;
+  for (int around = 0; around < 64; ++around) {
+    if (q >= 0) {
+      const int state = point_state[q];
+      if ((state == CLM_POINT_STEINER || state == CLM_POINT_NEW) &&
+          in_lens(points[a], points[b], points[q], lens)) {
+        if (step == CLM_ENCROACH_CLAIM) {
+          atomic_min(&claim[q], k);
+        } else if (claim[q] == k) {
+          if (step == CLM_ENCROACH_COUNT) {
+            redundant_mark[q] = 1;
+            redundant_anchor[q] = s;
+          }
+          if (state == CLM_POINT_STEINER) {
+            if (step == CLM_ENCROACH_WRITE)
+              tracked[first + offset[k] + count] = q;
+            ++count;
+          }
+        }
+      }
+    }
+    const int kc = index_in(tri_vertex, s, c);
+    s = next_around(tri_neighbor, s, kc);
+    if (s == t)
+      break;
+    q = star_vertex(tri_vertex, s, c);
+  }
+  if (step == CLM_ENCROACH_COUNT)
+    owned[k] = count;
+}
+
+// Resets the claims of the boundary routine for the next iteration.
+__kernel void clear_encroaching_claims(__global const int *tracked, __global int *claim,
+                                       const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    claim[tracked[k]] = 0x7fffffff;
+}

@@ -1,0 +1,246 @@
+#include "refine/flip_flop.hpp"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "flip_flop.cl";
+// A pass deletes a redundant point or flips; far more passes than any mesh
+// needs means a bug, reported instead of a hang.
+constexpr long kMaxPasses = 100000;
+} // namespace
+
+FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test,
+                   double lens, std::size_t group_pass_limit)
+    : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan, lens),
+      orthogonal_test_(orthogonal_test ? 1 : 0), group_pass_limit_(group_pass_limit),
+      propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
+      propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),
+      apply_(device.kernel(kFile, "flipflop_apply", kPhase)),
+      relink_(device.kernel(kFile, "flipflop_relink", kPhase)),
+      gather_next_(device.kernel(kFile, "flipflop_gather_next", kPhase)),
+      track_(device.kernel(kFile, "track_redundant_points", kPhase)),
+      emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
+      finish_(device.kernel(kFile, "finish_iteration", kPhase)),
+      keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
+      pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
+      log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
+      // The next list holds the pass's results and the redundant stars before
+      // duplicates are dropped; an active list has distinct live triangles.
+      active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
+      exact_list_(device, mesh.list_capacity), operation_(device, mesh.list_capacity),
+      proposal_(device, mesh.list_capacity), star_(device, 4 * mesh.list_capacity),
+      applied_(device, mesh.list_capacity), count_(device, 2 * mesh.list_capacity),
+      offset_(device, 2 * mesh.list_capacity), redundant_mark_(device, mesh.point_capacity),
+      redundant_anchor_(device, mesh.point_capacity), star_size_(device, mesh.point_capacity),
+      star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
+      marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
+      failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
+      pass_result_(device, 5) {
+  pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
+    return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
+  });
+  redundant_mark_.fill(device_, 0, mesh.point_capacity);
+  failures_.fill(device_, 0, 1);
+}
+
+void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
+                   const DeviceArray<cl_int> &new_points, std::size_t m, int &stamp,
+                   DeviceList<cl_int> &rewritten, DeletionLog &deleted, FlipFlopCounts &counts) {
+  if (n > mesh_.list_capacity)
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  if (n > 0)
+    guarded(kPhase, "copying the active list", [&] {
+      device_.queue().enqueueCopyBuffer(changed.buffer(), active_.buffer(), 0, 0,
+                                        n * sizeof(cl_int));
+    });
+  flip_counts_.fill(device_, 0, 3);
+  kept_.fill(device_, 0, 1);
+  // The points to follow: this iteration's, then the old ones that encroach
+  // a hull edge split in this iteration (thesis §3.4.1).
+  if (m > 0)
+    guarded(kPhase, "copying the new points", [&] {
+      device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked_.buffer(), 0, 0,
+                                        m * sizeof(cl_int));
+    });
+  tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
+                                                  tracked_);
+  redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
+  for (long pass = 0; n > 0; ++pass) {
+    if (pass == kMaxPasses)
+      throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
+                          " passes");
+    const auto pass_stamp = static_cast<cl_int>(stamp++);
+    const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
+    const PassResult result = n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
+                                  ? pass_in_group(n, any_redundant, pass_stamp, counts)
+                                  : pass_by_kernels(n, any_redundant, pass_stamp, counts);
+    rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
+    ++counts.passes;
+    if (result.looked_for_stars) {
+      redundant_left_ = result.stars > 0;
+      n = result.length;
+      if (n > mesh_.list_capacity)
+        throw InternalError("flip-flop: the active list is longer than its arrays");
+      if (result.next == 0 && result.marked == 0 && redundant_left_) {
+        // Stalled: what is left cannot be deleted. Their stars are listed.
+        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), kept_.buffer(),
+                 static_cast<cl_int>(tracked_n_));
+        launch(device_, keep_stuck_, tracked_n_, kPhase);
+        redundant_left_ = false;
+      }
+    } else {
+      std::swap(active_, next_active_);
+      n = result.next;
+    }
+  }
+  // Checked once per iteration: a lost star only leaves its point undeleted
+  // until then.
+  if (failures_.read(device_, 0) != 0)
+    throw InternalError("flip-flop lost the star of a redundant point");
+  const std::vector<cl_int> flips = flip_counts_.download(device_, 3);
+  counts.delaunay_flips += flips[0];
+  counts.non_delaunay_flips += flips[1] + flips[2];
+  counts.deleted += flips[2]; // each removal deletes one point
+  if (flips[2] > 0) {
+    DeviceList<cl_double2> &log = deleted.coordinates;
+    log.reserve(device_, static_cast<std::size_t>(flips[2]));
+    logged_.fill(device_, 0, 1);
+    set_args(log_deleted_, tracked_.buffer(), mesh_.point_state.buffer(), mesh_.points.buffer(),
+             log.items.buffer(), static_cast<cl_int>(log.size), logged_.buffer(),
+             static_cast<cl_int>(tracked_n_));
+    launch(device_, log_deleted_, tracked_n_, kPhase);
+    log.size += static_cast<std::size_t>(flips[2]);
+  }
+  midpoints_.fill(device_, 0, 1);
+  if (m > 0) {
+    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
+             static_cast<cl_int>(m));
+    launch(device_, finish_, m, kPhase);
+  }
+  counts.midpoints += midpoints_.read(device_, 0);
+  counts.kept_redundant += kept_.read(device_, 0);
+}
+
+cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
+  return set_args_from(kernel, first, active_.buffer(), operation_.buffer(), proposal_.buffer(),
+                       star_.buffer(), applied_.buffer(), count_.buffer(), offset_.buffer(),
+                       next_active_.buffer(), exact_list_.buffer(), exact_count_.buffer(),
+                       redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
+                       tracked_.buffer(), star_size_.buffer(), star_offset_.buffer(),
+                       flip_counts_.buffer(), failures_.buffer());
+}
+
+FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
+                                               FlipFlopCounts &counts) {
+  const auto items = static_cast<cl_int>(n);
+  marked_count_.fill(device_, 0, 1);
+  counts.exact_checks += propose(items, any_redundant);
+  bind(apply_, stamp, items);
+  launch(device_, apply_, n, kPhase);
+  bind(relink_, stamp, items);
+  launch(device_, relink_, n, kPhase);
+  PassResult result;
+  result.next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
+  set_args_from(gather_next_, bind_lists(gather_next_, 0), items);
+  launch(device_, gather_next_, n, kPhase);
+  result.marked = marked_count_.read(device_, 0);
+  result.looked_for_stars = result.marked > 0 || redundant_left_;
+  if (result.looked_for_stars)
+    result.length = find_stars(stamp, result.next, &result.stars);
+  return result;
+}
+
+FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
+                                             FlipFlopCounts &counts) {
+  // The group may have to be smaller for this large kernel than for the others.
+  const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
+  bind(pass_in_group_, orthogonal_test_, any_redundant, static_cast<cl_int>(next_active_.size()),
+       static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
+       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
+  launch(device_, pass_in_group_, group, kPhase, group);
+  const std::vector<cl_int> values = pass_result_.download(device_, 5);
+  if (values[2] == -2)
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  PassResult result;
+  result.next = static_cast<std::size_t>(values[0]);
+  result.marked = values[1];
+  result.looked_for_stars = values[2] >= 0;
+  result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
+  result.length = static_cast<std::size_t>(values[3]);
+  counts.exact_checks += values[4];
+  return result;
+}
+
+// Every active triangle proposes its operation: the filter's kernel, then the
+// exact one for the triangles it could not decide. Returns how many those were.
+long FlipFlop::propose(cl_int items, cl_int any_redundant) {
+  exact_count_.fill(device_, 0, 1);
+  bind(propose_, orthogonal_test_, any_redundant, items);
+  launch(device_, propose_, static_cast<std::size_t>(items), kPhase);
+  const int uncertain = exact_count_.read(device_, 0);
+  if (uncertain > 0) {
+    bind(propose_exact_, orthogonal_test_, any_redundant, static_cast<cl_int>(uncertain));
+    launch(device_, propose_exact_, static_cast<std::size_t>(uncertain), kPhase);
+  }
+  return uncertain;
+}
+
+// Marked points become redundant, and the stars of the redundant ones join the
+// next list (next_active_[0 .. next)), which goes without duplicates to active_.
+std::size_t FlipFlop::find_stars(int stamp, std::size_t next, std::size_t *stars_found) {
+  const std::size_t m = tracked_n_;
+  const auto points = static_cast<cl_int>(m);
+  bind(track_, static_cast<cl_int>(stamp), points);
+  launch(device_, track_, m, kPhase);
+  const auto stars =
+      static_cast<std::size_t>(scan_.exclusive_scan(star_size_, star_offset_, m, kPhase));
+  *stars_found = stars;
+  if (next + stars > next_active_.size())
+    throw InternalError("flip-flop: the active list is longer than its arrays");
+  if (stars > 0) {
+    // The stars go after the pass's results, from `next` on.
+    bind(emit_, static_cast<cl_int>(next), points);
+    launch(device_, emit_, m, kPhase);
+  }
+  return static_cast<std::size_t>(
+      scan_.unique(next_active_, next + stars, mesh_.tri_mark, count_, offset_, active_, kPhase));
+}
+
+long DeletionLog::points_inserted_more_than_once(Device &device,
+                                                 const std::vector<Point> &survivors) const {
+  if (coordinates.size == 0)
+    return 0;
+  const std::vector<cl_double2> deleted = coordinates.items.download(device, coordinates.size);
+  std::vector<Point> sorted(deleted.size());
+  std::transform(deleted.begin(), deleted.end(), sorted.begin(), [](const cl_double2 &c) {
+    return Point{c.s[0], c.s[1]};
+  });
+  const auto less = [](const Point &a, const Point &b) {
+    return a.x != b.x ? a.x < b.x : a.y < b.y;
+  };
+  const auto same = [](const Point &a, const Point &b) { return a.x == b.x && a.y == b.y; };
+  std::sort(sorted.begin(), sorted.end(), less);
+  // Each point deleted, once per point, and whether it came back.
+  std::vector<Point> distinct;
+  std::vector<char> back;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (i > 0 && same(sorted[i], sorted[i - 1])) {
+      back.back() = 1; // deleted twice: inserted twice at least
+      continue;
+    }
+    distinct.push_back(sorted[i]);
+    back.push_back(0);
+  }
+  for (const Point &p : survivors) {
+    const auto it = std::lower_bound(distinct.begin(), distinct.end(), p, less);
+    if (it != distinct.end() && same(*it, p))
+      back[static_cast<std::size_t>(it - distinct.begin())] = 1;
+  }
+  return static_cast<long>(std::count(back.begin(), back.end(), 1));
+}
+
+} // namespace clmesh

@@ -1,0 +1,46 @@
+#include "refine/hull_encroachment.hpp"
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "hull_encroachment.cl";
+constexpr cl_int kNoClaim = 0x7fffffff;
+// The three steps of mark_encroaching_points (CLM_ENCROACH_*).
+constexpr cl_int kClaim = 0, kCount = 1, kWrite = 2;
+} // namespace
+
+HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan, double lens)
+    : device_(device), mesh_(mesh), scan_(scan), lens_(lens),
+      mark_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
+      clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
+      claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
+      offset_(device, mesh.point_capacity) {
+  claim_.fill(device_, kNoClaim, mesh.point_capacity);
+}
+
+std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
+                                               const DeviceArray<cl_int> &redundant_mark,
+                                               const DeviceArray<cl_int> &redundant_anchor,
+                                               const DeviceArray<cl_int> &tracked) {
+  if (m == 0)
+    return 0;
+  const auto items = static_cast<cl_int>(m);
+  auto run_step = [&](cl_int step) {
+    set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), lens_, step, claim_.buffer(),
+                  redundant_mark.buffer(), redundant_anchor.buffer(), owned_.buffer(),
+                  offset_.buffer(), tracked.buffer(), items, items);
+    launch(device_, mark_, m, kPhase);
+  };
+  run_step(kClaim);
+  run_step(kCount);
+  const auto old = static_cast<std::size_t>(scan_.exclusive_scan(owned_, offset_, m, kPhase));
+  if (old > 0)
+    run_step(kWrite);
+  // The claims go back to empty: those of the new points and of the old ones.
+  const std::size_t claimed = m + old;
+  set_args(clear_claims_, tracked.buffer(), claim_.buffer(), static_cast<cl_int>(claimed));
+  launch(device_, clear_claims_, claimed, kPhase);
+  return old;
+}
+
+} // namespace clmesh

@@ -1,0 +1,41 @@
+// clmesh — the boundary routine of thesis §3.4.1, at the start of step 3:
+// the old Steiner points that encroach a hull edge split in this iteration
+// are marked redundant, for flip-flop to delete. Kernels:
+// cl/hull_encroachment.cl.
+#pragma once
+
+#include "runtime/prefix_scan.hpp"
+
+namespace clmesh {
+
+class HullEncroachment {
+public:
+  static constexpr const char *kPhase = "flipflop_deletion"; // timed with step 3
+
+  // lens: Triangle's encroachment test of hull edges (OffcenterInsertion::lens).
+  HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan, double lens);
+
+  // `tracked` starts with new_points[0 .. m). For each hull midpoint among
+  // them, the off-centers around
+  // the apex of its former hull edge that encroach the edge are marked
+  // redundant (redundant_mark, redundant_anchor), and the old ones among
+  // them are appended to `tracked` from entry m on. Returns how many were
+  // appended. Which midpoint claims an encroacher is decided by index, so
+  // the list is the same on every run.
+  std::size_t mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
+                               const DeviceArray<cl_int> &redundant_mark,
+                               const DeviceArray<cl_int> &redundant_anchor,
+                               const DeviceArray<cl_int> &tracked);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  double lens_;
+  cl::Kernel mark_, clear_claims_;
+  // Per point: the smallest midpoint claiming it (empty: 0x7fffffff between calls).
+  DeviceArray<cl_int> claim_;
+  DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
+};
+
+} // namespace clmesh

@@ -1,0 +1,119 @@
+#include "refine/zorder_compaction.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "zorder_compaction.cl";
+} // namespace
+
+ZOrderCompaction::ZOrderCompaction(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      triangle_cells_(device.kernel(kFile, "triangle_cells", kPhase)),
+      point_cells_(device.kernel(kFile, "steiner_point_cells", kPhase)),
+      sort_cells_(device.kernel(kFile, "sort_cells", kPhase)),
+      move_triangles_(device.kernel(kFile, "move_triangles", kPhase)),
+      move_points_(device.kernel(kFile, "move_steiner_points", kPhase)),
+      renumber_vertices_(device.kernel(kFile, "renumber_steiner_vertices", kPhase)) {}
+
+ZOrderCompaction::ZGrid ZOrderCompaction::z_grid(Point low, double side, std::size_t items,
+                                                 std::size_t per_cell) {
+  int bits = 1;
+  while (bits < 15 && (std::size_t{1} << (2 * bits)) * per_cell < items)
+    ++bits;
+  const double scale =
+      side > 0 && std::isfinite(side) ? static_cast<double>(std::size_t{1} << bits) / side : 0.0;
+  return {cl_double2{{low.x, low.y}}, scale, bits, std::size_t{1} << (2 * bits)};
+}
+
+std::size_t ZOrderCompaction::z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
+                                      const DeviceArray<cl_ulong> &key, bool rotated,
+                                      std::size_t items, const DeviceArray<cl_int> &order,
+                                      const DeviceArray<cl_int> &new_slot) {
+  DeviceArray<cl_int> cell_size(device_, grid.cells), cell_start(device_, grid.cells),
+      cursor(device_, grid.cells);
+  const auto placed = static_cast<std::size_t>(
+      scan_.bucket(cell, items, grid.cells, cell_size, cell_start, cursor, order, kPhase));
+  set_args(sort_cells_, cell_start.buffer(), cell_size.buffer(), key.buffer(),
+           static_cast<cl_int>(rotated), order.buffer(), new_slot.buffer(),
+           static_cast<cl_int>(grid.cells));
+  launch(device_, sort_cells_, grid.cells, kPhase);
+  return placed;
+}
+
+void ZOrderCompaction::compact(Point low, double side, std::size_t first) {
+  compact_triangles(low, side);
+  compact_steiner_points(low, side, first);
+}
+
+void ZOrderCompaction::compact_triangles(Point low, double side) {
+  const std::size_t slots = mesh_.triangle_count;
+  const ZGrid grid = z_grid(low, side, slots, 8);
+  // The marks (none are set between iterations) hold the cells, the stamps
+  // the new slots, the children the moved vertices: all are reset after.
+  const DeviceArray<cl_int> &cell = mesh_.tri_mark, &new_slot = mesh_.modified_stamp;
+  DeviceArray<cl_int> order(device_, slots);
+  std::size_t live = 0;
+  {
+    DeviceArray<cl_ulong> key(device_, slots);
+    set_args(triangle_cells_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), grid.low,
+             grid.scale, static_cast<cl_int>(grid.bits), cell.buffer(), key.buffer(),
+             static_cast<cl_int>(slots));
+    launch(device_, triangle_cells_, slots, kPhase);
+    live = z_order(grid, cell, key, true, slots, order, new_slot);
+  }
+  {
+    DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity);
+    set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
+             mesh_.tri_neighbor.buffer(), mesh_.children.buffer(), moved_neighbor.buffer(),
+             static_cast<cl_int>(live));
+    launch(device_, move_triangles_, live, kPhase);
+    std::swap(mesh_.tri_vertex, mesh_.children);
+    std::swap(mesh_.tri_neighbor, moved_neighbor);
+  }
+  // Past the old slots the marks and stamps were never written since filled.
+  mesh_.tri_mark.fill(device_, -1, slots); // no mark
+  mesh_.modified_stamp.fill(device_, 0, slots);
+  mesh_.triangle_count = live;
+  mesh_.free_triangles.first = mesh_.free_triangles.count = 0;
+}
+
+void ZOrderCompaction::compact_steiner_points(Point low, double side, std::size_t first) {
+  const std::size_t slots = mesh_.point_count - first;
+  if (slots == 0)
+    return;
+  const ZGrid grid = z_grid(low, side, slots, 4);
+  DeviceArray<cl_int> cell(device_, slots), new_slot(device_, slots), order(device_, slots);
+  std::size_t live = 0;
+  {
+    DeviceArray<cl_ulong> key(device_, slots);
+    set_args(point_cells_, mesh_.points.buffer(), mesh_.point_state.buffer(), grid.low, grid.scale,
+             static_cast<cl_int>(grid.bits), cell.buffer(), key.buffer(),
+             static_cast<cl_int>(first), static_cast<cl_int>(slots));
+    launch(device_, point_cells_, slots, kPhase);
+    live = z_order(grid, cell, key, false, slots, order, new_slot);
+  }
+  const std::size_t capacity = mesh_.point_capacity;
+  DeviceArray<cl_double2> points(device_, capacity);
+  DeviceArray<cl_int> state(device_, capacity);
+  DeviceArray<cl_double> radius2(device_, capacity);
+  DeviceArray<cl_uint> priority(device_, capacity);
+  set_args(move_points_, order.buffer(), mesh_.points.buffer(), mesh_.point_state.buffer(),
+           mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), points.buffer(),
+           state.buffer(), radius2.buffer(), priority.buffer(), mesh_.original_id.buffer(),
+           static_cast<cl_int>(first), static_cast<cl_int>(first + live));
+  launch(device_, move_points_, first + live, kPhase);
+  set_args(renumber_vertices_, new_slot.buffer(), mesh_.tri_vertex.buffer(),
+           static_cast<cl_int>(first), static_cast<cl_int>(3 * mesh_.triangle_count));
+  launch(device_, renumber_vertices_, 3 * mesh_.triangle_count, kPhase);
+  std::swap(mesh_.points, points);
+  std::swap(mesh_.point_state, state);
+  std::swap(mesh_.insertion_radius2, radius2);
+  std::swap(mesh_.point_priority, priority);
+  mesh_.point_count = first + live;
+  mesh_.free_points.first = mesh_.free_points.count = 0;
+}
+
+} // namespace clmesh

@@ -1,11 +1,11 @@
 // Helpers shared by the device tests.
 #pragma once
 
-#include "clmesh/check.hpp"
-#include "clmesh/device.hpp"
+#include "clmesh/clmesh.hpp"
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace test_support {
 
@@ -13,6 +13,14 @@ namespace test_support {
 inline clmesh::Device &device() {
   static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
   return *opened;
+}
+
+// The mesh of a point set (no segments) with `options`, on device().
+inline clmesh::Mesh triangulate_points(const std::vector<clmesh::Point> &points,
+                                       const clmesh::Options &options = {}) {
+  clmesh::Input input;
+  input.points = points;
+  return clmesh::triangulate(device(), input, options);
 }
 
 // A check report's problems, one per line, for failure messages.

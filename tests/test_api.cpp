@@ -22,38 +22,35 @@ using clmesh::Point;
 using clmesh::Segment;
 using test_support::device;
 using test_support::problems;
+using test_support::starts_with;
 using test_support::triangulate_points;
 
 namespace {
 
-// The message of the OptionError that parsing `switches` throws ("" when it throws none).
+// The message of the `Error` that call() throws ("" when it throws none; other
+// exceptions go on).
+template <class Error, class Call> std::string error_of(const Call &call) {
+  try {
+    call();
+  } catch (const Error &error) {
+    return error.what();
+  }
+  return "";
+}
+
+// The message of the OptionError that parsing `switches` throws.
 std::string option_error(const std::string &switches) {
-  try {
-    clmesh::parse_switches(switches);
-  } catch (const clmesh::OptionError &error) {
-    return error.what();
-  }
-  return "";
+  return error_of<clmesh::OptionError>([&] { clmesh::parse_switches(switches); });
 }
 
-// The message of the OptionError that validate(options) throws ("" when it throws none).
+// The message of the OptionError that validate(options) throws.
 std::string validation_error(const clmesh::Options &options) {
-  try {
-    clmesh::validate(options);
-  } catch (const clmesh::OptionError &error) {
-    return error.what();
-  }
-  return "";
+  return error_of<clmesh::OptionError>([&] { clmesh::validate(options); });
 }
 
-// The message of the InputError that validate(input) throws ("" when it throws none).
+// The message of the InputError that validate(input) throws.
 std::string input_error(const clmesh::Input &input) {
-  try {
-    clmesh::validate(input);
-  } catch (const clmesh::InputError &error) {
-    return error.what();
-  }
-  return "";
+  return error_of<clmesh::InputError>([&] { clmesh::validate(input); });
 }
 
 bool contains(const std::string &text, const std::string &part) {
@@ -114,10 +111,7 @@ clmesh::Input square_with_diagonals(int side_marker = 0, int diagonal_marker = 0
 // Both meshes the same: points bit for bit, triangles, links, markers, attributes, segments.
 void check_same_mesh(const clmesh::Mesh &a, const clmesh::Mesh &b) {
   REQUIRE(a.points.size() == b.points.size());
-  bool same_points = true;
-  for (std::size_t i = 0; i < a.points.size(); ++i)
-    same_points = same_points && a.points[i].x == b.points[i].x && a.points[i].y == b.points[i].y;
-  CHECK(same_points);
+  CHECK(starts_with(a.points, b.points));
   CHECK(a.input_points == b.input_points);
   CHECK(a.triangles == b.triangles);
   CHECK(a.neighbors == b.neighbors);
@@ -350,6 +344,14 @@ TEST_CASE("api: validate(Input) refuses input that cannot be meshed") {
     input.points[3] = {-1e-50, 1};
     CHECK(input_error(input) == "");
   }
+  SUBCASE("triangles to refine (-r), not supported yet") {
+    input.triangles = {{0, 1, 2}};
+    CHECK(contains(input_error(input), "refining an existing mesh"));
+    CHECK_THROWS_AS(clmesh::triangulate(device(), input, "p"), clmesh::InputError);
+    input.triangles.clear();
+    input.triangle_max_area = {0.5};
+    CHECK(contains(input_error(input), "refining an existing mesh"));
+  }
   SUBCASE("holes and regions that are not finite") {
     input.holes = {{0.5, std::nan("")}};
     CHECK(contains(input_error(input), "hole 0"));
@@ -370,8 +372,7 @@ TEST_CASE("api: triangulate a PSLG whose segments cross") {
     const clmesh::Mesh mesh = clmesh::triangulate(device(), input, options);
     CHECK(mesh.input_points == 4);
     REQUIRE(mesh.points.size() == 5);
-    for (int i = 0; i < 4; ++i)
-      CHECK((mesh.points[i].x == input.points[i].x && mesh.points[i].y == input.points[i].y));
+    CHECK(starts_with(mesh.points, input.points));
     CHECK(mesh.points[4].x == 0.5);
     CHECK(mesh.points[4].y == 0.5);
     REQUIRE(mesh.duplicate_of.size() == mesh.points.size());
@@ -606,8 +607,8 @@ TEST_CASE("api: quality statistics of a known mesh") {
   CHECK(clmesh::format_quality(none) == "");
 }
 
-TEST_CASE("api: statistics JSON has the counts, constraints only with -p, refinement only with "
-          "-q") {
+TEST_CASE("api: statistics JSON and text have the counts, constraints only with -p, refinement "
+          "only with -q") {
   const clmesh::RunSeconds seconds{1.5, 2, 0.25};
   clmesh::Input input;
   input.points = fixtures::uniform(300, 5);
@@ -638,6 +639,16 @@ TEST_CASE("api: statistics JSON has the counts, constraints only with -p, refine
   CHECK(contains(refined_json,
                  "\"iterations\": " + std::to_string(refined.statistics.refinement.iterations)));
   CHECK_FALSE(contains(refined_json, "\"constraints\""));
+  // The -V counts: the same sections.
+  CHECK(contains(clmesh::format_statistics(plain),
+                 "Flips: " + std::to_string(plain.statistics.delaunay.flips)));
+  CHECK_FALSE(contains(clmesh::format_statistics(plain), "Constraints:"));
+  CHECK_FALSE(contains(clmesh::format_statistics(plain), "Refinement:"));
+  CHECK(contains(clmesh::format_statistics(cdt), "Segment crossings (new vertices): 1\n"));
+  CHECK_FALSE(contains(clmesh::format_statistics(cdt), "Refinement:"));
+  CHECK(contains(clmesh::format_statistics(refined),
+                 "Steiner points: " + std::to_string(refined.points.size() - 300) + " ("));
+  CHECK_FALSE(contains(clmesh::format_statistics(refined), "Constraints:"));
   // -a alone refines too.
   CHECK(contains(clmesh::statistics_json(clmesh::triangulate(device(), input, "a0.01"), seconds),
                  "\"refinement\""));
@@ -681,11 +692,7 @@ TEST_CASE("api: a quality mesh is the same on every run; GPU-QM and GPU-QM-V bot
     CHECK(mesh->duplicate_of.size() == mesh->points.size());
     CHECK(static_cast<long>(mesh->points.size()) - 3000 == mesh->statistics.refinement.inserted);
     // The input's points come first, unchanged.
-    bool input_kept = true;
-    for (std::size_t i = 0; i < input.points.size(); ++i)
-      input_kept = input_kept && mesh->points[i].x == input.points[i].x &&
-                   mesh->points[i].y == input.points[i].y;
-    CHECK(input_kept);
+    CHECK(starts_with(mesh->points, input.points));
   }
   // The algorithms differ: GPU-QM elects no candidates away, GPU-QM-V does.
   MESSAGE("GPU-QM-V: " << first.statistics.refinement.candidates << " candidates, "

@@ -376,6 +376,7 @@ clmesh::Mesh cdt_checked(const clmesh::Input &pslg, const clmesh::Options &optio
   // The input's points, none added (these PSLGs have no crossing segments).
   REQUIRE(mesh.input_points == static_cast<long>(pslg.points.size()));
   REQUIRE(mesh.points.size() == pslg.points.size());
+  CHECK(test_support::starts_with(mesh.points, pslg.points));
   CHECK(mesh.statistics.constrained);
   CHECK(mesh.statistics.constraints.crossings == 0);
   const bool whole_hull = options.convex_hull && (options.ignore_holes || pslg.holes.empty());
@@ -430,11 +431,7 @@ clmesh::Mesh crossings_checked(const clmesh::Input &pslg) {
   REQUIRE(result.points.size() >= pslg.points.size());
   REQUIRE(result.duplicate_of.size() == result.points.size());
   CHECK(added_points(result) == static_cast<std::size_t>(result.statistics.constraints.crossings));
-  bool input_kept = true;
-  for (std::size_t i = 0; i < pslg.points.size(); ++i)
-    input_kept = input_kept && result.points[i].x == pslg.points[i].x &&
-                 result.points[i].y == pslg.points[i].y;
-  CHECK(input_kept);
+  CHECK(test_support::starts_with(result.points, pslg.points));
   for (std::size_t i = pslg.points.size(); i < result.points.size(); ++i)
     CHECK(result.duplicate_of[i] == -1);
   const auto report = clmesh::check_constrained(result.points, result.triangles, result.neighbors,

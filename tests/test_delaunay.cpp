@@ -63,6 +63,7 @@ clmesh::Mesh triangulate_and_check(const std::vector<Point> &points,
   // The points are the input's, none added.
   REQUIRE(result.input_points == static_cast<long>(points.size()));
   REQUIRE(result.points.size() == points.size());
+  CHECK(test_support::starts_with(result.points, points));
   REQUIRE(result.duplicate_of.size() == points.size());
   const auto report = clmesh::check_triangulation(points, result.triangles, result.neighbors,
                                                   result.duplicate_of, true);

@@ -23,6 +23,18 @@ inline clmesh::Mesh triangulate_points(const std::vector<clmesh::Point> &points,
   return clmesh::triangulate(device(), input, options);
 }
 
+// Whether `points` begins with `first`, bit for bit (a mesh keeps its input's
+// points first and unchanged).
+inline bool starts_with(const std::vector<clmesh::Point> &points,
+                        const std::vector<clmesh::Point> &first) {
+  if (points.size() < first.size())
+    return false;
+  for (std::size_t i = 0; i < first.size(); ++i)
+    if (points[i].x != first[i].x || points[i].y != first[i].y)
+      return false;
+  return true;
+}
+
 // A check report's problems, one per line, for failure messages.
 inline std::string problems(const clmesh::CheckReport &report) {
   std::string text;

@@ -20,6 +20,7 @@
 
 using clmesh::Point;
 using clmesh::Segment;
+using test_support::check_same_mesh;
 using test_support::device;
 using test_support::problems;
 using test_support::starts_with;
@@ -106,23 +107,6 @@ clmesh::Input square_with_diagonals(int side_marker = 0, int diagonal_marker = 0
   input.segments = {{0, 1, side_marker}, {1, 2, side_marker},     {2, 3, side_marker},
                     {3, 0, side_marker}, {0, 2, diagonal_marker}, {1, 3, diagonal_marker}};
   return input;
-}
-
-// Both meshes the same: points bit for bit, triangles, links, markers, attributes, segments.
-void check_same_mesh(const clmesh::Mesh &a, const clmesh::Mesh &b) {
-  REQUIRE(a.points.size() == b.points.size());
-  CHECK(starts_with(a.points, b.points));
-  CHECK(a.input_points == b.input_points);
-  CHECK(a.triangles == b.triangles);
-  CHECK(a.neighbors == b.neighbors);
-  CHECK(a.duplicate_of == b.duplicate_of);
-  CHECK(a.point_markers == b.point_markers);
-  CHECK(a.point_attributes == b.point_attributes);
-  CHECK(a.triangle_attributes == b.triangle_attributes);
-  CHECK(a.segments.size() == b.segments.size());
-  for (std::size_t i = 0; i < a.segments.size() && i < b.segments.size(); ++i)
-    CHECK((a.segments[i].a == b.segments[i].a && a.segments[i].b == b.segments[i].b &&
-           a.segments[i].marker == b.segments[i].marker));
 }
 
 } // namespace

@@ -3,6 +3,9 @@
 
 #include "clmesh/clmesh.hpp"
 
+#include <doctest/doctest.h>
+
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,12 +30,27 @@ inline clmesh::Mesh triangulate_points(const std::vector<clmesh::Point> &points,
 // points first and unchanged).
 inline bool starts_with(const std::vector<clmesh::Point> &points,
                         const std::vector<clmesh::Point> &first) {
-  if (points.size() < first.size())
-    return false;
-  for (std::size_t i = 0; i < first.size(); ++i)
-    if (points[i].x != first[i].x || points[i].y != first[i].y)
-      return false;
-  return true;
+  return points.size() >= first.size() &&
+         (first.empty() ||
+          std::memcmp(points.data(), first.data(), first.size() * sizeof(clmesh::Point)) == 0);
+}
+
+// Both meshes the same: points bit for bit, triangles, links, duplicates,
+// markers, attributes and segments.
+inline void check_same_mesh(const clmesh::Mesh &a, const clmesh::Mesh &b) {
+  REQUIRE(a.points.size() == b.points.size());
+  CHECK(starts_with(a.points, b.points));
+  CHECK(a.input_points == b.input_points);
+  CHECK(a.triangles == b.triangles);
+  CHECK(a.neighbors == b.neighbors);
+  CHECK(a.duplicate_of == b.duplicate_of);
+  CHECK(a.point_markers == b.point_markers);
+  CHECK(a.point_attributes == b.point_attributes);
+  CHECK(a.triangle_attributes == b.triangle_attributes);
+  REQUIRE(a.segments.size() == b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i)
+    CHECK((a.segments[i].a == b.segments[i].a && a.segments[i].b == b.segments[i].b &&
+           a.segments[i].marker == b.segments[i].marker));
 }
 
 // A check report's problems, one per line, for failure messages.

@@ -10,10 +10,7 @@
 // the whole-hull check proves to be a triangulation: together no overlap is possible.
 #include <doctest/doctest.h>
 
-#include "clmesh/check.hpp"
-#include "cdt/constrained.hpp"
-#include "clmesh/errors.hpp"
-#include "clmesh/io.hpp"
+#include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
 #include "predicates.h"
 #include "test_support.hpp"
@@ -37,7 +34,6 @@
 #endif
 
 using clmesh::Point;
-using clmesh::Pslg;
 using clmesh::Segment;
 using clmesh::Triangle;
 
@@ -189,8 +185,16 @@ std::vector<Segment> random_segments(const std::vector<Point> &pts, int candidat
   return set.segments;
 }
 
-Pslg closed_polygon(std::vector<Point> ring, const std::vector<Point> &extra, int marker) {
-  Pslg pslg;
+// A PSLG of points and segments.
+clmesh::Input pslg_of(std::vector<Point> points, std::vector<Segment> segments) {
+  clmesh::Input input;
+  input.points = std::move(points);
+  input.segments = std::move(segments);
+  return input;
+}
+
+clmesh::Input closed_polygon(std::vector<Point> ring, const std::vector<Point> &extra, int marker) {
+  clmesh::Input pslg;
   pslg.points = std::move(ring);
   const int32_t m = static_cast<int32_t>(pslg.points.size());
   for (int32_t i = 0; i < m; ++i)
@@ -213,7 +217,7 @@ struct Reference {
 // the exterior and the holes eaten as Triangle does: the exterior spreads from the hull edges
 // that are not constrained, a hole from the triangle containing its point, both stopping at
 // constrained edges.
-Reference cgal_cdt(const Pslg &pslg, bool eat_exterior, bool eat_holes) {
+Reference cgal_cdt(const clmesh::Input &pslg, bool eat_exterior, bool eat_holes) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<int32_t, K>;
   using Cfb = CGAL::Constrained_triangulation_face_base_2<K>;
@@ -298,10 +302,10 @@ std::string triangles_text(const std::vector<Triangle> &list) {
   return list.size() > 5 ? text + " ..." : text;
 }
 
-void compare_with_cgal(const Pslg &pslg, const clmesh::ConstrainedOptions &options,
-                       const clmesh::ConstrainedResult &result) {
-  const Reference ref = cgal_cdt(pslg, !options.keep_convex_hull, !options.ignore_holes);
-  const std::set<Triangle> ours(result.mesh.triangles.begin(), result.mesh.triangles.end());
+void compare_with_cgal(const clmesh::Input &pslg, const clmesh::Options &options,
+                       const clmesh::Mesh &result) {
+  const Reference ref = cgal_cdt(pslg, !options.convex_hull, !options.ignore_holes);
+  const std::set<Triangle> ours(result.triangles.begin(), result.triangles.end());
   std::vector<Triangle> only_ours, only_cgal;
   std::set_difference(ours.begin(), ours.end(), ref.triangles.begin(), ref.triangles.end(),
                       std::back_inserter(only_ours));
@@ -310,12 +314,12 @@ void compare_with_cgal(const Pslg &pslg, const clmesh::ConstrainedOptions &optio
   INFO("clmesh " << ours.size() << " triangles, CGAL " << ref.triangles.size() << "; only clmesh "
                  << only_ours.size() << ":" << triangles_text(only_ours) << "; only CGAL "
                  << only_cgal.size() << ":" << triangles_text(only_cgal));
-  CHECK(ours.size() == result.mesh.triangles.size());
+  CHECK(ours.size() == result.triangles.size());
   CHECK(only_ours.empty());
   CHECK(only_cgal.empty());
   // The segments as they stand in the mesh: CGAL's constrained edges (input segments split at
   // the vertices on them), plus the hull edges with -c.
-  if (options.keep_convex_hull && (options.ignore_holes || pslg.holes.empty())) {
+  if (options.convex_hull && (options.ignore_holes || pslg.holes.empty())) {
     std::set<Edge> expected = ref.constrained, listed;
     expected.insert(ref.hull.begin(), ref.hull.end());
     for (const Segment &s : result.segments)
@@ -364,13 +368,20 @@ std::vector<Segment> hull_segments(const std::vector<Point> &pts) {
 }
 
 // Runs the CDT and checks it: exact checker, canonical order, and CGAL's triangles.
-clmesh::ConstrainedResult cdt_checked(const Pslg &pslg, const clmesh::ConstrainedOptions &options,
-                                      bool with_cgal = true) {
-  clmesh::ConstrainedResult result = clmesh::constrained_delaunay(device(), pslg, options);
-  const auto &mesh = result.mesh;
-  const bool whole_hull = options.keep_convex_hull && (options.ignore_holes || pslg.holes.empty());
+clmesh::Mesh cdt_checked(const clmesh::Input &pslg, const clmesh::Options &options,
+                         bool with_cgal = true) {
+  REQUIRE(options.pslg);
+  clmesh::Mesh result = clmesh::triangulate(device(), pslg, options);
+  const clmesh::Mesh &mesh = result;
+  // The input's points, none added (these PSLGs have no crossing segments).
+  REQUIRE(mesh.input_points == static_cast<long>(pslg.points.size()));
+  REQUIRE(mesh.points.size() == pslg.points.size());
+  CHECK(test_support::starts_with(mesh.points, pslg.points));
+  CHECK(mesh.statistics.constrained);
+  CHECK(mesh.statistics.constraints.crossings == 0);
+  const bool whole_hull = options.convex_hull && (options.ignore_holes || pslg.holes.empty());
   std::vector<Segment> boundary = pslg.segments;
-  if (options.keep_convex_hull && !whole_hull) {
+  if (options.convex_hull && !whole_hull) {
     const auto hull = hull_segments(pslg.points);
     boundary.insert(boundary.end(), hull.begin(), hull.end());
   }
@@ -401,14 +412,37 @@ clmesh::ConstrainedResult cdt_checked(const Pslg &pslg, const clmesh::Constraine
   return result;
 }
 
-clmesh::ConstrainedOptions whole_hull_options() {
-  clmesh::ConstrainedOptions options;
-  options.keep_convex_hull = true;
-  return options;
+// -p: the constrained Delaunay triangulation, exterior and holes eaten.
+clmesh::Options cdt_options() { return clmesh::parse_switches("p"); }
+
+// -pc: every triangle of the convex hull kept.
+clmesh::Options whole_hull_options() { return clmesh::parse_switches("pc"); }
+
+// The vertices added where segments cross (the mesh's points after the input's).
+std::size_t added_points(const clmesh::Mesh &mesh) {
+  return mesh.points.size() - static_cast<std::size_t>(mesh.input_points);
+}
+
+// Runs the CDT of a PSLG whose segments cross (-pc) and checks it exactly: the input's points
+// first and unchanged, then the crossings; every segment as it stands in the mesh a mesh edge.
+clmesh::Mesh crossings_checked(const clmesh::Input &pslg) {
+  const clmesh::Mesh result = clmesh::triangulate(device(), pslg, whole_hull_options());
+  REQUIRE(result.input_points == static_cast<long>(pslg.points.size()));
+  REQUIRE(result.points.size() >= pslg.points.size());
+  REQUIRE(result.duplicate_of.size() == result.points.size());
+  CHECK(added_points(result) == static_cast<std::size_t>(result.statistics.constraints.crossings));
+  CHECK(test_support::starts_with(result.points, pslg.points));
+  for (std::size_t i = pslg.points.size(); i < result.points.size(); ++i)
+    CHECK(result.duplicate_of[i] == -1);
+  const auto report = clmesh::check_constrained(result.points, result.triangles, result.neighbors,
+                                                result.duplicate_of, result.segments, true);
+  INFO(problems(report));
+  CHECK(report.ok);
+  return result;
 }
 
 // Number of distinct, non-zero-length segments after mapping duplicate points.
-long distinct_segments(const Pslg &pslg) {
+long distinct_segments(const clmesh::Input &pslg) {
   std::map<std::pair<double, double>, int32_t> smallest;
   for (int32_t i = 0; i < static_cast<int32_t>(pslg.points.size()); ++i)
     smallest.emplace(std::make_pair(pslg.points[i].x, pslg.points[i].y), i);
@@ -450,15 +484,9 @@ std::vector<Triangle> read_ele(const std::string &path) {
   return triangles;
 }
 
-Pslg load_poly(const std::string &name) {
-  const clmesh::PolyFile file = clmesh::read_poly(std::string(CLMESH_SHARED_DATA) +
-                                                  "/triangle-examples/inputs/" + name + ".poly");
-  Pslg pslg;
-  pslg.points = file.points.points;
-  pslg.segments = file.segments;
-  pslg.holes = file.holes;
-  pslg.regions = file.regions;
-  return pslg;
+clmesh::Input load_poly(const std::string &name) {
+  return clmesh::read_input(std::string(CLMESH_SHARED_DATA) + "/triangle-examples/inputs/" + name +
+                            ".poly");
 }
 
 } // namespace
@@ -467,7 +495,7 @@ TEST_CASE("cdt checker: accepts CGAL's constrained triangulations, rejects broke
 #ifndef CLMESH_HAVE_CGAL
   MESSAGE("built without CGAL: skipped");
 #else
-  Pslg pslg;
+  clmesh::Input pslg;
   pslg.points = fixtures::uniform(3000, 11);
   pslg.segments = random_segments(pslg.points, 600, 0.01, 1.0, 12);
   REQUIRE(pslg.segments.size() > 50);
@@ -485,7 +513,7 @@ TEST_CASE("cdt checker: accepts CGAL's constrained triangulations, rejects broke
   CHECK_FALSE(local.ok);
 
   SUBCASE("the plain Delaunay triangulation misses the segments") {
-    const Reference dt = cgal_cdt({pslg.points, {}, {}, {}}, false, false);
+    const Reference dt = cgal_cdt(pslg_of(pslg.points, {}), false, false);
     std::vector<Triangle> plain(dt.triangles.begin(), dt.triangles.end());
     const auto report = clmesh::check_constrained(pslg.points, plain, neighbors_of(plain),
                                                   no_duplicates, pslg.segments, true);
@@ -508,7 +536,8 @@ TEST_CASE("cdt checker: accepts CGAL's constrained triangulations, rejects broke
     CHECK_FALSE(report.ok);
   }
   SUBCASE("eaten meshes: a missing interior triangle leaves a boundary edge that is no segment") {
-    Pslg square = closed_polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, fixtures::uniform(200, 13), 1);
+    clmesh::Input square =
+        closed_polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, fixtures::uniform(200, 13), 1);
     const Reference eaten = cgal_cdt(square, true, true);
     std::vector<Triangle> inside(eaten.triangles.begin(), eaten.triangles.end());
     const std::vector<int32_t> none(square.points.size(), -1);
@@ -543,7 +572,7 @@ TEST_CASE("cdt checker: accepts CGAL's constrained triangulations, rejects broke
 
 TEST_CASE("cdt: random points with non-crossing segments of many lengths") {
   SUBCASE("20k uniform points, segments from one spacing to the whole square") {
-    Pslg pslg;
+    clmesh::Input pslg;
     pslg.points = fixtures::uniform(20000, 21);
     pslg.segments = random_segments(pslg.points, 4000, 0.002, 1.2, 22);
     // Some Delaunay-near segments (a point and its nearest neighbour) too.
@@ -557,33 +586,33 @@ TEST_CASE("cdt: random points with non-crossing segments of many lengths") {
     MESSAGE(pslg.segments.size() << " segments");
     REQUIRE(pslg.segments.size() > 300);
     const auto result = cdt_checked(pslg, whole_hull_options());
-    CHECK(result.stats.segments == distinct_segments(pslg));
-    CHECK(result.stats.dropped_segments == 0);
-    CHECK(result.stats.split_segments == 0);
-    CHECK(result.stats.eaten_triangles == 0);
-    CHECK(result.stats.intersections > 0);
+    CHECK(result.statistics.constraints.segments == distinct_segments(pslg));
+    CHECK(result.statistics.constraints.dropped_segments == 0);
+    CHECK(result.statistics.constraints.split_segments == 0);
+    CHECK(result.statistics.constraints.eaten_triangles == 0);
+    CHECK(result.statistics.constraints.intersections > 0);
   }
   SUBCASE("gaussian points, short segments only") {
-    Pslg pslg;
+    clmesh::Input pslg;
     pslg.points = fixtures::gaussian(30000, 23);
     pslg.segments = random_segments(pslg.points, 6000, 0.005, 0.05, 24);
     REQUIRE(pslg.segments.size() > 1000);
     cdt_checked(pslg, whole_hull_options());
   }
   SUBCASE("the same mesh whatever the work-group size") {
-    Pslg pslg;
+    clmesh::Input pslg;
     pslg.points = fixtures::disk(5000, 25);
     pslg.segments = random_segments(pslg.points, 1000, 0.01, 2, 26);
     auto options = whole_hull_options();
-    options.delaunay.tuning.work_group = 1;
-    const auto first = clmesh::constrained_delaunay(device(), pslg, options);
-    options.delaunay.tuning.work_group = 256;
-    const auto second = clmesh::constrained_delaunay(device(), pslg, options);
-    options.delaunay.tuning.work_group = clmesh::max_work_group_size(device());
-    const auto largest = clmesh::constrained_delaunay(device(), pslg, options);
-    CHECK(first.mesh.triangles == second.mesh.triangles);
-    CHECK(first.mesh.neighbors == second.mesh.neighbors);
-    CHECK(first.mesh.triangles == largest.mesh.triangles);
+    options.tuning.work_group = 1;
+    const auto first = clmesh::triangulate(device(), pslg, options);
+    options.tuning.work_group = 256;
+    const auto second = clmesh::triangulate(device(), pslg, options);
+    options.tuning.work_group = clmesh::max_work_group_size(device());
+    const auto largest = clmesh::triangulate(device(), pslg, options);
+    CHECK(first.triangles == second.triangles);
+    CHECK(first.neighbors == second.neighbors);
+    CHECK(first.triangles == largest.triangles);
   }
 }
 
@@ -593,7 +622,7 @@ TEST_CASE("cdt: long segments crossing thousands of triangles") {
   // disjoint strips cannot cross, and each crosses about 1 / spacing = 3000+ triangles.  Half
   // of the strips also get an x-monotone chain through a few of their points (segments with
   // disjoint x ranges), for medium lengths.
-  Pslg pslg;
+  clmesh::Input pslg;
   pslg.points = fixtures::uniform(100000, 31);
   for (auto &p : pslg.points)
     p.y *= 0.01;
@@ -614,11 +643,12 @@ TEST_CASE("cdt: long segments crossing thousands of triangles") {
     }
   }
   const auto result = cdt_checked(pslg, whole_hull_options());
-  MESSAGE("intersections " << result.stats.intersections << ", constraint flips "
-                           << result.stats.constraint_flips << ", outer iterations "
-                           << result.stats.outer_iterations);
-  CHECK(result.stats.intersections > 5 * 3000);
-  CHECK(result.stats.split_segments == 0);
+  MESSAGE("intersections " << result.statistics.constraints.intersections << ", constraint flips "
+                           << result.statistics.constraints.constraint_flips
+                           << ", outer iterations "
+                           << result.statistics.constraints.outer_iterations);
+  CHECK(result.statistics.constraints.intersections > 5 * 3000);
+  CHECK(result.statistics.constraints.split_segments == 0);
 }
 
 TEST_CASE("cdt: dense parallel chains (runs of many constraints side by side)") {
@@ -626,7 +656,7 @@ TEST_CASE("cdt: dense parallel chains (runs of many constraints side by side)") 
   // an x-monotone chain of two segments (the benchmark's 'long' PSLG, smaller): every crossed
   // triangle is crossed by about ten constraints, so the inner loop's runs are short and
   // border on one another, and most of their edges are relinked across runs.
-  Pslg pslg;
+  clmesh::Input pslg;
   pslg.points = fixtures::uniform(20000, 41);
   const int strips = 1400;
   std::vector<std::vector<int32_t>> strip(strips);
@@ -643,29 +673,32 @@ TEST_CASE("cdt: dense parallel chains (runs of many constraints side by side)") 
   }
   auto options = whole_hull_options();
   const auto result = cdt_checked(pslg, options);
-  MESSAGE(pslg.segments.size() << " segments, intersections " << result.stats.intersections
-                               << ", constraint flips " << result.stats.constraint_flips
-                               << ", outer iterations " << result.stats.outer_iterations);
-  CHECK(result.stats.intersections > 20 * static_cast<long>(pslg.segments.size()));
-  CHECK(result.stats.split_segments == 0);
-  options.delaunay.tuning.work_group = 1;
-  const auto single = clmesh::constrained_delaunay(device(), pslg, options);
-  CHECK(single.mesh.triangles == result.mesh.triangles);
-  CHECK(single.mesh.neighbors == result.mesh.neighbors);
+  MESSAGE(pslg.segments.size() << " segments, intersections "
+                               << result.statistics.constraints.intersections
+                               << ", constraint flips "
+                               << result.statistics.constraints.constraint_flips
+                               << ", outer iterations "
+                               << result.statistics.constraints.outer_iterations);
+  CHECK(result.statistics.constraints.intersections > 20 * static_cast<long>(pslg.segments.size()));
+  CHECK(result.statistics.constraints.split_segments == 0);
+  options.tuning.work_group = 1;
+  const auto single = clmesh::triangulate(device(), pslg, options);
+  CHECK(single.triangles == result.triangles);
+  CHECK(single.neighbors == result.neighbors);
 }
 
 TEST_CASE("cdt: small PSLGs") {
   SUBCASE("a square with either diagonal") {
     const std::vector<Point> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (const auto &[a, b] : {std::pair<int32_t, int32_t>{1, 3}, {0, 2}}) {
-      Pslg pslg{square, {{a, b, 5}}, {}, {}};
+      const clmesh::Input pslg = pslg_of(square, {{a, b, 5}});
       const auto result = cdt_checked(pslg, whole_hull_options());
       const std::vector<Triangle> expected = a == 1 ? std::vector<Triangle>{{0, 1, 3}, {1, 2, 3}}
                                                     : std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}};
-      CHECK(result.mesh.triangles == expected);
+      CHECK(result.triangles == expected);
       // Without -c the only segment encloses nothing: everything is eaten (as Triangle does).
-      const auto eaten = clmesh::constrained_delaunay(device(), pslg);
-      CHECK(eaten.mesh.triangles.empty());
+      const auto eaten = clmesh::triangulate(device(), pslg, cdt_options());
+      CHECK(eaten.triangles.empty());
     }
   }
   SUBCASE("a star polygon among random points, with and without its exterior") {
@@ -677,24 +710,24 @@ TEST_CASE("cdt: small PSLGs") {
     auto extra = fixtures::uniform(3000, 41);
     for (auto &p : extra)
       p = {0.123 - 1.5 + 3 * p.x, -0.456 - 1.5 + 3 * p.y};
-    const Pslg pslg = closed_polygon(ring, extra, 1);
+    const clmesh::Input pslg = closed_polygon(ring, extra, 1);
     const auto whole = cdt_checked(pslg, whole_hull_options());
-    const auto eaten = cdt_checked(pslg, {});
-    CHECK(eaten.stats.eaten_triangles ==
-          static_cast<long>(whole.mesh.triangles.size() - eaten.mesh.triangles.size()));
-    const std::set<Triangle> all(whole.mesh.triangles.begin(), whole.mesh.triangles.end());
-    for (const Triangle &t : eaten.mesh.triangles)
+    const auto eaten = cdt_checked(pslg, cdt_options());
+    CHECK(eaten.statistics.constraints.eaten_triangles ==
+          static_cast<long>(whole.triangles.size() - eaten.triangles.size()));
+    const std::set<Triangle> all(whole.triangles.begin(), whole.triangles.end());
+    for (const Triangle &t : eaten.triangles)
       CHECK(all.count(t) == 1);
     long double polygon = 0; // shoelace
     for (int k = 0; k < 40; ++k)
       polygon += (static_cast<long double>(ring[k].x) * ring[(k + 1) % 40].y -
                   static_cast<long double>(ring[(k + 1) % 40].x) * ring[k].y) /
                  2;
-    CHECK(std::fabs(static_cast<double>(area_of(pslg.points, eaten.mesh.triangles) - polygon)) <
+    CHECK(std::fabs(static_cast<double>(area_of(pslg.points, eaten.triangles) - polygon)) <
           1e-9 * static_cast<double>(polygon));
   }
   SUBCASE("a spiral polyline") {
-    Pslg pslg;
+    clmesh::Input pslg;
     for (int k = 0; k < 400; ++k) {
       const double a = 6 * M_PI * k / 400, r = 0.02 + 0.05 * a;
       pslg.points.push_back({r * std::cos(a), r * std::sin(a)});
@@ -707,7 +740,7 @@ TEST_CASE("cdt: small PSLGs") {
     cdt_checked(pslg, whole_hull_options());
   }
   SUBCASE("collinear segment chains and a segment through collinear vertices") {
-    Pslg pslg;
+    clmesh::Input pslg;
     for (int i = 0; i < 50; ++i) // on y = x / 2, exactly
       pslg.points.push_back({i * 0.25, i * 0.125});
     for (int i = 0; i < 20; ++i)
@@ -722,8 +755,8 @@ TEST_CASE("cdt: small PSLGs") {
     for (auto &p : extra)
       pslg.points.push_back({-1 + 14 * p.x, -3 + 10 * p.y});
     const auto result = cdt_checked(pslg, whole_hull_options());
-    CHECK(result.stats.split_segments == 1);
-    CHECK(result.stats.segments == 20 + 1 + 29);
+    CHECK(result.statistics.constraints.split_segments == 1);
+    CHECK(result.statistics.constraints.segments == 20 + 1 + 29);
     // The long segment stands as 29 pieces with its marker.
     long pieces = 0;
     for (const Segment &s : result.segments)
@@ -737,18 +770,18 @@ TEST_CASE("cdt: small PSLGs") {
   }
   SUBCASE("segments along the convex hull through hull vertices") {
     // The smallest case: the top row of a 3x3 lattice, (0, 2) to (2, 2) through (1, 2).
-    const Pslg top{fixtures::lattice(3), {{2, 8, 1}}, {}, {}};
+    const clmesh::Input top = pslg_of(fixtures::lattice(3), {{2, 8, 1}});
     cdt_checked(top, whole_hull_options());
     // Every side of a 5x5 lattice, whole and in part.
     for (const auto &[a, b] :
          {std::pair<int32_t, int32_t>{0, 20}, {4, 24}, {0, 4}, {20, 24}, {9, 19}, {1, 3}}) {
       INFO("segment " << a << "-" << b);
-      cdt_checked({fixtures::lattice(5), {{a, b, 1}}, {}, {}}, whole_hull_options());
+      cdt_checked(pslg_of(fixtures::lattice(5), {{a, b, 1}}), whole_hull_options());
     }
   }
   SUBCASE("overlapping collinear segments") {
     // Triangle accepts these: both are split at the vertices on them; the overlap is one chain.
-    Pslg pslg;
+    clmesh::Input pslg;
     for (int i = 0; i < 10; ++i)
       pslg.points.push_back({static_cast<double>(i), 0.0});
     pslg.segments = {{0, 6, 1}, {3, 9, 2}};
@@ -760,12 +793,12 @@ TEST_CASE("cdt: small PSLGs") {
   SUBCASE("vertices exactly on a segment, one just off it") {
     // Segment 0-1 from (0, 0) to (4, 0) has vertex 2 = (2, 0) on it, vertex 3 = (3, 1e-20) just
     // above it; segment 2-4 ends on it (a T junction).
-    Pslg pslg;
+    clmesh::Input pslg;
     pslg.points = {{0, 0}, {4, 0}, {2, 0}, {3, 1e-20}, {2, 3}, {2, -3}, {1, 1}, {3, -1}, {-1, 0.5}};
     pslg.segments = {{0, 1, 7}, {2, 4, 8}};
     const auto result = cdt_checked(pslg, whole_hull_options());
-    CHECK(result.stats.split_segments == 1);
-    CHECK(result.stats.segments == 2);
+    CHECK(result.statistics.constraints.split_segments == 1);
+    CHECK(result.statistics.constraints.segments == 2);
     std::set<std::pair<Edge, int>> listed;
     for (const Segment &s : result.segments)
       listed.insert({edge(s.a, s.b), s.marker});
@@ -776,7 +809,7 @@ TEST_CASE("cdt: small PSLGs") {
     CHECK(listed.count({edge(3, 1), 7}) == 0);
   }
   SUBCASE("duplicate and zero-length segments are dropped") {
-    Pslg pslg;
+    clmesh::Input pslg;
     pslg.points = fixtures::uniform(500, 45);
     pslg.segments = random_segments(pslg.points, 150, 0.05, 0.8, 46);
     const long kept = static_cast<long>(pslg.segments.size());
@@ -799,9 +832,9 @@ TEST_CASE("cdt: small PSLGs") {
     pslg.segments.push_back({2, with_duplicate, 0});
     pslg.segments.push_back({with_duplicate, 502, 0});
     const auto result = cdt_checked(pslg, whole_hull_options());
-    CHECK(result.stats.segments == kept + 1);
-    CHECK(result.stats.dropped_segments == 5);
-    CHECK(result.stats.segments == distinct_segments(pslg));
+    CHECK(result.statistics.constraints.segments == kept + 1);
+    CHECK(result.statistics.constraints.dropped_segments == 5);
+    CHECK(result.statistics.constraints.segments == distinct_segments(pslg));
   }
 }
 
@@ -809,7 +842,7 @@ TEST_CASE("cdt: segments on a lattice (cocircular points)") {
   // Every lattice quad is cocircular: the result is unique only by the perturbation of the
   // in-circle test, which clmesh and CGAL share.  Segments between random lattice points (some
   // through other lattice points, split there) and the diagonals of a block of cells.
-  Pslg pslg;
+  clmesh::Input pslg;
   pslg.points = fixtures::lattice(40, 0.5, {-3, 7});
   SegmentSet set{pslg.points, {}};
   for (int i = 5; i < 15; ++i)
@@ -822,8 +855,8 @@ TEST_CASE("cdt: segments on a lattice (cocircular points)") {
   pslg.segments = set.segments;
   MESSAGE(pslg.segments.size() << " lattice segments");
   const auto result = cdt_checked(pslg, whole_hull_options());
-  CHECK(result.stats.split_segments > 0);
-  CHECK(result.mesh.triangles.size() == 2u * 39 * 39);
+  CHECK(result.statistics.constraints.split_segments > 0);
+  CHECK(result.triangles.size() == 2u * 39 * 39);
 }
 
 TEST_CASE("cdt: Triangle's example PSLGs") {
@@ -848,7 +881,7 @@ TEST_CASE("cdt: Triangle's example PSLGs") {
       std::string(CLMESH_SHARED_DATA) + "/triangle-examples/reference-outputs/";
   for (const Expected &e : cases) {
     INFO(std::string(e.name));
-    const Pslg pslg = load_poly(e.name);
+    const clmesh::Input pslg = load_poly(e.name);
     double area_p = e.area_p;
     if (std::string(e.name) == "A" || std::string(e.name) == "face" ||
         std::string(e.name) == "double_hex") {
@@ -856,28 +889,27 @@ TEST_CASE("cdt: Triangle's example PSLGs") {
       CHECK(static_cast<long>(ele.size()) == e.p);
       area_p = static_cast<double>(area_of(pslg.points, ele));
     }
-    clmesh::ConstrainedOptions p, pc, pcO;
-    pc.keep_convex_hull = pcO.keep_convex_hull = true;
-    pcO.ignore_holes = true;
+    const clmesh::Options p = clmesh::parse_switches("p"), pc = clmesh::parse_switches("pc"),
+                          pcO = clmesh::parse_switches("pcO");
     const auto whole = cdt_checked(pslg, pcO);
-    CHECK(static_cast<long>(whole.mesh.triangles.size()) == e.pcO);
-    const std::set<Triangle> all(whole.mesh.triangles.begin(), whole.mesh.triangles.end());
+    CHECK(static_cast<long>(whole.triangles.size()) == e.pcO);
+    const std::set<Triangle> all(whole.triangles.begin(), whole.triangles.end());
     for (const auto *options : {&p, &pc}) {
       const auto result = cdt_checked(pslg, *options);
       const long expected = options == &p ? e.p : e.pc;
-      CHECK(static_cast<long>(result.mesh.triangles.size()) == expected);
-      CHECK(result.stats.eaten_triangles == e.pcO - expected);
-      for (const Triangle &t : result.mesh.triangles)
+      CHECK(static_cast<long>(result.triangles.size()) == expected);
+      CHECK(result.statistics.constraints.eaten_triangles == e.pcO - expected);
+      for (const Triangle &t : result.triangles)
         CHECK(all.count(t) == 1);
       if (options == &p && expected > 0)
-        CHECK(std::fabs(static_cast<double>(area_of(pslg.points, result.mesh.triangles)) -
-                        area_p) <= 1e-9 * area_p);
+        CHECK(std::fabs(static_cast<double>(area_of(pslg.points, result.triangles)) - area_p) <=
+              1e-9 * area_p);
     }
     if (std::string(e.name) == "box") {
       const auto ele = read_ele(reference + "box.1.ele");
       CHECK(static_cast<long>(ele.size()) == e.pc);
-      const auto result = clmesh::constrained_delaunay(device(), pslg, pc);
-      CHECK(std::fabs(static_cast<double>(area_of(pslg.points, result.mesh.triangles) -
+      const auto result = clmesh::triangulate(device(), pslg, pc);
+      CHECK(std::fabs(static_cast<double>(area_of(pslg.points, result.triangles) -
                                           area_of(pslg.points, ele))) < 1e-9);
     }
   }
@@ -886,41 +918,33 @@ TEST_CASE("cdt: Triangle's example PSLGs") {
 TEST_CASE("cdt: bad segments are refused with a typed error") {
   const std::vector<Point> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.3, 0.6}};
   SUBCASE("endpoint out of range") {
-    CHECK_THROWS_AS(clmesh::constrained_delaunay(device(), {square, {{0, 5, 0}}, {}, {}}),
+    CHECK_THROWS_AS(clmesh::triangulate(device(), pslg_of(square, {{0, 5, 0}}), cdt_options()),
                     clmesh::InputError);
-    CHECK_THROWS_AS(clmesh::constrained_delaunay(device(), {square, {{-1, 2, 0}}, {}, {}}),
+    CHECK_THROWS_AS(clmesh::triangulate(device(), pslg_of(square, {{-1, 2, 0}}), cdt_options()),
                     clmesh::InputError);
   }
   SUBCASE("crossing segments") {
     // Split at a new vertex where they cross, numbered after the input (Triangle's behaviour).
-    auto crossing_checked = [](const Pslg &pslg, std::size_t crossings) {
-      const auto result = clmesh::constrained_delaunay(device(), pslg, whole_hull_options());
-      CHECK(result.added_points.size() == crossings);
-      CHECK(result.stats.crossings == static_cast<long>(crossings));
-      std::vector<Point> points = pslg.points;
-      points.insert(points.end(), result.added_points.begin(), result.added_points.end());
-      const auto report =
-          clmesh::check_constrained(points, result.mesh.triangles, result.mesh.neighbors,
-                                    result.mesh.duplicate_of, result.segments, true);
-      INFO(problems(report));
-      CHECK(report.ok);
+    auto crossing_checked = [](const clmesh::Input &pslg, std::size_t crossings) {
+      const auto result = crossings_checked(pslg);
+      CHECK(added_points(result) == crossings);
+      CHECK(result.statistics.constraints.crossings == static_cast<long>(crossings));
       return result;
     };
-    const auto diagonals = crossing_checked({square, {{0, 2, 0}, {1, 3, 0}}, {}, {}}, 1);
-    CHECK(diagonals.added_points[0].x == 0.5);
-    CHECK(diagonals.added_points[0].y == 0.5);
-    CHECK(diagonals.stats.split_segments == 2);
+    const auto diagonals = crossing_checked(pslg_of(square, {{0, 2, 0}, {1, 3, 0}}), 1);
+    REQUIRE(diagonals.points.size() == square.size() + 1);
+    CHECK(diagonals.points[square.size()].x == 0.5);
+    CHECK(diagonals.points[square.size()].y == 0.5);
+    CHECK(diagonals.statistics.constraints.split_segments == 2);
     // A crossing close to an endpoint, by a tiny margin, is still a crossing.
-    crossing_checked({{{0, 0}, {1, 0}, {0.5, 1e-12}, {0.5, -1}, {0.5, 2}, {0.2, 0.7}},
-                      {{0, 1, 0}, {2, 3, 0}},
-                      {},
-                      {}},
+    crossing_checked(pslg_of({{0, 0}, {1, 0}, {0.5, 1e-12}, {0.5, -1}, {0.5, 2}, {0.2, 0.7}},
+                             {{0, 1, 0}, {2, 3, 0}}),
                      1);
   }
 }
 
 TEST_CASE("cdt: a grid of crossing segments among random points") {
-  Pslg pslg;
+  clmesh::Input pslg;
   pslg.points = fixtures::uniform(3000, 61);
   std::mt19937_64 rng(62);
   std::uniform_real_distribution<double> u(0.05, 0.95);
@@ -935,17 +959,9 @@ TEST_CASE("cdt: a grid of crossing segments among random points") {
     pslg.segments.push_back({a, a + 1, 5});
     pslg.segments.push_back({a + 2, a + 3, 6});
   }
-  const auto result = clmesh::constrained_delaunay(device(), pslg, whole_hull_options());
+  const auto result = crossings_checked(pslg);
   // Every horizontal line crosses every vertical one (near-horizontal lines may also cross).
-  CHECK(result.stats.crossings >= lines * lines);
-  CHECK(result.added_points.size() == static_cast<std::size_t>(result.stats.crossings));
-  std::vector<Point> points = pslg.points;
-  points.insert(points.end(), result.added_points.begin(), result.added_points.end());
-  const auto report =
-      clmesh::check_constrained(points, result.mesh.triangles, result.mesh.neighbors,
-                                result.mesh.duplicate_of, result.segments, true);
-  INFO(problems(report));
-  CHECK(report.ok);
+  CHECK(result.statistics.constraints.crossings >= lines * lines);
   // Each input segment is a chain through its crossing vertices: n + 1 pieces for n crossings.
   CHECK(result.segments.size() >=
         pslg.segments.size() + 2 * static_cast<std::size_t>(lines * lines));

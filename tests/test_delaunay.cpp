@@ -4,10 +4,7 @@
 // holds for degenerate input too).
 #include <doctest/doctest.h>
 
-#include "clmesh/check.hpp"
-#include "dt/delaunay.hpp"
-#include "clmesh/errors.hpp"
-#include "clmesh/io.hpp"
+#include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
 #include "test_support.hpp"
 
@@ -29,6 +26,7 @@ namespace {
 
 using test_support::device;
 using test_support::problems;
+using test_support::triangulate_points;
 
 #ifdef CLMESH_HAVE_CGAL
 // CGAL's triangles over input indices, each duplicate group named by its smallest index.
@@ -58,14 +56,22 @@ std::set<Triangle> cgal_triangles(const std::vector<Point> &points) {
 }
 #endif
 
-clmesh::DelaunayResult triangulate_and_check(const std::vector<Point> &points,
-                                             const clmesh::DelaunayOptions &options = {}) {
-  clmesh::DelaunayResult result = clmesh::delaunay(device(), points, options);
+clmesh::Mesh triangulate_and_check(const std::vector<Point> &points,
+                                   const clmesh::Options &options = {}) {
+  clmesh::Mesh result = triangulate_points(points, options);
+  const clmesh::DelaunayStats &stats = result.statistics.delaunay;
+  // The points are the input's, none added.
+  REQUIRE(result.input_points == static_cast<long>(points.size()));
+  REQUIRE(result.points.size() == points.size());
+  CHECK(test_support::starts_with(result.points, points));
+  REQUIRE(result.duplicate_of.size() == points.size());
   const auto report = clmesh::check_triangulation(points, result.triangles, result.neighbors,
                                                   result.duplicate_of, true);
   INFO(problems(report));
   CHECK(report.ok);
-  CHECK(result.stats.triangles == static_cast<long>(result.triangles.size()));
+  CHECK(stats.triangles == static_cast<long>(result.triangles.size()));
+  CHECK_FALSE(result.statistics.constrained);
+  CHECK_FALSE(result.statistics.refined);
   // Duplicates are named by the smallest index of their group.
   for (std::size_t i = 0; i < points.size(); ++i)
     if (result.duplicate_of[i] >= 0)
@@ -89,7 +95,7 @@ TEST_CASE("delaunay: thesis distributions equal CGAL") {
     // Every point outside the hull's octagon: the hull is found by dropping
     // the points inside its chords, then the hull is fanned.
     const auto result = triangulate_and_check(fixtures::ring(30000, 1e-3, 5));
-    CHECK(result.stats.construction == "hull_fan");
+    CHECK(result.statistics.delaunay.construction == "hull_fan");
   }
   SUBCASE("512x512 grid") { triangulate_and_check(fixtures::lattice(512)); }
 }
@@ -98,7 +104,7 @@ TEST_CASE("delaunay: degenerate input") {
   SUBCASE("full lattice, every quad cocircular") {
     const auto result = triangulate_and_check(fixtures::lattice(60));
     CHECK(result.triangles.size() == 2u * 59 * 59);
-    CHECK(result.stats.exact_predicate_calls > 0);
+    CHECK(result.statistics.delaunay.exact_predicate_calls > 0);
   }
   SUBCASE("heavy duplicates") {
     std::vector<Point> points;
@@ -106,7 +112,7 @@ TEST_CASE("delaunay: degenerate input") {
     for (int copy = 0; copy < 5; ++copy)
       points.insert(points.end(), base.begin(), base.end());
     const auto result = triangulate_and_check(points);
-    CHECK(result.stats.duplicates == 4 * 2000);
+    CHECK(result.statistics.delaunay.duplicates == 4 * 2000);
     for (int i = 2000; i < 10000; ++i)
       CHECK(result.duplicate_of[i] == i % 2000);
   }
@@ -116,7 +122,7 @@ TEST_CASE("delaunay: degenerate input") {
     points.push_back({9, 9});
     points.push_back({0, 0});
     const auto result = triangulate_and_check(points);
-    CHECK(result.stats.duplicates == 3);
+    CHECK(result.statistics.delaunay.duplicates == 3);
   }
   SUBCASE("a wheel: cocircular points around one vertex that owns every triangle") {
     std::vector<Point> points = {{0, 0}};
@@ -186,7 +192,7 @@ TEST_CASE("delaunay: all points collinear give no triangle") {
   for (int i = 0; i < 100; ++i)
     points.push_back({i * 0.5, i * 0.25});
   points.push_back({0, 0});
-  const auto result = clmesh::delaunay(device(), points);
+  const auto result = triangulate_points(points);
   CHECK(result.triangles.empty());
   CHECK(result.duplicate_of[100] == 0);
 }
@@ -220,26 +226,27 @@ TEST_CASE("delaunay: reference inputs") {
 
 TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   const auto points = fixtures::gaussian(20000, 8);
-  clmesh::DelaunayOptions options;
+  clmesh::Options options;
   options.tuning.work_group = 1;
-  const auto first = clmesh::delaunay(device(), points, options);
+  const auto first = triangulate_points(points, options);
   options.tuning.work_group = 256;
-  const auto second = clmesh::delaunay(device(), points, options);
+  const auto second = triangulate_points(points, options);
   options.tuning.work_group = 64;
-  const auto third = clmesh::delaunay(device(), points, options);
+  const auto third = triangulate_points(points, options);
   // The largest the device allows (PoCL: 4096; private arrays of every
   // work-item of a group must then fit a worker thread's stack).
   options.tuning.work_group = clmesh::max_work_group_size(device());
-  const auto largest = clmesh::delaunay(device(), points, options);
+  const auto largest = triangulate_points(points, options);
   CHECK(first.triangles == second.triangles);
   CHECK(first.neighbors == second.neighbors);
   CHECK(first.triangles == third.triangles);
   CHECK(first.triangles == largest.triangles);
-  CHECK(first.stats.flips == third.stats.flips);
-  CHECK(first.stats.construction == "voronoi");
-  CHECK(first.stats.dropped_sites == second.stats.dropped_sites);
-  CHECK(first.stats.construction_rounds == second.stats.construction_rounds);
-  CHECK(first.stats.missing_points == second.stats.missing_points);
+  CHECK(first.statistics.delaunay.flips == third.statistics.delaunay.flips);
+  CHECK(first.statistics.delaunay.construction == "voronoi");
+  CHECK(first.statistics.delaunay.dropped_sites == second.statistics.delaunay.dropped_sites);
+  CHECK(first.statistics.delaunay.construction_rounds ==
+        second.statistics.delaunay.construction_rounds);
+  CHECK(first.statistics.delaunay.missing_points == second.statistics.delaunay.missing_points);
 }
 
 // Short flip passes run in one work-group, pass after pass
@@ -249,19 +256,20 @@ TEST_CASE("delaunay: the same triangles whether short flip passes run in one wor
       {"gaussian", fixtures::gaussian(20000, 31)}, {"lattice", fixtures::lattice(120)}};
   for (const auto &[name, points] : inputs) {
     CAPTURE(name);
-    clmesh::DelaunayOptions options;
+    clmesh::Options options;
     options.tuning.group_pass_limit = 0;
-    const auto by_kernels = clmesh::delaunay(device(), points, options);
+    const auto by_kernels = triangulate_points(points, options);
     options.tuning.group_pass_limit = std::size_t{1} << 30;
-    const auto in_group = clmesh::delaunay(device(), points, options);
+    const auto in_group = triangulate_points(points, options);
     options.tuning.group_pass_limit = clmesh::Tuning{}.group_pass_limit;
     const auto mixed = triangulate_and_check(points, options);
     CHECK(by_kernels.triangles == in_group.triangles);
     CHECK(by_kernels.neighbors == in_group.neighbors);
     CHECK(by_kernels.triangles == mixed.triangles);
-    CHECK(by_kernels.stats.flips == in_group.stats.flips);
-    CHECK(by_kernels.stats.flip_passes == mixed.stats.flip_passes);
-    CHECK(by_kernels.stats.exact_predicate_calls == in_group.stats.exact_predicate_calls);
+    CHECK(by_kernels.statistics.delaunay.flips == in_group.statistics.delaunay.flips);
+    CHECK(by_kernels.statistics.delaunay.flip_passes == mixed.statistics.delaunay.flip_passes);
+    CHECK(by_kernels.statistics.delaunay.exact_predicate_calls ==
+          in_group.statistics.delaunay.exact_predicate_calls);
   }
 }
 
@@ -279,26 +287,27 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
     for (const int grid : {4, 16, 64, 0, 1024}) {
       CAPTURE(name);
       CAPTURE(grid);
-      clmesh::DelaunayOptions options;
+      clmesh::Options options;
       options.tuning.voronoi_construction = false;
-      const auto fan = clmesh::delaunay(device(), points, options);
-      CHECK(fan.stats.construction == "hull_fan");
+      const auto fan = triangulate_points(points, options);
+      CHECK(fan.statistics.delaunay.construction == "hull_fan");
       options.tuning.voronoi_construction = true;
       if (grid > 0) // 0: the default grid, chosen from the points
         options.tuning.grid = grid;
       const auto result = triangulate_and_check(points, options);
       CHECK(result.triangles == fan.triangles);
-      CHECK(result.stats.construction_rounds >= 1);
+      CHECK(result.statistics.delaunay.construction_rounds >= 1);
       if (grid == 0 && name.rfind("lattice", 0) != 0) { // the default grid: no fallback
-        CHECK(result.stats.construction == "voronoi");
-        CHECK(result.stats.constructed_triangles > static_cast<long>(points.size()) / 10);
-        CHECK(result.stats.missing_points < static_cast<long>(points.size()));
+        CHECK(result.statistics.delaunay.construction == "voronoi");
+        CHECK(result.statistics.delaunay.constructed_triangles >
+              static_cast<long>(points.size()) / 10);
+        CHECK(result.statistics.delaunay.missing_points < static_cast<long>(points.size()));
       }
       if (grid == 0 && name.rfind("lattice", 0) == 0) {
         // A pixel for every lattice point: one construction, nothing missing.
-        CHECK(result.stats.grid == 128 >> (name == "lattice" ? 0 : 1));
-        CHECK(result.stats.construction == "voronoi");
-        CHECK(result.stats.missing_points == 0);
+        CHECK(result.statistics.delaunay.grid == 128 >> (name == "lattice" ? 0 : 1));
+        CHECK(result.statistics.delaunay.construction == "voronoi");
+        CHECK(result.statistics.delaunay.missing_points == 0);
       }
     }
 }
@@ -309,34 +318,33 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
 // where leaving out all three sites fell back to the hull fan at 400k points.
 TEST_CASE("delaunay: the construction settles on a dense disk") {
   const auto points = fixtures::disk(400000, 41);
-  const clmesh::DelaunayResult result = clmesh::delaunay(device(), points);
+  const clmesh::Mesh result = triangulate_points(points);
   const auto report = clmesh::check_triangulation(points, result.triangles, result.neighbors,
                                                   result.duplicate_of, true);
   INFO(problems(report));
   CHECK(report.ok);
-  CHECK(result.stats.construction == "voronoi");
-  CHECK(result.stats.constructed_triangles > static_cast<long>(points.size()) / 4);
+  CHECK(result.statistics.delaunay.construction == "voronoi");
+  CHECK(result.statistics.delaunay.constructed_triangles > static_cast<long>(points.size()) / 4);
 }
 
 TEST_CASE("delaunay: bad input is refused with a typed error") {
-  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}}), clmesh::InputError);
-  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {1e300, 0}}), clmesh::InputError);
-  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {1e-300, 0}}), clmesh::InputError);
-  CHECK_THROWS_AS(clmesh::delaunay(device(), {{0, 0}, {1, 1}, {std::nan(""), 0}}),
-                  clmesh::InputError);
+  CHECK_THROWS_AS(triangulate_points({{0, 0}, {1, 1}}), clmesh::InputError);
+  CHECK_THROWS_AS(triangulate_points({{0, 0}, {1, 1}, {1e300, 0}}), clmesh::InputError);
+  CHECK_THROWS_AS(triangulate_points({{0, 0}, {1, 1}, {1e-300, 0}}), clmesh::InputError);
+  CHECK_THROWS_AS(triangulate_points({{0, 0}, {1, 1}, {std::nan(""), 0}}), clmesh::InputError);
 }
 
 TEST_CASE("voronoi banding: every pixel is coloured with a nearest site") {
   for (const int grid : {37, 64, 256}) {
     auto points = fixtures::gaussian(300, 9);
     points.push_back(points[5]); // a pixel shared by two points
-    clmesh::DelaunayOptions options;
-    options.want_voronoi_image = true;
+    clmesh::Options options;
+    options.voronoi_image = true;
     options.tuning.grid = grid;
-    const auto result = clmesh::delaunay(device(), points, options);
-    REQUIRE(result.stats.grid == grid);
-    REQUIRE(result.voronoi.size() == static_cast<std::size_t>(grid) * grid);
-    CHECK(result.stats.pixel_collisions >= 1);
+    const auto result = triangulate_points(points, options);
+    REQUIRE(result.statistics.delaunay.grid == grid);
+    REQUIRE(result.voronoi_image.size() == static_cast<std::size_t>(grid) * grid);
+    CHECK(result.statistics.delaunay.pixel_collisions >= 1);
     double min_x = points[0].x, min_y = points[0].y, max_x = min_x, max_y = min_y;
     for (const auto &p : points) {
       min_x = std::min(min_x, p.x), max_x = std::max(max_x, p.x);
@@ -350,7 +358,7 @@ TEST_CASE("voronoi banding: every pixel is coloured with a nearest site") {
     long wrong = 0;
     for (long y = 0; y < grid; ++y)
       for (long x = 0; x < grid; ++x) {
-        const int site = result.voronoi[y * grid + x];
+        const int site = result.voronoi_image[y * grid + x];
         REQUIRE(site >= 0);
         long best = -1;
         for (const auto &[px, py] : pixel) {

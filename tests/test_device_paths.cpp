@@ -13,7 +13,6 @@
 #include "test_support.hpp"
 
 #include <cstdlib>
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -41,23 +40,10 @@ void check_paths(Device &dev, bool cpu_paths) {
 #endif
 }
 
-bool same_points(const std::vector<Point> &a, const std::vector<Point> &b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0);
-}
-
+// The same mesh, and not an empty one.
 void check_same_mesh(const Mesh &a, const Mesh &b) {
   CHECK(!a.triangles.empty());
-  CHECK(a.triangles == b.triangles);
-  CHECK(a.neighbors == b.neighbors);
-  CHECK(a.duplicate_of == b.duplicate_of);
-  CHECK(same_points(a.points, b.points));
-  REQUIRE(a.segments.size() == b.segments.size());
-  for (std::size_t i = 0; i < a.segments.size(); ++i) {
-    CHECK(a.segments[i].a == b.segments[i].a);
-    CHECK(a.segments[i].b == b.segments[i].b);
-    CHECK(a.segments[i].marker == b.segments[i].marker);
-  }
+  test_support::check_same_mesh(a, b);
 }
 
 // Random points with random segments between them (crossings become

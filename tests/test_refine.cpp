@@ -56,9 +56,7 @@ clmesh::Options refine_options(double angle, double max_area = -1,
 }
 
 clmesh::Mesh refine(const std::vector<Point> &points, const clmesh::Options &options) {
-  clmesh::Input input;
-  input.points = points;
-  return clmesh::triangulate(device(), input, options);
+  return test_support::triangulate_points(points, options);
 }
 
 // The Steiner points a refined mesh holds.

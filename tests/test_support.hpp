@@ -1,11 +1,14 @@
 // Helpers shared by the device tests.
 #pragma once
 
-#include "clmesh/check.hpp"
-#include "clmesh/device.hpp"
+#include "clmesh/clmesh.hpp"
 
+#include <doctest/doctest.h>
+
+#include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace test_support {
 
@@ -13,6 +16,41 @@ namespace test_support {
 inline clmesh::Device &device() {
   static std::shared_ptr<clmesh::Device> opened = clmesh::open_device();
   return *opened;
+}
+
+// The mesh of a point set (no segments) with `options`, on device().
+inline clmesh::Mesh triangulate_points(const std::vector<clmesh::Point> &points,
+                                       const clmesh::Options &options = {}) {
+  clmesh::Input input;
+  input.points = points;
+  return clmesh::triangulate(device(), input, options);
+}
+
+// Whether `points` begins with `first`, bit for bit (a mesh keeps its input's
+// points first and unchanged).
+inline bool starts_with(const std::vector<clmesh::Point> &points,
+                        const std::vector<clmesh::Point> &first) {
+  return points.size() >= first.size() &&
+         (first.empty() ||
+          std::memcmp(points.data(), first.data(), first.size() * sizeof(clmesh::Point)) == 0);
+}
+
+// Both meshes the same: points bit for bit, triangles, links, duplicates,
+// markers, attributes and segments.
+inline void check_same_mesh(const clmesh::Mesh &a, const clmesh::Mesh &b) {
+  REQUIRE(a.points.size() == b.points.size());
+  CHECK(starts_with(a.points, b.points));
+  CHECK(a.input_points == b.input_points);
+  CHECK(a.triangles == b.triangles);
+  CHECK(a.neighbors == b.neighbors);
+  CHECK(a.duplicate_of == b.duplicate_of);
+  CHECK(a.point_markers == b.point_markers);
+  CHECK(a.point_attributes == b.point_attributes);
+  CHECK(a.triangle_attributes == b.triangle_attributes);
+  REQUIRE(a.segments.size() == b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i)
+    CHECK((a.segments[i].a == b.segments[i].a && a.segments[i].b == b.segments[i].b &&
+           a.segments[i].marker == b.segments[i].marker));
 }
 
 // A check report's problems, one per line, for failure messages.

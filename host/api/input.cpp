@@ -4,6 +4,7 @@
 #include "clmesh/errors.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace clmesh {
 
@@ -38,6 +39,19 @@ void validate(const Input &input) {
     throw InputError(source, 0,
                      "refining an existing mesh (its triangles or their maximum areas) is not "
                      "supported yet");
+  for (std::size_t i = 0; i < n; ++i)
+    for (const double value : {input.points[i].x, input.points[i].y}) {
+      const double magnitude = std::fabs(value);
+      if (!std::isfinite(value) || magnitude > kMaxCoordinate ||
+          (value != 0 && magnitude < kMinCoordinate)) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.17g", value);
+        throw InputError(where(input, "point " + std::to_string(i)), 0,
+                         std::string("coordinate ") + text +
+                             " is outside what exact arithmetic carries (non-zero magnitudes "
+                             "from 1e-50 to 1e50)");
+      }
+    }
   const auto count = static_cast<long>(n);
   for (std::size_t i = 0; i < input.segments.size(); ++i) {
     const Segment &s = input.segments[i];

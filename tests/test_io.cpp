@@ -1092,6 +1092,83 @@ TEST_CASE("OutputBatch writes all files on commit, none without it") {
   }
 }
 
+TEST_CASE("OutputBatch commits all or nothing") {
+  PointSet set;
+  set.points = {{0, 0}, {1, 0}, {0, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}};
+  const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
+  MeshView mesh;
+  mesh.set_points(set);
+  mesh.triangles = &triangles;
+  mesh.neighbors = &neighbors;
+
+  SUBCASE("an output name taken by a directory is refused before writing") {
+    TempDir dir;
+    fs::create_directory(dir.file("a.ele"));
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      const std::string words = dir.file("a.ele") + ": cannot write";
+      CHECK_THROWS_WITH_AS(batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{}),
+                           doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.ele"});
+    CHECK(fs::is_directory(dir.file("a.ele")));
+  }
+  SUBCASE("a directory appearing before the commit: nothing is moved") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+      batch.write_text(dir.file("a.json"), "{}\n");
+      fs::create_directory(dir.file("a.json"));
+      const std::string words = dir.file("a.json");
+      CHECK_THROWS_WITH_AS(batch.commit(), doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.json", "a.node"});
+    CHECK(read_file(dir.file("a.node")) == "old node");
+  }
+  SUBCASE("a rename failing midway: placed files removed, replaced ones restored") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    write_file(dir.file("a.neigh"), "old neigh");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+      batch.write_neigh(dir.file("a.neigh"), mesh, WriteOptions{});
+      batch.write_edge(dir.file("a.edge"), mesh, WriteOptions{});
+      // The .neigh's temporary vanishes: its rename fails after two others.
+      for (const std::string &name : dir.names())
+        if (name.rfind("a.neigh.tmp", 0) == 0)
+          fs::remove(dir.file(name));
+      const std::string words = dir.file("a.neigh");
+      CHECK_THROWS_WITH_AS(batch.commit(), doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.neigh", "a.node"});
+    CHECK(read_file(dir.file("a.node")) == "old node");
+    CHECK(read_file(dir.file("a.neigh")) == "old neigh");
+  }
+  SUBCASE("files with the temporary's or the backup's name are left alone") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    write_file(dir.file("a.node.tmp-clmesh"), "mine");
+    write_file(dir.file("a.node.old-clmesh"), "mine too");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.commit();
+    }
+    CHECK(dir.names() ==
+          std::vector<std::string>{"a.node", "a.node.old-clmesh", "a.node.tmp-clmesh"});
+    CHECK(read_file(dir.file("a.node.tmp-clmesh")) == "mine");
+    CHECK(read_file(dir.file("a.node.old-clmesh")) == "mine too");
+    CHECK(read_node(dir.file("a.node")).points.size() == 3);
+  }
+}
+
 // ---------------------------------------------------------------------------
 // Pictures
 // ---------------------------------------------------------------------------

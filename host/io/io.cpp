@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string_view>
 #include <unordered_map>
 
@@ -575,7 +576,7 @@ class TextFile {
 public:
   TextFile(const std::string &temporary, const std::string &final_path)
       : temporary_(temporary), final_(final_path) {
-    file_ = std::fopen(temporary.c_str(), "wb");
+    file_ = std::fopen(temporary.c_str(), "wbx"); // exclusive: a new file or an error
     if (!file_) {
       int error = errno;
       throw InputError(final_, 0, "cannot write: " + describe_errno(error));
@@ -696,11 +697,45 @@ OutputBatch::~OutputBatch() {
     std::remove(file.first.c_str());
 }
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// Whether anything (a file, a directory, a link, even a dangling one) has that name.
+bool name_taken(const std::string &path) {
+  std::error_code error;
+  return fs::symlink_status(path, error).type() != fs::file_type::not_found && !error;
+}
+
+// `stem`, or `stem` followed by ".1", ".2"... : the first name nothing has.
+std::string free_name(const std::string &stem) {
+  std::string name = stem;
+  for (int k = 1; name_taken(name); ++k)
+    name = stem + "." + std::to_string(k);
+  return name;
+}
+
+// An output file can replace a file or a link, never a directory.
+void check_target(const std::string &path) {
+  std::error_code error;
+  if (fs::symlink_status(path, error).type() == fs::file_type::directory)
+    throw InputError(path, 0, "cannot write: a directory has that name");
+}
+
+} // namespace
+
 std::string OutputBatch::temporary_for(const std::string &path) {
-  std::string temporary = path + ".tmp-clmesh";
-  for (const auto &file : files_)
-    if (file.second == path)
-      return temporary; // written again: replaces the earlier one
+  check_target(path);
+  // Written again: the earlier temporary is dropped, the new one replaces it.
+  for (auto file = files_.begin(); file != files_.end(); ++file)
+    if (file->second == path) {
+      std::remove(file->first.c_str());
+      files_.erase(file);
+      break;
+    }
+  // A name no file has, so that no file of the user's is ever overwritten
+  // (TextFile creates it exclusively).
+  std::string temporary = free_name(path + ".tmp-clmesh");
   files_.emplace_back(temporary, path);
   return temporary;
 }
@@ -871,15 +906,49 @@ void OutputBatch::write_text(const std::string &path, const std::string &content
 }
 
 void OutputBatch::commit() {
-  while (!files_.empty()) {
-    const auto &file = files_.front();
+  // Every target is checked before the first rename, so that the usual
+  // failure (a directory with an output's name) moves nothing.
+  for (const auto &file : files_)
+    check_target(file.second);
+  // Each file that is replaced is first renamed aside, so that a failure
+  // further on can put it back: a failed commit leaves no new file and
+  // changes no existing one.
+  struct Placed {
+    std::string path, backup; // backup: the replaced file's name meanwhile, empty if none
+  };
+  std::vector<Placed> placed;
+  auto roll_back = [&placed]() {
+    for (auto step = placed.rbegin(); step != placed.rend(); ++step) {
+      std::remove(step->path.c_str());
+      if (!step->backup.empty())
+        std::rename(step->backup.c_str(), step->path.c_str());
+    }
+  };
+  for (const auto &file : files_) {
+    Placed step{file.second, ""};
+    if (name_taken(file.second)) {
+      step.backup = free_name(file.second + ".old-clmesh");
+      if (std::rename(file.second.c_str(), step.backup.c_str()) != 0) {
+        int error = errno;
+        roll_back();
+        throw InputError(file.second, 0,
+                         "cannot replace the existing file: " + describe_errno(error));
+      }
+    }
     if (std::rename(file.first.c_str(), file.second.c_str()) != 0) {
       int error = errno;
+      if (!step.backup.empty())
+        std::rename(step.backup.c_str(), step.path.c_str());
+      roll_back();
       throw InputError(file.second, 0,
                        "cannot move the finished file into place: " + describe_errno(error));
     }
-    files_.erase(files_.begin());
+    placed.push_back(step);
   }
+  for (const Placed &step : placed)
+    if (!step.backup.empty())
+      std::remove(step.backup.c_str());
+  files_.clear();
 }
 
 // ---------------------------------------------------------------------------

@@ -101,9 +101,10 @@ std::vector<int> output_vertex_markers(const MeshView &mesh);
 // are renumbered consecutively in input order, as Triangle's -j does.
 std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options);
 
-// Output files are first written beside their final name and renamed into
-// place only when every file of the batch was written, so a failure never
-// leaves a partial file behind.
+// Output files are first written beside their final name (under a name no
+// file has) and renamed into place only when every file of the batch was
+// written, so a failure never leaves a partial file behind. Writing to a name
+// that a directory has is refused at once (InputError naming it).
 class OutputBatch {
 public:
   OutputBatch() = default;
@@ -122,7 +123,11 @@ public:
   void write_poly(const std::string &path, const MeshView &mesh, const std::vector<Point> &holes,
                   const std::vector<Region> &regions, const WriteOptions &options);
   void write_text(const std::string &path, const std::string &contents);
-  void commit(); // renames every temporary into place
+  // Renames every temporary into place, all or nothing: every target is
+  // checked first, a replaced file is kept aside until the end, and when a
+  // rename fails the files already placed are removed and the replaced ones
+  // restored before the InputError (naming the file) is thrown.
+  void commit();
 
 private:
   std::string temporary_for(const std::string &path);

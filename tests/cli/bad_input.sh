@@ -40,5 +40,18 @@ expect "bad option value" 2 "--work-group" -- --work-group zero good.node
 expect "two input files" 2 "good.node" -- good.node header.node
 expect "no input file" 2 "input" -- -z
 
+# Outputs are all or nothing: an output name taken by a directory, or in a
+# folder that does not exist, fails the run, which leaves no new file and
+# changes no existing one.
+mkdir good.1.ele
+expect "output name taken by a directory" 1 "good.1.ele" "directory" -- good.node
+printf 'old\n' > good.1.node
+expect "a directory among the outputs, an old file" 1 "good.1.ele" -- -en good.node
+[[ "$(cat good.1.node)" == "old" ]] || fail "a failed run changed good.1.node"
+rm good.1.node
+rmdir good.1.ele
+expect "output in a missing folder" 1 "no-such-folder/stats.json" -- \
+  --stats-json no-such-folder/stats.json good.node
+
 finish bad_input.sh
 echo "bad_input.sh: all checks passed"

@@ -328,6 +328,42 @@ TEST_CASE("read_node errors name the file and the line") {
   expect_input_error("4 2 0 0\n1 0 0\n# gone\n", 4, "1 of 4 vertices");
 }
 
+TEST_CASE("messages show input text escaped and whole") {
+  SUBCASE("printable and quote") {
+    CHECK(printable("plain 1.5e3 -x") == "plain 1.5e3 -x");
+    CHECK(printable(std::string("a\0b", 3)) == "a\\x00b");
+    CHECK(printable("\x1b[31mred\n\t\x7f") == "\\x1b[31mred\\x0a\\x09\\x7f");
+    CHECK(printable("caf\xc3\xa9 \xe2\x88\x9e") == "caf\xc3\xa9 \xe2\x88\x9e"); // UTF-8 kept
+    CHECK(printable("\xc2\x9b"
+                    "2J") == "\\xc2\\x9b"
+                             "2J");               // C1 control (CSI)
+    CHECK(printable("\xff\xc3") == "\\xff\\xc3"); // not UTF-8
+    CHECK(printable("\xc0\x80") == "\\xc0\\x80"); // overlong NUL
+    CHECK(printable(printable("\x1b\\x1b")) == printable("\x1b\\x1b"));
+    CHECK(quote(std::string("1\0", 2)) == "'1\\x00'");
+    const std::string quoted_long = quote(std::string(10000, '7'));
+    CHECK(quoted_long == "'" + std::string(256, '7') + "'...");
+  }
+  SUBCASE("an escape sequence in a coordinate") {
+    expect_input_error("3 2 0 0\n1 0 0\n2 1\x1b[2J 0\n3 0 1\n", 3,
+                       "x coordinate '1\\x1b[2J' of vertex 2 is not a number");
+  }
+  SUBCASE("a NUL byte in a coordinate neither ends the token nor the message") {
+    expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\0\x01\n3 0 1\n", 28), 3,
+                       "y coordinate '0\\x00\\x01' of vertex 2 is not a number");
+    expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\n3\0 0 1\n", 27), 4,
+                       "vertex id '3\\x00' is not an integer");
+  }
+  SUBCASE("a file name with control bytes") {
+    TempDir dir;
+    const std::string path = dir.file("bad\x1b[1m.node");
+    write_file(path, "x\n");
+    CHECK_THROWS_WITH_AS(read_node(path),
+                         doctest::Contains("bad\\x1b[1m.node:1: malformed header: 'x'"),
+                         InputError);
+  }
+}
+
 // ---------------------------------------------------------------------------
 // read_poly
 // ---------------------------------------------------------------------------

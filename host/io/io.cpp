@@ -101,8 +101,6 @@ private:
   long line_ = 0;
 };
 
-std::string quoted(std::string_view token) { return "'" + std::string(token) + "'"; }
-
 // Whole token as a double (strtod syntax); false when it is not one.
 bool parse_double(std::string_view token, double &value) {
   char small[64];
@@ -118,7 +116,7 @@ bool parse_double(std::string_view token, double &value) {
   }
   char *end = nullptr;
   value = std::strtod(text, &end);
-  return end != text && *end == '\0';
+  return !token.empty() && end == text + token.size(); // a NUL byte inside is no number
 }
 
 // Whole token as a base-10 integer; false when it is not one or overflows.
@@ -131,7 +129,7 @@ bool parse_long(std::string_view token, long &value) {
   char *end = nullptr;
   errno = 0;
   value = std::strtol(small, &end, 10);
-  return end != small && *end == '\0' && errno != ERANGE;
+  return end == small + token.size() && errno != ERANGE; // a NUL byte inside is no number
 }
 
 // The vertex section of a .node or .poly file: header, then the vertices.
@@ -145,17 +143,17 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   // Triangle lets trailing header fields default to 2, 0, 0.
   long count = 0, dimension = 2, attributes = 0, markers = 0;
   if (!parse_long(fields[0], count) || count < 0 || count > INT32_MAX)
-    reader.fail("malformed header: " + quoted(fields[0]) + " is not a vertex count (expected '" +
+    reader.fail("malformed header: " + quote(fields[0]) + " is not a vertex count (expected '" +
                 header_shape + "')");
   if (fields.size() > 1 && !parse_long(fields[1], dimension))
-    reader.fail("malformed header: dimension " + quoted(fields[1]) + " is not an integer");
+    reader.fail("malformed header: dimension " + quote(fields[1]) + " is not an integer");
   if (dimension != 2)
     reader.fail("dimension must be 2, got " + std::to_string(dimension));
   if (fields.size() > 2 &&
       (!parse_long(fields[2], attributes) || attributes < 0 || attributes > 1000000))
-    reader.fail("malformed header: " + quoted(fields[2]) + " is not an attribute count");
+    reader.fail("malformed header: " + quote(fields[2]) + " is not an attribute count");
   if (fields.size() > 3 && (!parse_long(fields[3], markers) || (markers != 0 && markers != 1)))
-    reader.fail("malformed header: boundary marker flag " + quoted(fields[3]) + " must be 0 or 1");
+    reader.fail("malformed header: boundary marker flag " + quote(fields[3]) + " must be 0 or 1");
 
   PointSet set;
   set.attribute_count = static_cast<int>(attributes);
@@ -184,7 +182,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
     }
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("vertex id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("vertex id " + quote(fields[0]) + " is not an integer");
     if (i == 0) {
       if (id != 0 && id != 1)
         reader.fail("first vertex id must be 0 or 1, got " + std::to_string(id));
@@ -197,14 +195,14 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
     for (int k = 0; k < 2; ++k) {
       const char *axis = k == 0 ? "x" : "y";
       if (!parse_double(fields[1 + k], xy[k]))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) + " is not a number");
       if (!std::isfinite(xy[k]))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) + " is not finite");
       const double magnitude = std::fabs(xy[k]);
       if (magnitude > kMaxCoordinate || (xy[k] != 0 && magnitude < kMinCoordinate))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) +
                     " is outside what exact arithmetic carries (non-zero magnitudes from 1e-50 "
                     "to 1e50)");
@@ -214,7 +212,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
       double value = 0;
       std::string_view token = fields[3 + static_cast<std::size_t>(a)];
       if (!parse_double(token, value))
-        reader.fail("attribute " + quoted(token) + " of vertex " + std::to_string(id) +
+        reader.fail("attribute " + quote(token) + " of vertex " + std::to_string(id) +
                     " is not a number");
       set.attributes.push_back(value);
     }
@@ -222,7 +220,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
       long marker = 0;
       std::string_view token = fields[wanted - 1];
       if (!parse_long(token, marker) || marker < INT_MIN || marker > INT_MAX)
-        reader.fail("boundary marker " + quoted(token) + " of vertex " + std::to_string(id) +
+        reader.fail("boundary marker " + quote(token) + " of vertex " + std::to_string(id) +
                     " is not an integer");
       set.markers.push_back(static_cast<int>(marker));
     }
@@ -235,8 +233,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
 long read_count(FieldReader &reader, std::string_view token, const std::string &shape) {
   long count = 0;
   if (!parse_long(token, count) || count < 0 || count > INT32_MAX)
-    reader.fail("malformed header: " + quoted(token) + " is not a count (expected '" + shape +
-                "')");
+    reader.fail("malformed header: " + quote(token) + " is not a count (expected '" + shape + "')");
   return count;
 }
 
@@ -252,9 +249,9 @@ double read_number(FieldReader &reader, std::string_view token, const char *what
                    const std::string &owner) {
   double value = 0;
   if (!parse_double(token, value))
-    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not a number");
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not a number");
   if (!std::isfinite(value))
-    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not finite");
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not finite");
   return value;
 }
 
@@ -303,7 +300,7 @@ PolyFile read_poly(const std::string &path) {
   if (fields.size() > 1) {
     long markers = 0;
     if (!parse_long(fields[1], markers) || (markers != 0 && markers != 1))
-      reader.fail("malformed header: segment marker flag " + quoted(fields[1]) + " must be 0 or 1");
+      reader.fail("malformed header: segment marker flag " + quote(fields[1]) + " must be 0 or 1");
     poly.segment_markers = markers == 1;
   }
   const std::size_t reserve =
@@ -314,7 +311,7 @@ PolyFile read_poly(const std::string &path) {
     next_line(reader, path, fields, progress(i, segment_count, "segments"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("segment id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("segment id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 3)
       reader.fail(
           "segment " + std::to_string(id) + " has " +
@@ -324,7 +321,7 @@ PolyFile read_poly(const std::string &path) {
     long ends[2];
     for (int k = 0; k < 2; ++k) {
       if (!parse_long(fields[1 + k], ends[k]))
-        reader.fail("endpoint " + quoted(fields[1 + k]) + " of segment " + std::to_string(id) +
+        reader.fail("endpoint " + quote(fields[1 + k]) + " of segment " + std::to_string(id) +
                     " is not an integer");
       if (ends[k] < first || ends[k] >= first + n)
         reader.fail("endpoint " + std::to_string(ends[k]) + " of segment " + std::to_string(id) +
@@ -338,7 +335,7 @@ PolyFile read_poly(const std::string &path) {
     if (poly.segment_markers && fields.size() > 3) {
       long marker = 0;
       if (!parse_long(fields[3], marker) || marker < INT_MIN || marker > INT_MAX)
-        reader.fail("boundary marker " + quoted(fields[3]) + " of segment " + std::to_string(id) +
+        reader.fail("boundary marker " + quote(fields[3]) + " of segment " + std::to_string(id) +
                     " is not an integer");
       segment.marker = static_cast<int>(marker);
     }
@@ -353,7 +350,7 @@ PolyFile read_poly(const std::string &path) {
     next_line(reader, path, fields, progress(i, hole_count, "holes"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("hole id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("hole id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 3)
       reader.fail("hole " + std::to_string(id) + " has " +
                   (fields.size() == 1 ? "no coordinates" : "no y coordinate") +
@@ -372,7 +369,7 @@ PolyFile read_poly(const std::string &path) {
     next_line(reader, path, fields, progress(i, region_count, "regions"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("region id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("region id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 4)
       reader.fail("region " + std::to_string(id) + " has " + std::to_string(fields.size() - 1) +
                   " number(s), expected at least 3 (x, y, attribute[, maximum area])");

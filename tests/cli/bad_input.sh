@@ -40,6 +40,25 @@ expect "bad option value" 2 "--work-group" -- --work-group zero good.node
 expect "two input files" 2 "good.node" -- good.node header.node
 expect "no input file" 2 "input" -- -z
 
+# Input text in messages is quoted with its control bytes escaped: no escape
+# sequence reaches the terminal, a NUL byte cuts neither token nor message.
+printf '3 2 0 0\n1 0 0\n2 1\033[2J 0\n3 0 1\n' > esc.node
+printf '3 2 0 0\n1 0 0\n2 1 0\000\n3 0 1\n' > nul.node
+no_escape_byte() {
+  if grep -q $'\033' "$work/log/err"; then
+    fail "$1: an escape byte reached stderr"
+  fi
+}
+expect "escape sequence in a coordinate" 1 "esc.node:3:" "'1\\x1b[2J'" "not a number" -- esc.node
+no_escape_byte "escape sequence in a coordinate"
+expect "NUL byte in a coordinate" 1 "nul.node:3:" "'0\\x00'" "of vertex 2 is not a number" \
+  -- nul.node
+expect "escape sequence in a switch" 2 "unknown switch -\\x1b" "'-z\\x1b[2J'" \
+  -- $'-z\033[2J' good.node
+no_escape_byte "escape sequence in a switch"
+expect "escape sequence in a file name" 1 "bad\\x1b[1m.node" "cannot open" -- $'bad\033[1m.node'
+no_escape_byte "escape sequence in a file name"
+
 # Outputs are all or nothing: an output name taken by a directory, or in a
 # folder that does not exist, fails the run, which leaves no new file and
 # changes no existing one.

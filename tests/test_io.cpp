@@ -319,6 +319,9 @@ TEST_CASE("read_node errors name the file and the line") {
   expect_input_error("3 2 0 0\n1 0 0\n2 1e999 0\n3 0 1\n", 3, "not finite");
   expect_input_error("3 2 1 0\n1 0 0 1\n2 1 0 zz\n3 0 1 1\n", 3, "attribute");
   expect_input_error("3 2 0 1\n1 0 0 1\n2 1 0 1.5\n3 0 1 1\n", 3, "boundary marker");
+  expect_input_error("3 2 0 1\n1 0 0 1\n2 1 0\n3 0 1 1\n", 3, "expected 4");
+  expect_input_error("3 2 1 0\n1 0 0 1\n2 1 0 nan\n3 0 1 1\n", 3,
+                     "attribute 'nan' of vertex 2 is not finite");
   expect_input_error("3 2 0 0\n1.0 0 0\n", 2, "not an integer");
   expect_input_error("3 2 0 0\n2 0 0\n", 2, "first vertex id must be 0 or 1");
   expect_input_error("3 2 0 0\n1 0 0\n3 1 0\n2 0 1\n", 3, "out of sequence");
@@ -509,7 +512,7 @@ TEST_CASE("read_poly: comments, optional fields, regions") {
   TempDir dir;
   write_file(dir.file("p.poly"), "# square with a hole\n4 2 0 1 # header\n"
                                  "0 0 0 3\n1 1 0 0\n2 1 1 0\n3 0 1 0\n"
-                                 "\n4 1\n0 0 1 7\n1 1 2\n2 2 3 -1 extra\n3 3 0 0\n"
+                                 "\n4 1\n0 0 1 7\n1 1 2 0\n2 2 3 -1 extra\n3 3 0 0\n"
                                  "1\n0 0.5 0.5\n"
                                  "3\n0 0.1 0.1 5 0.25\n1 0.2 0.2 6\n2 0.3 0.3 7 -1\n");
   const PolyFile poly = read_poly(dir.file("p.poly"));
@@ -518,7 +521,7 @@ TEST_CASE("read_poly: comments, optional fields, regions") {
   REQUIRE(poly.segments.size() == 4);
   CHECK(poly.segment_markers);
   CHECK(poly.segments[0].marker == 7);
-  CHECK(poly.segments[1].marker == 0); // omitted: 0, as in Triangle
+  CHECK(poly.segments[1].marker == 0);
   CHECK(poly.segments[2].marker == -1);
   CHECK(poly.segment_lines == std::vector<long>{9, 10, 11, 12});
   REQUIRE(poly.regions.size() == 3);
@@ -562,6 +565,10 @@ TEST_CASE("read_poly errors name the file and the line") {
   expect_poly_error(tri + "1 0\n7 0 2\n", 6, "endpoint 0 of segment 7 is out of range");
   expect_poly_error(tri + "1 0\n1 1 5\n", 6, "numbered 1 to 3");
   expect_poly_error(tri + "1 1\n1 1 2 m\n", 6, "boundary marker 'm'");
+  // A marker that the header announces is required, as in a .node file.
+  expect_poly_error(tri + "2 1\n1 1 2 5\n2 2 3\n", 7,
+                    "segment 2 has no boundary marker (the section header announces one");
+  expect_poly_error(tri + "2 1\n1 1 2\n2 2 3 4\n", 6, "segment 1 has no boundary marker");
   // Holes.
   const std::string segs = tri + "1 1\n1 1 2 0\n"; // lines 5-6
   expect_poly_error(segs, 7, "before the hole section");
@@ -578,6 +585,10 @@ TEST_CASE("read_poly errors name the file and the line") {
   expect_poly_error(holes + "1\n1 0.2 0.2\n", 9, "expected at least 3");
   expect_poly_error(holes + "1\n1 0.2 0.2 a\n", 9, "attribute 'a' of region 1");
   expect_poly_error(holes + "1\n1 0.2 0.2 1 big\n", 9, "maximum area 'big'");
+  // The .node beside a .poly: the same rules as any .node file.
+  const std::map<std::string, std::string> no_marker = {
+      {"bad.node", "3 2 0 1\n1 0 0 1\n2 1 0\n3 0 1 1\n"}};
+  expect_poly_error("0 2 0 0\n1 0\n1 1 2\n0\n", 3, "expected 4", no_marker, "bad.node");
   CHECK_NOTHROW(read_text(tri)); // (the same vertices are a valid .node)
 }
 

@@ -132,6 +132,17 @@ bool parse_long(std::string_view token, long &value) {
   return end == small + token.size() && errno != ERANGE; // a NUL byte inside is no number
 }
 
+// A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
+double read_number(FieldReader &reader, std::string_view token, const char *what,
+                   const std::string &owner) {
+  double value = 0;
+  if (!parse_double(token, value))
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not a number");
+  if (!std::isfinite(value))
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not finite");
+  return value;
+}
+
 // The vertex section of a .node or .poly file: header, then the vertices.
 PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   std::vector<std::string_view> fields;
@@ -208,14 +219,10 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
                     "to 1e50)");
     }
     set.points.push_back(Point{xy[0], xy[1]});
-    for (long a = 0; a < attributes; ++a) {
-      double value = 0;
-      std::string_view token = fields[3 + static_cast<std::size_t>(a)];
-      if (!parse_double(token, value))
-        reader.fail("attribute " + quote(token) + " of vertex " + std::to_string(id) +
-                    " is not a number");
-      set.attributes.push_back(value);
-    }
+    // Finite, as the attributes of regions are.
+    for (long a = 0; a < attributes; ++a)
+      set.attributes.push_back(read_number(reader, fields[3 + static_cast<std::size_t>(a)],
+                                           "attribute", "of vertex " + std::to_string(id)));
     if (set.has_markers) {
       long marker = 0;
       std::string_view token = fields[wanted - 1];
@@ -242,17 +249,6 @@ void next_line(FieldReader &reader, const std::string &path, std::vector<std::st
                const std::string &missing) {
   if (!reader.next(fields))
     throw InputError(path, reader.eof_line(), "file ends " + missing);
-}
-
-// A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
-double read_number(FieldReader &reader, std::string_view token, const char *what,
-                   const std::string &owner) {
-  double value = 0;
-  if (!parse_double(token, value))
-    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not a number");
-  if (!std::isfinite(value))
-    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not finite");
-  return value;
 }
 
 // "n of m <items>" for premature ends of file.
@@ -318,6 +314,11 @@ PolyFile read_poly(const std::string &path) {
           (fields.size() == 1 ? std::string("no endpoints") : std::string("only one endpoint")) +
           " (expected id, endpoint, endpoint" +
           (poly.segment_markers ? ", boundary marker)" : ")"));
+    // As in a .node file, a marker that the section header announces must be there.
+    if (poly.segment_markers && fields.size() < 4)
+      reader.fail("segment " + std::to_string(id) +
+                  " has no boundary marker (the section header announces one: expected id, "
+                  "endpoint, endpoint, boundary marker)");
     long ends[2];
     for (int k = 0; k < 2; ++k) {
       if (!parse_long(fields[1 + k], ends[k]))
@@ -331,8 +332,7 @@ PolyFile read_poly(const std::string &path) {
     Segment segment;
     segment.a = static_cast<int32_t>(ends[0] - first);
     segment.b = static_cast<int32_t>(ends[1] - first);
-    // As in Triangle, a missing marker is 0.
-    if (poly.segment_markers && fields.size() > 3) {
+    if (poly.segment_markers) {
       long marker = 0;
       if (!parse_long(fields[3], marker) || marker < INT_MIN || marker > INT_MAX)
         reader.fail("boundary marker " + quote(fields[3]) + " of segment " + std::to_string(id) +

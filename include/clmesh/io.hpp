@@ -27,7 +27,9 @@ struct PolyFile {
   PointSet points;
   std::string node_path; // that .node file; empty when the vertices are in the .poly
   // Segments with 0-based endpoints (the file's numbering removed); markers
-  // are 0 when the file has none (segment_markers false) or a line omits it.
+  // are 0 when the file has none (segment_markers false). As in a .node file,
+  // a line without the marker that its section header announces is an error
+  // (Triangle reads 0); the only optional field is a region's maximum area.
   std::vector<Segment> segments;
   bool segment_markers = false;
   std::vector<long> segment_lines; // line of each segment in the .poly, for messages

@@ -351,11 +351,12 @@ TEST_CASE("messages show input text escaped and whole") {
     expect_input_error("3 2 0 0\n1 0 0\n2 1\x1b[2J 0\n3 0 1\n", 3,
                        "x coordinate '1\\x1b[2J' of vertex 2 is not a number");
   }
-  SUBCASE("a NUL byte in a coordinate neither ends the token nor the message") {
+  SUBCASE("a NUL byte neither ends a line nor the message") {
     expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\0\x01\n3 0 1\n", 28), 3,
-                       "y coordinate '0\\x00\\x01' of vertex 2 is not a number");
+                       "the line holds a NUL byte");
     expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\n3\0 0 1\n", 27), 4,
-                       "vertex id '3\\x00' is not an integer");
+                       "the line holds a NUL byte");
+    expect_input_error(std::string("3 2 0 0 # \0\n", 13), 1, "the line holds a NUL byte");
   }
   SUBCASE("a file name with control bytes") {
     TempDir dir;
@@ -364,6 +365,59 @@ TEST_CASE("messages show input text escaped and whole") {
     CHECK_THROWS_WITH_AS(read_node(path),
                          doctest::Contains("bad\\x1b[1m.node:1: malformed header: 'x'"),
                          InputError);
+  }
+}
+
+TEST_CASE("read_node reads as it parses: endless, binary and huge inputs") {
+  SUBCASE("lines across the reader's 4 MiB chunks") {
+    TempDir dir;
+    const int count = 300000; // about 9 MB
+    std::string text = "# many\n" + std::to_string(count) + " 2 0 1\n";
+    for (int i = 0; i < count; ++i)
+      text += std::to_string(i + 1) + " " + std::to_string(i * 0.5) + " " +
+              std::to_string(i % 977) + " " + std::to_string(i % 3) + "\n";
+    write_file(dir.file("many.node"), text);
+    const PointSet set = read_node(dir.file("many.node"));
+    REQUIRE(set.points.size() == static_cast<std::size_t>(count));
+    for (int i : {0, 1, 139810, 139811, count / 2, count - 1}) {
+      CHECK(set.points[i].x == doctest::Approx(i * 0.5));
+      CHECK(set.points[i].y == i % 977);
+      CHECK(set.markers[i] == i % 3);
+    }
+  }
+  SUBCASE("a line with many attributes may be longer than 1 MiB") {
+    TempDir dir;
+    const int attributes = 60000;
+    std::string values;
+    for (int a = 0; a < attributes; ++a)
+      values += " 0.12345678901234567890";
+    std::string text = "3 2 " + std::to_string(attributes) + " 0\n";
+    for (int i = 1; i <= 3; ++i)
+      text += std::to_string(i) + " " + std::to_string(i % 2) + " " + std::to_string(i / 2) +
+              values + "\n";
+    write_file(dir.file("wide.node"), text);
+    const PointSet set = read_node(dir.file("wide.node"));
+    CHECK(set.attributes.size() == 3u * attributes);
+  }
+  SUBCASE("a line longer than a section can hold") {
+    expect_input_error("3 2 0 0\n" + std::string(3 << 20, '7') + "\n", 2, "longer than");
+    expect_input_error(std::string(3 << 20, 'y'), 1, "longer than");
+  }
+  SUBCASE("a vertex count that the file cannot hold fails at its end") {
+    expect_input_error("2000000000 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", 5,
+                       "after 3 of 2000000000 vertices");
+    expect_input_error("1000000000000 2 0 0\n1 0 0\n", 1, "not a vertex count");
+  }
+  SUBCASE("device files") {
+    TempDir dir;
+    std::error_code error;
+    fs::create_symlink("/dev/zero", dir.file("zero.node"), error);
+    if (!error && fs::exists("/dev/zero"))
+      CHECK_THROWS_WITH_AS(read_node(dir.file("zero.node")),
+                           doctest::Contains("zero.node:1: the line holds a NUL byte"), InputError);
+    fs::create_symlink("/dev/urandom", dir.file("random.node"), error);
+    if (!error && fs::exists("/dev/urandom"))
+      CHECK_THROWS_AS(read_node(dir.file("random.node")), InputError);
   }
 }
 

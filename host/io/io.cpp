@@ -13,8 +13,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <string_view>
 #include <unordered_map>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace clmesh {
 
@@ -25,46 +30,36 @@ namespace {
 
 std::string describe_errno(int error) { return error != 0 ? std::strerror(error) : "I/O error"; }
 
-std::string read_whole_file(const std::string &path) {
-  std::FILE *file = std::fopen(path.c_str(), "rb");
-  if (!file) {
-    int error = errno;
-    throw InputError(path, 0, "cannot open: " + describe_errno(error));
-  }
-  std::string data;
-  char buffer[1 << 16];
-  for (;;) {
-    std::size_t got = std::fread(buffer, 1, sizeof buffer, file);
-    data.append(buffer, got);
-    if (got < sizeof buffer)
-      break;
-  }
-  bool failed = std::ferror(file) != 0;
-  int error = errno;
-  std::fclose(file);
-  if (failed)
-    throw InputError(path, 0, "cannot read: " + describe_errno(error));
-  return data;
-}
-
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// Splits a file into lines of whitespace-separated fields; '#' starts a
-// comment that runs to the end of the line; lines without fields are skipped.
+// Reads a file line by line through a buffer of a few MiB and splits each
+// line into whitespace-separated fields; '#' starts a comment that runs to the
+// end of the line; lines without fields are skipped. Nothing is read beyond
+// what the caller asks for, so memory follows the data accepted and an
+// endless or binary input (a FIFO, /dev/zero) stops at its first bad line: a
+// NUL byte ends the reading with an error on its line as soon as it is read,
+// and so does a line longer than the longest a section can hold.
 class FieldReader {
 public:
-  FieldReader(std::string path, std::string data)
-      : path_(std::move(path)), data_(std::move(data)) {}
+  explicit FieldReader(std::string path) : path_(std::move(path)) {
+    descriptor_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (descriptor_ < 0) {
+      int error = errno;
+      throw InputError(path_, 0, "cannot open: " + describe_errno(error));
+    }
+    struct stat info;
+    if (::fstat(descriptor_, &info) == 0 && S_ISREG(info.st_mode))
+      file_size_ = static_cast<std::size_t>(info.st_size);
+    buffer_.reset(new char[capacity_]);
+  }
+  FieldReader(const FieldReader &) = delete;
+  FieldReader &operator=(const FieldReader &) = delete;
+  ~FieldReader() { ::close(descriptor_); }
 
   // Next line holding at least one field; false at the end of the file.
   bool next(std::vector<std::string_view> &fields) {
-    while (pos_ < data_.size()) {
-      std::size_t end = data_.find('\n', pos_);
-      if (end == std::string::npos)
-        end = data_.size();
-      ++line_;
-      std::string_view text(data_.data() + pos_, end - pos_);
-      pos_ = end + 1;
+    std::string_view text;
+    while (next_line(text)) {
       fields.clear();
       std::size_t i = 0;
       while (i < text.size() && text[i] != '#') {
@@ -86,19 +81,87 @@ public:
   long line() const { return line_; }
   // Line on which the end of the file lies: the last line, or the empty line
   // after it when the file ends with a newline.
-  long eof_line() const {
-    return static_cast<long>(std::count(data_.begin(), data_.end(), '\n')) + 1;
-  }
+  long eof_line() const { return newlines_ + 1; }
   [[noreturn]] void fail(const std::string &problem) const {
     throw InputError(path_, line_, problem);
   }
-  std::size_t size() const { return data_.size(); }
+  // Most bytes the file can hold: its size when it is a regular file, else 0
+  // (unknown). Bounds what a header's count may reserve.
+  std::size_t size_bound() const { return file_size_; }
+  // Lets lines grow by 64 bytes for each of `fields` fields (a vertex line
+  // with many attributes).
+  void expect_fields(std::size_t fields) { longest_ = std::max(longest_, kLongest + 64 * fields); }
 
 private:
+  static constexpr std::size_t kChunk = std::size_t(4) << 20;   // bytes read at a time
+  static constexpr std::size_t kLongest = std::size_t(1) << 20; // longest line by default
+
+  // Next line, without its '\n'; false at the end of the file.
+  bool next_line(std::string_view &text) {
+    line_ = newlines_ + 1;
+    for (;;) {
+      // [begin_, scanned_) is known to hold neither '\n' nor NUL.
+      const char *from = buffer_.get() + scanned_;
+      const auto *newline = static_cast<const char *>(std::memchr(from, '\n', end_ - scanned_));
+      const std::size_t stop = newline ? static_cast<std::size_t>(newline - buffer_.get()) : end_;
+      if (std::memchr(from, '\0', stop - scanned_))
+        fail("the line holds a NUL byte (not a text file?)");
+      scanned_ = stop;
+      if (scanned_ - begin_ > longest_)
+        fail("the line is longer than " + std::to_string(longest_) + " bytes (not a " +
+             "text file?)");
+      if (newline) {
+        text = std::string_view(buffer_.get() + begin_, stop - begin_);
+        begin_ = scanned_ = stop + 1;
+        ++newlines_;
+        return true;
+      }
+      if (at_end_) {
+        if (begin_ == end_)
+          return false;
+        text = std::string_view(buffer_.get() + begin_, end_ - begin_);
+        begin_ = scanned_ = end_;
+        return true;
+      }
+      fill();
+    }
+  }
+
+  // Reads more after the line begun, which moves to the front of the buffer.
+  void fill() {
+    if (begin_ > 0) {
+      std::memmove(buffer_.get(), buffer_.get() + begin_, end_ - begin_);
+      end_ -= begin_;
+      scanned_ -= begin_;
+      begin_ = 0;
+    }
+    if (end_ == capacity_) { // a line longer than the buffer: twice the room
+      std::unique_ptr<char[]> larger(new char[capacity_ * 2]);
+      std::memcpy(larger.get(), buffer_.get(), end_);
+      buffer_ = std::move(larger);
+      capacity_ *= 2;
+    }
+    ssize_t got;
+    do
+      got = ::read(descriptor_, buffer_.get() + end_, capacity_ - end_);
+    while (got < 0 && errno == EINTR);
+    if (got < 0) {
+      int error = errno;
+      throw InputError(path_, 0, "cannot read: " + describe_errno(error));
+    }
+    end_ += static_cast<std::size_t>(got);
+    at_end_ = got == 0;
+  }
+
   std::string path_;
-  std::string data_;
-  std::size_t pos_ = 0;
-  long line_ = 0;
+  int descriptor_ = -1;
+  std::size_t file_size_ = 0;
+  std::unique_ptr<char[]> buffer_;
+  std::size_t capacity_ = kChunk;
+  std::size_t begin_ = 0, scanned_ = 0, end_ = 0; // line begun, scanned up to, data up to
+  bool at_end_ = false;
+  long line_ = 0, newlines_ = 0;
+  std::size_t longest_ = kLongest;
 };
 
 // Whole token as a double (strtod syntax); false when it is not one.
@@ -170,13 +233,15 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   set.attribute_count = static_cast<int>(attributes);
   set.has_markers = markers == 1;
   // Do not trust the header for the allocation: a vertex line is at least 6 bytes.
-  std::size_t reserve = std::min<std::size_t>(static_cast<std::size_t>(count), reader.size() / 6);
+  std::size_t reserve =
+      std::min<std::size_t>(static_cast<std::size_t>(count), reader.size_bound() / 6);
   set.points.reserve(reserve);
   set.attributes.reserve(reserve * static_cast<std::size_t>(attributes));
   if (set.has_markers)
     set.markers.reserve(reserve);
 
   const std::size_t wanted = 3 + static_cast<std::size_t>(attributes) + (set.has_markers ? 1 : 0);
+  reader.expect_fields(wanted);
   for (long i = 0; i < count; ++i) {
     if (!reader.next(fields))
       throw InputError(path, reader.eof_line(),
@@ -259,12 +324,12 @@ std::string progress(long done, long count, const char *items) {
 } // namespace
 
 PointSet read_node(const std::string &path) {
-  FieldReader reader(path, read_whole_file(path));
+  FieldReader reader(path);
   return read_vertex_section(reader, path);
 }
 
 PolyFile read_poly(const std::string &path) {
-  FieldReader reader(path, read_whole_file(path));
+  FieldReader reader(path);
   std::vector<std::string_view> fields;
   PolyFile poly;
 
@@ -300,7 +365,7 @@ PolyFile read_poly(const std::string &path) {
     poly.segment_markers = markers == 1;
   }
   const std::size_t reserve =
-      std::min<std::size_t>(static_cast<std::size_t>(segment_count), reader.size() / 6);
+      std::min<std::size_t>(static_cast<std::size_t>(segment_count), reader.size_bound() / 6);
   poly.segments.reserve(reserve);
   poly.segment_lines.reserve(reserve);
   for (long i = 0; i < segment_count; ++i) {

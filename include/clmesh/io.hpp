@@ -2,7 +2,11 @@
 //
 // Readers accept '#' comments anywhere on a line, blank lines, and 0- or
 // 1-based numbering (decided by the first id). Every problem is reported as
-// an InputError naming the file and line.
+// an InputError naming the file and line, the input text it quotes escaped
+// (clmesh::quote). They parse as they read, a few MiB at a time, and stop at
+// the first bad line: a line holding a NUL byte or longer than a section can
+// hold is one, so that an endless or binary input (a FIFO, /dev/zero) ends
+// at once, and memory follows the data accepted, never a header's count.
 #pragma once
 
 #include "clmesh/geometry.hpp"

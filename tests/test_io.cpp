@@ -1130,16 +1130,21 @@ TEST_CASE("-j drops duplicate vertices and renumbers the rest") {
 // OutputBatch
 // ---------------------------------------------------------------------------
 
-TEST_CASE("OutputBatch writes all files on commit, none without it") {
+// A mesh of one triangle, for the batch tests.
+struct OneTriangle {
   PointSet set;
-  set.points = {{0, 0}, {1, 0}, {0, 1}};
   const std::vector<Triangle> triangles = {{0, 1, 2}};
   const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
   MeshView mesh;
-  mesh.set_points(set);
-  mesh.triangles = &triangles;
-  mesh.neighbors = &neighbors;
+  OneTriangle() {
+    set.points = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.set_points(set);
+    mesh.triangles = &triangles;
+    mesh.neighbors = &neighbors;
+  }
+};
 
+TEST_CASE_FIXTURE(OneTriangle, "OutputBatch writes all files on commit, none without it") {
   SUBCASE("not committed: nothing is left") {
     TempDir dir;
     {
@@ -1193,16 +1198,7 @@ TEST_CASE("OutputBatch writes all files on commit, none without it") {
   }
 }
 
-TEST_CASE("OutputBatch commits all or nothing") {
-  PointSet set;
-  set.points = {{0, 0}, {1, 0}, {0, 1}};
-  const std::vector<Triangle> triangles = {{0, 1, 2}};
-  const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
-  MeshView mesh;
-  mesh.set_points(set);
-  mesh.triangles = &triangles;
-  mesh.neighbors = &neighbors;
-
+TEST_CASE_FIXTURE(OneTriangle, "OutputBatch commits all or nothing") {
   SUBCASE("an output name taken by a directory is refused before writing") {
     TempDir dir;
     fs::create_directory(dir.file("a.ele"));

@@ -345,7 +345,8 @@ PolyFile read_poly(const std::string &path) {
     if (!probe) {
       int error = errno;
       throw InputError(path, header_line,
-                       "the vertex count is 0, so the vertices must be in " + poly.node_path +
+                       "the vertex count is 0, so the vertices must be in " +
+                           printable(poly.node_path) +
                            ", which cannot be opened: " + describe_errno(error));
     }
     std::fclose(probe);

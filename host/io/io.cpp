@@ -976,39 +976,44 @@ void OutputBatch::commit() {
   // Each file that is replaced is first renamed aside, so that a failure
   // further on can put it back: a failed commit leaves no new file and
   // changes no existing one.
-  struct Placed {
+  struct Step {
     std::string path, backup; // backup: the replaced file's name meanwhile, empty if none
+    bool placed = false;      // the new file is at path
   };
-  std::vector<Placed> placed;
-  auto roll_back = [&placed]() {
-    for (auto step = placed.rbegin(); step != placed.rend(); ++step) {
-      std::remove(step->path.c_str());
-      if (!step->backup.empty())
-        std::rename(step->backup.c_str(), step->path.c_str());
+  std::vector<Step> steps;
+  // Undoes the steps so far, last first; says which replaced file could not
+  // be put back, and where it is.
+  auto roll_back = [&steps]() {
+    std::string kept;
+    for (auto step = steps.rbegin(); step != steps.rend(); ++step) {
+      if (step->placed)
+        std::remove(step->path.c_str());
+      if (!step->backup.empty() && std::rename(step->backup.c_str(), step->path.c_str()) != 0)
+        kept += "; the file it replaced is kept as " + printable(step->backup);
     }
+    return kept;
   };
   for (const auto &file : files_) {
-    Placed step{file.second, ""};
-    if (name_taken(file.second)) {
-      step.backup = free_name(file.second + ".old-clmesh");
-      if (std::rename(file.second.c_str(), step.backup.c_str()) != 0) {
-        int error = errno;
-        roll_back();
-        throw InputError(file.second, 0,
-                         "cannot replace the existing file: " + describe_errno(error));
-      }
+    const std::string &path = file.second;
+    steps.push_back(Step{path, "", false});
+    Step &step = steps.back();
+    const char *problem = nullptr;
+    if (name_taken(path)) {
+      const std::string backup = free_name(path + ".old-clmesh");
+      if (std::rename(path.c_str(), backup.c_str()) != 0)
+        problem = "cannot replace the existing file: ";
+      else
+        step.backup = backup;
     }
-    if (std::rename(file.first.c_str(), file.second.c_str()) != 0) {
-      int error = errno;
-      if (!step.backup.empty())
-        std::rename(step.backup.c_str(), step.path.c_str());
-      roll_back();
-      throw InputError(file.second, 0,
-                       "cannot move the finished file into place: " + describe_errno(error));
+    if (!problem && std::rename(file.first.c_str(), path.c_str()) != 0)
+      problem = "cannot move the finished file into place: ";
+    if (problem) {
+      const int error = errno;
+      throw InputError(path, 0, problem + describe_errno(error) + roll_back());
     }
-    placed.push_back(step);
+    step.placed = true;
   }
-  for (const Placed &step : placed)
+  for (const Step &step : steps)
     if (!step.backup.empty())
       std::remove(step.backup.c_str());
   files_.clear();

@@ -120,7 +120,7 @@ long parse_count(const std::string &option, const std::string &value, long min, 
   const long number = std::strtol(value.c_str(), &end, 10);
   if (value.empty() || *end != '\0' || errno == ERANGE || number < min || number > max)
     throw clmesh::OptionError(option + " needs an integer from " + std::to_string(min) + " to " +
-                              std::to_string(max) + ", got '" + value + "'");
+                              std::to_string(max) + ", got " + clmesh::quote(value));
   return number;
 }
 
@@ -155,14 +155,15 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
   } else if (name == "--construction") {
     const std::string construction = take_value();
     if (construction != "voronoi" && construction != "fan")
-      throw clmesh::OptionError("--construction takes voronoi or fan, not '" + construction + "'");
+      throw clmesh::OptionError("--construction takes voronoi or fan, not " +
+                                clmesh::quote(construction));
     tuning.voronoi_construction = construction == "voronoi";
   } else if (name == "--work-group") {
     tuning.work_group = static_cast<std::size_t>(parse_count(name, take_value(), 1, 1 << 16));
   } else if (name == "--refine") {
     const std::string algorithm = take_value();
     if (algorithm != "qm" && algorithm != "qmv")
-      throw clmesh::OptionError("--refine takes qm or qmv, not '" + algorithm + "'");
+      throw clmesh::OptionError("--refine takes qm or qmv, not " + clmesh::quote(algorithm));
     tuning.use(algorithm == "qm" ? clmesh::RefineAlgorithm::qm : clmesh::RefineAlgorithm::qmv);
     command.generated_by += " --refine " + algorithm; // it changes the mesh
   } else if (name == "--stats-json") {
@@ -177,8 +178,8 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
   } else if (name == "--version") {
     set_flag(command.version);
   } else {
-    throw clmesh::OptionError("unknown option " + name + "; long options: " + kLongOptions +
-                              "; switches: " + clmesh::supported_switches());
+    throw clmesh::OptionError("unknown option " + clmesh::quote(name) + "; long options: " +
+                              kLongOptions + "; switches: " + clmesh::supported_switches());
   }
   return i;
 }
@@ -202,10 +203,10 @@ CommandLine parse(int argc, char **argv) {
     if (arg.size() > 1 && arg[0] == '-')
       clmesh::parse_switches(arg, command.options);
     else if (!command.input.empty())
-      throw clmesh::OptionError("more than one input file: '" + command.input + "' and '" + arg +
-                                "'");
+      throw clmesh::OptionError("more than one input file: " + clmesh::quote(command.input) +
+                                " and " + clmesh::quote(arg));
     else if (arg.empty() || arg == "-")
-      throw clmesh::OptionError("'" + arg + "' is not an input file name");
+      throw clmesh::OptionError(clmesh::quote(arg) + " is not an input file name");
     else
       command.input = arg;
     command.generated_by += " " + arg;
@@ -233,7 +234,7 @@ FileNames file_names(const CommandLine &command) {
   if (ends_with(base, ".poly"))
     base.resize(base.size() - 5);
   if (ends_with(base, ".ele") || ends_with(base, ".area"))
-    throw clmesh::OptionError(base +
+    throw clmesh::OptionError(clmesh::printable(base) +
                               ": .ele/.area input (-r, refining a mesh) is not supported yet");
   FileNames names;
   names.input = base + (command.options.pslg ? ".poly" : ".node");
@@ -438,7 +439,7 @@ int run(const CommandLine &command) {
   const clmesh::CheckReport report = clmesh::check_mesh(input, mesh, options);
   if (!report.ok) {
     for (const std::string &problem : report.problems)
-      std::fprintf(stderr, "clmesh: check: %s\n", problem.c_str());
+      std::fprintf(stderr, "clmesh: check: %s\n", clmesh::printable(problem).c_str());
     std::fprintf(stderr, "clmesh: the mesh failed the check (-C)\n");
     return 1;
   }
@@ -474,15 +475,15 @@ int main(int argc, char **argv) {
     return run(command);
   } catch (const clmesh::OptionError &error) { // the command line's mistakes
     std::fflush(stdout);
-    std::fprintf(stderr, "clmesh: %s\n", error.what());
+    std::fprintf(stderr, "clmesh: %s\n", clmesh::printable(error.what()).c_str());
     return 2;
   } catch (const clmesh::Error &error) {
     std::fflush(stdout);
-    std::fprintf(stderr, "clmesh: %s\n", error.what());
+    std::fprintf(stderr, "clmesh: %s\n", clmesh::printable(error.what()).c_str());
     return 1;
   } catch (const std::exception &error) {
     std::fflush(stdout);
-    std::fprintf(stderr, "clmesh: unexpected error: %s\n", error.what());
+    std::fprintf(stderr, "clmesh: unexpected error: %s\n", clmesh::printable(error.what()).c_str());
     return 1;
   }
 }

@@ -319,6 +319,9 @@ TEST_CASE("read_node errors name the file and the line") {
   expect_input_error("3 2 0 0\n1 0 0\n2 1e999 0\n3 0 1\n", 3, "not finite");
   expect_input_error("3 2 1 0\n1 0 0 1\n2 1 0 zz\n3 0 1 1\n", 3, "attribute");
   expect_input_error("3 2 0 1\n1 0 0 1\n2 1 0 1.5\n3 0 1 1\n", 3, "boundary marker");
+  expect_input_error("3 2 0 1\n1 0 0 1\n2 1 0\n3 0 1 1\n", 3, "expected 4");
+  expect_input_error("3 2 1 0\n1 0 0 1\n2 1 0 nan\n3 0 1 1\n", 3,
+                     "attribute 'nan' of vertex 2 is not finite");
   expect_input_error("3 2 0 0\n1.0 0 0\n", 2, "not an integer");
   expect_input_error("3 2 0 0\n2 0 0\n", 2, "first vertex id must be 0 or 1");
   expect_input_error("3 2 0 0\n1 0 0\n3 1 0\n2 0 1\n", 3, "out of sequence");
@@ -326,6 +329,96 @@ TEST_CASE("read_node errors name the file and the line") {
   expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", 5, "3 of 4 vertices");
   expect_input_error("4 2 0 0\n1 0 0\n2 1 0\n3 0 1", 4, "3 of 4 vertices");
   expect_input_error("4 2 0 0\n1 0 0\n# gone\n", 4, "1 of 4 vertices");
+}
+
+TEST_CASE("messages show input text escaped and whole") {
+  SUBCASE("printable and quote") {
+    CHECK(printable("plain 1.5e3 -x") == "plain 1.5e3 -x");
+    CHECK(printable(std::string("a\0b", 3)) == "a\\x00b");
+    CHECK(printable("\x1b[31mred\n\t\x7f") == "\\x1b[31mred\\x0a\\x09\\x7f");
+    CHECK(printable("caf\xc3\xa9 \xe2\x88\x9e") == "caf\xc3\xa9 \xe2\x88\x9e"); // UTF-8 kept
+    CHECK(printable("\xc2\x9b"
+                    "2J") == "\\xc2\\x9b"
+                             "2J");               // C1 control (CSI)
+    CHECK(printable("\xff\xc3") == "\\xff\\xc3"); // not UTF-8
+    CHECK(printable("\xc0\x80") == "\\xc0\\x80"); // overlong NUL
+    CHECK(printable(printable("\x1b\\x1b")) == printable("\x1b\\x1b"));
+    CHECK(quote(std::string("1\0", 2)) == "'1\\x00'");
+    const std::string quoted_long = quote(std::string(10000, '7'));
+    CHECK(quoted_long == "'" + std::string(256, '7') + "'...");
+  }
+  SUBCASE("an escape sequence in a coordinate") {
+    expect_input_error("3 2 0 0\n1 0 0\n2 1\x1b[2J 0\n3 0 1\n", 3,
+                       "x coordinate '1\\x1b[2J' of vertex 2 is not a number");
+  }
+  SUBCASE("a NUL byte neither ends a line nor the message") {
+    expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\0\x01\n3 0 1\n", 28), 3,
+                       "the line holds a NUL byte");
+    expect_input_error(std::string("3 2 0 0\n1 0 0\n2 1 0\n3\0 0 1\n", 27), 4,
+                       "the line holds a NUL byte");
+    expect_input_error(std::string("3 2 0 0 # \0\n", 13), 1, "the line holds a NUL byte");
+  }
+  SUBCASE("a file name with control bytes") {
+    TempDir dir;
+    const std::string path = dir.file("bad\x1b[1m.node");
+    write_file(path, "x\n");
+    CHECK_THROWS_WITH_AS(read_node(path),
+                         doctest::Contains("bad\\x1b[1m.node:1: malformed header: 'x'"),
+                         InputError);
+  }
+}
+
+TEST_CASE("read_node reads as it parses: endless, binary and huge inputs") {
+  SUBCASE("lines across the reader's 4 MiB chunks") {
+    TempDir dir;
+    const int count = 300000; // about 9 MB
+    std::string text = "# many\n" + std::to_string(count) + " 2 0 1\n";
+    for (int i = 0; i < count; ++i)
+      text += std::to_string(i + 1) + " " + std::to_string(i * 0.5) + " " +
+              std::to_string(i % 977) + " " + std::to_string(i % 3) + "\n";
+    write_file(dir.file("many.node"), text);
+    const PointSet set = read_node(dir.file("many.node"));
+    REQUIRE(set.points.size() == static_cast<std::size_t>(count));
+    for (int i : {0, 1, 139810, 139811, count / 2, count - 1}) {
+      CHECK(set.points[i].x == doctest::Approx(i * 0.5));
+      CHECK(set.points[i].y == i % 977);
+      CHECK(set.markers[i] == i % 3);
+    }
+  }
+  SUBCASE("a line with many attributes may be longer than 1 MiB") {
+    TempDir dir;
+    const int attributes = 60000;
+    std::string values;
+    for (int a = 0; a < attributes; ++a)
+      values += " 0.12345678901234567890";
+    std::string text = "3 2 " + std::to_string(attributes) + " 0\n";
+    for (int i = 1; i <= 3; ++i)
+      text += std::to_string(i) + " " + std::to_string(i % 2) + " " + std::to_string(i / 2) +
+              values + "\n";
+    write_file(dir.file("wide.node"), text);
+    const PointSet set = read_node(dir.file("wide.node"));
+    CHECK(set.attributes.size() == 3u * attributes);
+  }
+  SUBCASE("a line longer than a section can hold") {
+    expect_input_error("3 2 0 0\n" + std::string(3 << 20, '7') + "\n", 2, "longer than");
+    expect_input_error(std::string(3 << 20, 'y'), 1, "longer than");
+  }
+  SUBCASE("a vertex count that the file cannot hold fails at its end") {
+    expect_input_error("2000000000 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", 5,
+                       "after 3 of 2000000000 vertices");
+    expect_input_error("1000000000000 2 0 0\n1 0 0\n", 1, "not a vertex count");
+  }
+  SUBCASE("device files") {
+    TempDir dir;
+    std::error_code error;
+    fs::create_symlink("/dev/zero", dir.file("zero.node"), error);
+    if (!error && fs::exists("/dev/zero"))
+      CHECK_THROWS_WITH_AS(read_node(dir.file("zero.node")),
+                           doctest::Contains("zero.node:1: the line holds a NUL byte"), InputError);
+    fs::create_symlink("/dev/urandom", dir.file("random.node"), error);
+    if (!error && fs::exists("/dev/urandom"))
+      CHECK_THROWS_AS(read_node(dir.file("random.node")), InputError);
+  }
 }
 
 // ---------------------------------------------------------------------------
@@ -473,7 +566,7 @@ TEST_CASE("read_poly: comments, optional fields, regions") {
   TempDir dir;
   write_file(dir.file("p.poly"), "# square with a hole\n4 2 0 1 # header\n"
                                  "0 0 0 3\n1 1 0 0\n2 1 1 0\n3 0 1 0\n"
-                                 "\n4 1\n0 0 1 7\n1 1 2\n2 2 3 -1 extra\n3 3 0 0\n"
+                                 "\n4 1\n0 0 1 7\n1 1 2 0\n2 2 3 -1 extra\n3 3 0 0\n"
                                  "1\n0 0.5 0.5\n"
                                  "3\n0 0.1 0.1 5 0.25\n1 0.2 0.2 6\n2 0.3 0.3 7 -1\n");
   const PolyFile poly = read_poly(dir.file("p.poly"));
@@ -482,7 +575,7 @@ TEST_CASE("read_poly: comments, optional fields, regions") {
   REQUIRE(poly.segments.size() == 4);
   CHECK(poly.segment_markers);
   CHECK(poly.segments[0].marker == 7);
-  CHECK(poly.segments[1].marker == 0); // omitted: 0, as in Triangle
+  CHECK(poly.segments[1].marker == 0);
   CHECK(poly.segments[2].marker == -1);
   CHECK(poly.segment_lines == std::vector<long>{9, 10, 11, 12});
   REQUIRE(poly.regions.size() == 3);
@@ -526,6 +619,10 @@ TEST_CASE("read_poly errors name the file and the line") {
   expect_poly_error(tri + "1 0\n7 0 2\n", 6, "endpoint 0 of segment 7 is out of range");
   expect_poly_error(tri + "1 0\n1 1 5\n", 6, "numbered 1 to 3");
   expect_poly_error(tri + "1 1\n1 1 2 m\n", 6, "boundary marker 'm'");
+  // A marker that the header announces is required, as in a .node file.
+  expect_poly_error(tri + "2 1\n1 1 2 5\n2 2 3\n", 7,
+                    "segment 2 has no boundary marker (the section header announces one");
+  expect_poly_error(tri + "2 1\n1 1 2\n2 2 3 4\n", 6, "segment 1 has no boundary marker");
   // Holes.
   const std::string segs = tri + "1 1\n1 1 2 0\n"; // lines 5-6
   expect_poly_error(segs, 7, "before the hole section");
@@ -542,6 +639,10 @@ TEST_CASE("read_poly errors name the file and the line") {
   expect_poly_error(holes + "1\n1 0.2 0.2\n", 9, "expected at least 3");
   expect_poly_error(holes + "1\n1 0.2 0.2 a\n", 9, "attribute 'a' of region 1");
   expect_poly_error(holes + "1\n1 0.2 0.2 1 big\n", 9, "maximum area 'big'");
+  // The .node beside a .poly: the same rules as any .node file.
+  const std::map<std::string, std::string> no_marker = {
+      {"bad.node", "3 2 0 1\n1 0 0 1\n2 1 0\n3 0 1 1\n"}};
+  expect_poly_error("0 2 0 0\n1 0\n1 1 2\n0\n", 3, "expected 4", no_marker, "bad.node");
   CHECK_NOTHROW(read_text(tri)); // (the same vertices are a valid .node)
 }
 
@@ -1029,16 +1130,21 @@ TEST_CASE("-j drops duplicate vertices and renumbers the rest") {
 // OutputBatch
 // ---------------------------------------------------------------------------
 
-TEST_CASE("OutputBatch writes all files on commit, none without it") {
+// A mesh of one triangle, for the batch tests.
+struct OneTriangle {
   PointSet set;
-  set.points = {{0, 0}, {1, 0}, {0, 1}};
   const std::vector<Triangle> triangles = {{0, 1, 2}};
   const std::vector<std::array<int32_t, 3>> neighbors = {{-1, -1, -1}};
   MeshView mesh;
-  mesh.set_points(set);
-  mesh.triangles = &triangles;
-  mesh.neighbors = &neighbors;
+  OneTriangle() {
+    set.points = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.set_points(set);
+    mesh.triangles = &triangles;
+    mesh.neighbors = &neighbors;
+  }
+};
 
+TEST_CASE_FIXTURE(OneTriangle, "OutputBatch writes all files on commit, none without it") {
   SUBCASE("not committed: nothing is left") {
     TempDir dir;
     {
@@ -1089,6 +1195,74 @@ TEST_CASE("OutputBatch writes all files on commit, none without it") {
       }
     }
     CHECK(dir.names().empty());
+  }
+}
+
+TEST_CASE_FIXTURE(OneTriangle, "OutputBatch commits all or nothing") {
+  SUBCASE("an output name taken by a directory is refused before writing") {
+    TempDir dir;
+    fs::create_directory(dir.file("a.ele"));
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      const std::string words = dir.file("a.ele") + ": cannot write";
+      CHECK_THROWS_WITH_AS(batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{}),
+                           doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.ele"});
+    CHECK(fs::is_directory(dir.file("a.ele")));
+  }
+  SUBCASE("a directory appearing before the commit: nothing is moved") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+      batch.write_text(dir.file("a.json"), "{}\n");
+      fs::create_directory(dir.file("a.json"));
+      const std::string words = dir.file("a.json");
+      CHECK_THROWS_WITH_AS(batch.commit(), doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.json", "a.node"});
+    CHECK(read_file(dir.file("a.node")) == "old node");
+  }
+  SUBCASE("a rename failing midway: placed files removed, replaced ones restored") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    write_file(dir.file("a.neigh"), "old neigh");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.write_ele(dir.file("a.ele"), mesh, WriteOptions{});
+      batch.write_neigh(dir.file("a.neigh"), mesh, WriteOptions{});
+      batch.write_edge(dir.file("a.edge"), mesh, WriteOptions{});
+      // The .neigh's temporary vanishes: its rename fails after two others.
+      for (const std::string &name : dir.names())
+        if (name.rfind("a.neigh.tmp", 0) == 0)
+          fs::remove(dir.file(name));
+      const std::string words = dir.file("a.neigh");
+      CHECK_THROWS_WITH_AS(batch.commit(), doctest::Contains(words.c_str()), InputError);
+    }
+    CHECK(dir.names() == std::vector<std::string>{"a.neigh", "a.node"});
+    CHECK(read_file(dir.file("a.node")) == "old node");
+    CHECK(read_file(dir.file("a.neigh")) == "old neigh");
+  }
+  SUBCASE("files with the temporary's or the backup's name are left alone") {
+    TempDir dir;
+    write_file(dir.file("a.node"), "old node");
+    write_file(dir.file("a.node.tmp-clmesh"), "mine");
+    write_file(dir.file("a.node.old-clmesh"), "mine too");
+    {
+      OutputBatch batch;
+      batch.write_node(dir.file("a.node"), mesh, WriteOptions{});
+      batch.commit();
+    }
+    CHECK(dir.names() ==
+          std::vector<std::string>{"a.node", "a.node.old-clmesh", "a.node.tmp-clmesh"});
+    CHECK(read_file(dir.file("a.node.tmp-clmesh")) == "mine");
+    CHECK(read_file(dir.file("a.node.old-clmesh")) == "mine too");
+    CHECK(read_node(dir.file("a.node")).points.size() == 3);
   }
 }
 

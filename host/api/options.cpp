@@ -71,7 +71,7 @@ double switch_value(const std::string &number, char letter) {
   char *end = nullptr;
   const double value = std::strtod(number.c_str(), &end);
   if (number.empty() || *end != '\0' || !std::isfinite(value))
-    throw OptionError(std::string("-") + letter + ": '" + number + "' is not a number");
+    throw OptionError(std::string("-") + letter + ": " + quote(number) + " is not a number");
   return value;
 }
 
@@ -106,7 +106,7 @@ void parse_switches(const std::string &switches, Options &options) {
       const std::string number = switch_number(switches, i);
       const double value = number.empty() ? 0 : switch_value(number, 'S');
       if (value < 0 || value > 1e18)
-        throw OptionError("-S: '" + number + "' is not a number of points");
+        throw OptionError("-S: " + quote(number) + " is not a number of points");
       options.max_steiner = static_cast<long>(value);
       break;
     }
@@ -164,8 +164,8 @@ void parse_switches(const std::string &switches, Options &options) {
           unsupported = letter;
         break;
       }
-      throw OptionError(std::string("unknown switch -") + letter + " in '" + switches +
-                        "'; valid switches: " + kSupported);
+      throw OptionError("unknown switch -" + printable(std::string(1, letter)) + " in " +
+                        quote(switches) + "; valid switches: " + kSupported);
     }
   }
   if (unsupported == 'a')

@@ -12,8 +12,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <memory>
 #include <string_view>
 #include <unordered_map>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace clmesh {
 
@@ -24,46 +30,36 @@ namespace {
 
 std::string describe_errno(int error) { return error != 0 ? std::strerror(error) : "I/O error"; }
 
-std::string read_whole_file(const std::string &path) {
-  std::FILE *file = std::fopen(path.c_str(), "rb");
-  if (!file) {
-    int error = errno;
-    throw InputError(path, 0, "cannot open: " + describe_errno(error));
-  }
-  std::string data;
-  char buffer[1 << 16];
-  for (;;) {
-    std::size_t got = std::fread(buffer, 1, sizeof buffer, file);
-    data.append(buffer, got);
-    if (got < sizeof buffer)
-      break;
-  }
-  bool failed = std::ferror(file) != 0;
-  int error = errno;
-  std::fclose(file);
-  if (failed)
-    throw InputError(path, 0, "cannot read: " + describe_errno(error));
-  return data;
-}
-
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// Splits a file into lines of whitespace-separated fields; '#' starts a
-// comment that runs to the end of the line; lines without fields are skipped.
+// Reads a file line by line through a buffer of a few MiB and splits each
+// line into whitespace-separated fields; '#' starts a comment that runs to the
+// end of the line; lines without fields are skipped. Nothing is read beyond
+// what the caller asks for, so memory follows the data accepted and an
+// endless or binary input (a FIFO, /dev/zero) stops at its first bad line: a
+// NUL byte ends the reading with an error on its line as soon as it is read,
+// and so does a line longer than the longest a section can hold.
 class FieldReader {
 public:
-  FieldReader(std::string path, std::string data)
-      : path_(std::move(path)), data_(std::move(data)) {}
+  explicit FieldReader(std::string path) : path_(std::move(path)) {
+    descriptor_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (descriptor_ < 0) {
+      int error = errno;
+      throw InputError(path_, 0, "cannot open: " + describe_errno(error));
+    }
+    struct stat info;
+    if (::fstat(descriptor_, &info) == 0 && S_ISREG(info.st_mode))
+      file_size_ = static_cast<std::size_t>(info.st_size);
+    buffer_.reset(new char[capacity_]);
+  }
+  FieldReader(const FieldReader &) = delete;
+  FieldReader &operator=(const FieldReader &) = delete;
+  ~FieldReader() { ::close(descriptor_); }
 
   // Next line holding at least one field; false at the end of the file.
   bool next(std::vector<std::string_view> &fields) {
-    while (pos_ < data_.size()) {
-      std::size_t end = data_.find('\n', pos_);
-      if (end == std::string::npos)
-        end = data_.size();
-      ++line_;
-      std::string_view text(data_.data() + pos_, end - pos_);
-      pos_ = end + 1;
+    std::string_view text;
+    while (next_line(text)) {
       fields.clear();
       std::size_t i = 0;
       while (i < text.size() && text[i] != '#') {
@@ -85,22 +81,88 @@ public:
   long line() const { return line_; }
   // Line on which the end of the file lies: the last line, or the empty line
   // after it when the file ends with a newline.
-  long eof_line() const {
-    return static_cast<long>(std::count(data_.begin(), data_.end(), '\n')) + 1;
-  }
+  long eof_line() const { return newlines_ + 1; }
   [[noreturn]] void fail(const std::string &problem) const {
     throw InputError(path_, line_, problem);
   }
-  std::size_t size() const { return data_.size(); }
+  // Most bytes the file can hold: its size when it is a regular file, else 0
+  // (unknown). Bounds what a header's count may reserve.
+  std::size_t size_bound() const { return file_size_; }
+  // Lets lines grow by 64 bytes for each of `fields` fields (a vertex line
+  // with many attributes).
+  void expect_fields(std::size_t fields) { longest_ = std::max(longest_, kLongest + 64 * fields); }
 
 private:
-  std::string path_;
-  std::string data_;
-  std::size_t pos_ = 0;
-  long line_ = 0;
-};
+  static constexpr std::size_t kChunk = std::size_t(4) << 20;   // bytes read at a time
+  static constexpr std::size_t kLongest = std::size_t(1) << 20; // longest line by default
 
-std::string quoted(std::string_view token) { return "'" + std::string(token) + "'"; }
+  // Next line, without its '\n'; false at the end of the file.
+  bool next_line(std::string_view &text) {
+    line_ = newlines_ + 1;
+    for (;;) {
+      // [begin_, scanned_) is known to hold neither '\n' nor NUL.
+      const char *from = buffer_.get() + scanned_;
+      const auto *newline = static_cast<const char *>(std::memchr(from, '\n', end_ - scanned_));
+      const std::size_t stop = newline ? static_cast<std::size_t>(newline - buffer_.get()) : end_;
+      if (std::memchr(from, '\0', stop - scanned_))
+        fail("the line holds a NUL byte (not a text file?)");
+      scanned_ = stop;
+      if (scanned_ - begin_ > longest_)
+        fail("the line is longer than " + std::to_string(longest_) + " bytes (not a " +
+             "text file?)");
+      if (newline) {
+        text = std::string_view(buffer_.get() + begin_, stop - begin_);
+        begin_ = scanned_ = stop + 1;
+        ++newlines_;
+        return true;
+      }
+      if (at_end_) {
+        if (begin_ == end_)
+          return false;
+        text = std::string_view(buffer_.get() + begin_, end_ - begin_);
+        begin_ = scanned_ = end_;
+        return true;
+      }
+      fill();
+    }
+  }
+
+  // Reads more after the line begun, which moves to the front of the buffer.
+  void fill() {
+    if (begin_ > 0) {
+      std::memmove(buffer_.get(), buffer_.get() + begin_, end_ - begin_);
+      end_ -= begin_;
+      scanned_ -= begin_;
+      begin_ = 0;
+    }
+    if (end_ == capacity_) { // a line longer than the buffer: twice the room
+      std::unique_ptr<char[]> larger(new char[capacity_ * 2]);
+      std::memcpy(larger.get(), buffer_.get(), end_);
+      buffer_ = std::move(larger);
+      capacity_ *= 2;
+    }
+    ssize_t got;
+    do
+      got = ::read(descriptor_, buffer_.get() + end_, capacity_ - end_);
+    while (got < 0 && errno == EINTR);
+    if (got < 0) {
+      int error = errno;
+      throw InputError(path_, 0, "cannot read: " + describe_errno(error));
+    }
+    end_ += static_cast<std::size_t>(got);
+    at_end_ = got == 0;
+  }
+
+  std::string path_;
+  int descriptor_ = -1;
+  std::size_t file_size_ = 0;
+  std::unique_ptr<char[]> buffer_;
+  std::size_t capacity_ = kChunk;
+  std::size_t begin_ = 0, scanned_ = 0, end_ = 0; // line begun, scanned up to, data up to
+  bool at_end_ = false;
+  long line_ = 0, newlines_ = 0;
+  std::size_t longest_ = kLongest;
+};
 
 // Whole token as a double (strtod syntax); false when it is not one.
 bool parse_double(std::string_view token, double &value) {
@@ -117,7 +179,7 @@ bool parse_double(std::string_view token, double &value) {
   }
   char *end = nullptr;
   value = std::strtod(text, &end);
-  return end != text && *end == '\0';
+  return !token.empty() && end == text + token.size(); // a NUL byte inside is no number
 }
 
 // Whole token as a base-10 integer; false when it is not one or overflows.
@@ -130,7 +192,18 @@ bool parse_long(std::string_view token, long &value) {
   char *end = nullptr;
   errno = 0;
   value = std::strtol(small, &end, 10);
-  return end != small && *end == '\0' && errno != ERANGE;
+  return end == small + token.size() && errno != ERANGE; // a NUL byte inside is no number
+}
+
+// A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
+double read_number(FieldReader &reader, std::string_view token, const char *what,
+                   const std::string &owner) {
+  double value = 0;
+  if (!parse_double(token, value))
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not a number");
+  if (!std::isfinite(value))
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not finite");
+  return value;
 }
 
 // The vertex section of a .node or .poly file: header, then the vertices.
@@ -144,29 +217,31 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   // Triangle lets trailing header fields default to 2, 0, 0.
   long count = 0, dimension = 2, attributes = 0, markers = 0;
   if (!parse_long(fields[0], count) || count < 0 || count > INT32_MAX)
-    reader.fail("malformed header: " + quoted(fields[0]) + " is not a vertex count (expected '" +
+    reader.fail("malformed header: " + quote(fields[0]) + " is not a vertex count (expected '" +
                 header_shape + "')");
   if (fields.size() > 1 && !parse_long(fields[1], dimension))
-    reader.fail("malformed header: dimension " + quoted(fields[1]) + " is not an integer");
+    reader.fail("malformed header: dimension " + quote(fields[1]) + " is not an integer");
   if (dimension != 2)
     reader.fail("dimension must be 2, got " + std::to_string(dimension));
   if (fields.size() > 2 &&
       (!parse_long(fields[2], attributes) || attributes < 0 || attributes > 1000000))
-    reader.fail("malformed header: " + quoted(fields[2]) + " is not an attribute count");
+    reader.fail("malformed header: " + quote(fields[2]) + " is not an attribute count");
   if (fields.size() > 3 && (!parse_long(fields[3], markers) || (markers != 0 && markers != 1)))
-    reader.fail("malformed header: boundary marker flag " + quoted(fields[3]) + " must be 0 or 1");
+    reader.fail("malformed header: boundary marker flag " + quote(fields[3]) + " must be 0 or 1");
 
   PointSet set;
   set.attribute_count = static_cast<int>(attributes);
   set.has_markers = markers == 1;
   // Do not trust the header for the allocation: a vertex line is at least 6 bytes.
-  std::size_t reserve = std::min<std::size_t>(static_cast<std::size_t>(count), reader.size() / 6);
+  std::size_t reserve =
+      std::min<std::size_t>(static_cast<std::size_t>(count), reader.size_bound() / 6);
   set.points.reserve(reserve);
   set.attributes.reserve(reserve * static_cast<std::size_t>(attributes));
   if (set.has_markers)
     set.markers.reserve(reserve);
 
   const std::size_t wanted = 3 + static_cast<std::size_t>(attributes) + (set.has_markers ? 1 : 0);
+  reader.expect_fields(wanted);
   for (long i = 0; i < count; ++i) {
     if (!reader.next(fields))
       throw InputError(path, reader.eof_line(),
@@ -183,7 +258,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
     }
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("vertex id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("vertex id " + quote(fields[0]) + " is not an integer");
     if (i == 0) {
       if (id != 0 && id != 1)
         reader.fail("first vertex id must be 0 or 1, got " + std::to_string(id));
@@ -196,32 +271,28 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
     for (int k = 0; k < 2; ++k) {
       const char *axis = k == 0 ? "x" : "y";
       if (!parse_double(fields[1 + k], xy[k]))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) + " is not a number");
       if (!std::isfinite(xy[k]))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) + " is not finite");
       const double magnitude = std::fabs(xy[k]);
       if (magnitude > kMaxCoordinate || (xy[k] != 0 && magnitude < kMinCoordinate))
-        reader.fail(std::string(axis) + " coordinate " + quoted(fields[1 + k]) + " of vertex " +
+        reader.fail(std::string(axis) + " coordinate " + quote(fields[1 + k]) + " of vertex " +
                     std::to_string(id) +
                     " is outside what exact arithmetic carries (non-zero magnitudes from 1e-50 "
                     "to 1e50)");
     }
     set.points.push_back(Point{xy[0], xy[1]});
-    for (long a = 0; a < attributes; ++a) {
-      double value = 0;
-      std::string_view token = fields[3 + static_cast<std::size_t>(a)];
-      if (!parse_double(token, value))
-        reader.fail("attribute " + quoted(token) + " of vertex " + std::to_string(id) +
-                    " is not a number");
-      set.attributes.push_back(value);
-    }
+    // Finite, as the attributes of regions are.
+    for (long a = 0; a < attributes; ++a)
+      set.attributes.push_back(read_number(reader, fields[3 + static_cast<std::size_t>(a)],
+                                           "attribute", "of vertex " + std::to_string(id)));
     if (set.has_markers) {
       long marker = 0;
       std::string_view token = fields[wanted - 1];
       if (!parse_long(token, marker) || marker < INT_MIN || marker > INT_MAX)
-        reader.fail("boundary marker " + quoted(token) + " of vertex " + std::to_string(id) +
+        reader.fail("boundary marker " + quote(token) + " of vertex " + std::to_string(id) +
                     " is not an integer");
       set.markers.push_back(static_cast<int>(marker));
     }
@@ -234,8 +305,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
 long read_count(FieldReader &reader, std::string_view token, const std::string &shape) {
   long count = 0;
   if (!parse_long(token, count) || count < 0 || count > INT32_MAX)
-    reader.fail("malformed header: " + quoted(token) + " is not a count (expected '" + shape +
-                "')");
+    reader.fail("malformed header: " + quote(token) + " is not a count (expected '" + shape + "')");
   return count;
 }
 
@@ -246,17 +316,6 @@ void next_line(FieldReader &reader, const std::string &path, std::vector<std::st
     throw InputError(path, reader.eof_line(), "file ends " + missing);
 }
 
-// A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
-double read_number(FieldReader &reader, std::string_view token, const char *what,
-                   const std::string &owner) {
-  double value = 0;
-  if (!parse_double(token, value))
-    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not a number");
-  if (!std::isfinite(value))
-    reader.fail(std::string(what) + " " + quoted(token) + " " + owner + " is not finite");
-  return value;
-}
-
 // "n of m <items>" for premature ends of file.
 std::string progress(long done, long count, const char *items) {
   return "after " + std::to_string(done) + " of " + std::to_string(count) + " " + items;
@@ -265,12 +324,12 @@ std::string progress(long done, long count, const char *items) {
 } // namespace
 
 PointSet read_node(const std::string &path) {
-  FieldReader reader(path, read_whole_file(path));
+  FieldReader reader(path);
   return read_vertex_section(reader, path);
 }
 
 PolyFile read_poly(const std::string &path) {
-  FieldReader reader(path, read_whole_file(path));
+  FieldReader reader(path);
   std::vector<std::string_view> fields;
   PolyFile poly;
 
@@ -286,7 +345,8 @@ PolyFile read_poly(const std::string &path) {
     if (!probe) {
       int error = errno;
       throw InputError(path, header_line,
-                       "the vertex count is 0, so the vertices must be in " + poly.node_path +
+                       "the vertex count is 0, so the vertices must be in " +
+                           printable(poly.node_path) +
                            ", which cannot be opened: " + describe_errno(error));
     }
     std::fclose(probe);
@@ -302,28 +362,33 @@ PolyFile read_poly(const std::string &path) {
   if (fields.size() > 1) {
     long markers = 0;
     if (!parse_long(fields[1], markers) || (markers != 0 && markers != 1))
-      reader.fail("malformed header: segment marker flag " + quoted(fields[1]) + " must be 0 or 1");
+      reader.fail("malformed header: segment marker flag " + quote(fields[1]) + " must be 0 or 1");
     poly.segment_markers = markers == 1;
   }
   const std::size_t reserve =
-      std::min<std::size_t>(static_cast<std::size_t>(segment_count), reader.size() / 6);
+      std::min<std::size_t>(static_cast<std::size_t>(segment_count), reader.size_bound() / 6);
   poly.segments.reserve(reserve);
   poly.segment_lines.reserve(reserve);
   for (long i = 0; i < segment_count; ++i) {
     next_line(reader, path, fields, progress(i, segment_count, "segments"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("segment id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("segment id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 3)
       reader.fail(
           "segment " + std::to_string(id) + " has " +
           (fields.size() == 1 ? std::string("no endpoints") : std::string("only one endpoint")) +
           " (expected id, endpoint, endpoint" +
           (poly.segment_markers ? ", boundary marker)" : ")"));
+    // As in a .node file, a marker that the section header announces must be there.
+    if (poly.segment_markers && fields.size() < 4)
+      reader.fail("segment " + std::to_string(id) +
+                  " has no boundary marker (the section header announces one: expected id, "
+                  "endpoint, endpoint, boundary marker)");
     long ends[2];
     for (int k = 0; k < 2; ++k) {
       if (!parse_long(fields[1 + k], ends[k]))
-        reader.fail("endpoint " + quoted(fields[1 + k]) + " of segment " + std::to_string(id) +
+        reader.fail("endpoint " + quote(fields[1 + k]) + " of segment " + std::to_string(id) +
                     " is not an integer");
       if (ends[k] < first || ends[k] >= first + n)
         reader.fail("endpoint " + std::to_string(ends[k]) + " of segment " + std::to_string(id) +
@@ -333,11 +398,10 @@ PolyFile read_poly(const std::string &path) {
     Segment segment;
     segment.a = static_cast<int32_t>(ends[0] - first);
     segment.b = static_cast<int32_t>(ends[1] - first);
-    // As in Triangle, a missing marker is 0.
-    if (poly.segment_markers && fields.size() > 3) {
+    if (poly.segment_markers) {
       long marker = 0;
       if (!parse_long(fields[3], marker) || marker < INT_MIN || marker > INT_MAX)
-        reader.fail("boundary marker " + quoted(fields[3]) + " of segment " + std::to_string(id) +
+        reader.fail("boundary marker " + quote(fields[3]) + " of segment " + std::to_string(id) +
                     " is not an integer");
       segment.marker = static_cast<int>(marker);
     }
@@ -352,7 +416,7 @@ PolyFile read_poly(const std::string &path) {
     next_line(reader, path, fields, progress(i, hole_count, "holes"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("hole id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("hole id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 3)
       reader.fail("hole " + std::to_string(id) + " has " +
                   (fields.size() == 1 ? "no coordinates" : "no y coordinate") +
@@ -371,7 +435,7 @@ PolyFile read_poly(const std::string &path) {
     next_line(reader, path, fields, progress(i, region_count, "regions"));
     long id = 0;
     if (!parse_long(fields[0], id))
-      reader.fail("region id " + quoted(fields[0]) + " is not an integer");
+      reader.fail("region id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 4)
       reader.fail("region " + std::to_string(id) + " has " + std::to_string(fields.size() - 1) +
                   " number(s), expected at least 3 (x, y, attribute[, maximum area])");
@@ -575,7 +639,7 @@ class TextFile {
 public:
   TextFile(const std::string &temporary, const std::string &final_path)
       : temporary_(temporary), final_(final_path) {
-    file_ = std::fopen(temporary.c_str(), "wb");
+    file_ = std::fopen(temporary.c_str(), "wbx"); // exclusive: a new file or an error
     if (!file_) {
       int error = errno;
       throw InputError(final_, 0, "cannot write: " + describe_errno(error));
@@ -696,11 +760,45 @@ OutputBatch::~OutputBatch() {
     std::remove(file.first.c_str());
 }
 
+namespace {
+
+namespace fs = std::filesystem;
+
+// Whether anything (a file, a directory, a link, even a dangling one) has that name.
+bool name_taken(const std::string &path) {
+  std::error_code error;
+  return fs::symlink_status(path, error).type() != fs::file_type::not_found && !error;
+}
+
+// `stem`, or `stem` followed by ".1", ".2"... : the first name nothing has.
+std::string free_name(const std::string &stem) {
+  std::string name = stem;
+  for (int k = 1; name_taken(name); ++k)
+    name = stem + "." + std::to_string(k);
+  return name;
+}
+
+// An output file can replace a file or a link, never a directory.
+void check_target(const std::string &path) {
+  std::error_code error;
+  if (fs::symlink_status(path, error).type() == fs::file_type::directory)
+    throw InputError(path, 0, "cannot write: a directory has that name");
+}
+
+} // namespace
+
 std::string OutputBatch::temporary_for(const std::string &path) {
-  std::string temporary = path + ".tmp-clmesh";
-  for (const auto &file : files_)
-    if (file.second == path)
-      return temporary; // written again: replaces the earlier one
+  check_target(path);
+  // Written again: the earlier temporary is dropped, the new one replaces it.
+  for (auto file = files_.begin(); file != files_.end(); ++file)
+    if (file->second == path) {
+      std::remove(file->first.c_str());
+      files_.erase(file);
+      break;
+    }
+  // A name no file has, so that no file of the user's is ever overwritten
+  // (TextFile creates it exclusively).
+  std::string temporary = free_name(path + ".tmp-clmesh");
   files_.emplace_back(temporary, path);
   return temporary;
 }
@@ -871,15 +969,54 @@ void OutputBatch::write_text(const std::string &path, const std::string &content
 }
 
 void OutputBatch::commit() {
-  while (!files_.empty()) {
-    const auto &file = files_.front();
-    if (std::rename(file.first.c_str(), file.second.c_str()) != 0) {
-      int error = errno;
-      throw InputError(file.second, 0,
-                       "cannot move the finished file into place: " + describe_errno(error));
+  // Every target is checked before the first rename, so that the usual
+  // failure (a directory with an output's name) moves nothing.
+  for (const auto &file : files_)
+    check_target(file.second);
+  // Each file that is replaced is first renamed aside, so that a failure
+  // further on can put it back: a failed commit leaves no new file and
+  // changes no existing one.
+  struct Step {
+    std::string path, backup; // backup: the replaced file's name meanwhile, empty if none
+    bool placed = false;      // the new file is at path
+  };
+  std::vector<Step> steps;
+  // Undoes the steps so far, last first; says which replaced file could not
+  // be put back, and where it is.
+  auto roll_back = [&steps]() {
+    std::string kept;
+    for (auto step = steps.rbegin(); step != steps.rend(); ++step) {
+      if (step->placed)
+        std::remove(step->path.c_str());
+      if (!step->backup.empty() && std::rename(step->backup.c_str(), step->path.c_str()) != 0)
+        kept += "; the file it replaced is kept as " + printable(step->backup);
     }
-    files_.erase(files_.begin());
+    return kept;
+  };
+  for (const auto &file : files_) {
+    const std::string &path = file.second;
+    steps.push_back(Step{path, "", false});
+    Step &step = steps.back();
+    const char *problem = nullptr;
+    if (name_taken(path)) {
+      const std::string backup = free_name(path + ".old-clmesh");
+      if (std::rename(path.c_str(), backup.c_str()) != 0)
+        problem = "cannot replace the existing file: ";
+      else
+        step.backup = backup;
+    }
+    if (!problem && std::rename(file.first.c_str(), path.c_str()) != 0)
+      problem = "cannot move the finished file into place: ";
+    if (problem) {
+      const int error = errno;
+      throw InputError(path, 0, problem + describe_errno(error) + roll_back());
+    }
+    step.placed = true;
   }
+  for (const Step &step : steps)
+    if (!step.backup.empty())
+      std::remove(step.backup.c_str());
+  files_.clear();
 }
 
 // ---------------------------------------------------------------------------

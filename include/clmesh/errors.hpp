@@ -3,8 +3,20 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace clmesh {
+
+// `text` as a message can show it: control bytes (NUL, ESC, newline, DEL, the
+// C1 controls) and bytes that are not UTF-8 become \xHH, so that no byte of
+// an input file or argument acts on the terminal, cuts a C string short or
+// breaks the message's line; everything else is kept. printable() of its own
+// output changes nothing.
+std::string printable(std::string_view text);
+
+// printable(text) between single quotes, as every message quotes input text
+// (tokens, switches, file names); beyond 256 bytes it is cut, "..." after it.
+std::string quote(std::string_view text);
 
 // Base of every error clmesh throws.
 class Error : public std::runtime_error {
@@ -22,7 +34,8 @@ public:
 
 private:
   static std::string format(const std::string &file, long line, const std::string &problem) {
-    return line > 0 ? file + ":" + std::to_string(line) + ": " + problem : file + ": " + problem;
+    const std::string where = printable(file);
+    return line > 0 ? where + ":" + std::to_string(line) + ": " + problem : where + ": " + problem;
   }
   std::string file_;
   long line_;

@@ -2,7 +2,11 @@
 //
 // Readers accept '#' comments anywhere on a line, blank lines, and 0- or
 // 1-based numbering (decided by the first id). Every problem is reported as
-// an InputError naming the file and line.
+// an InputError naming the file and line, the input text it quotes escaped
+// (clmesh::quote). They parse as they read, a few MiB at a time, and stop at
+// the first bad line: a line holding a NUL byte or longer than a section can
+// hold is one, so that an endless or binary input (a FIFO, /dev/zero) ends
+// at once, and memory follows the data accepted, never a header's count.
 #pragma once
 
 #include "clmesh/geometry.hpp"
@@ -27,7 +31,9 @@ struct PolyFile {
   PointSet points;
   std::string node_path; // that .node file; empty when the vertices are in the .poly
   // Segments with 0-based endpoints (the file's numbering removed); markers
-  // are 0 when the file has none (segment_markers false) or a line omits it.
+  // are 0 when the file has none (segment_markers false). As in a .node file,
+  // a line without the marker that its section header announces is an error
+  // (Triangle reads 0); the only optional field is a region's maximum area.
   std::vector<Segment> segments;
   bool segment_markers = false;
   std::vector<long> segment_lines; // line of each segment in the .poly, for messages
@@ -101,9 +107,10 @@ std::vector<int> output_vertex_markers(const MeshView &mesh);
 // are renumbered consecutively in input order, as Triangle's -j does.
 std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options);
 
-// Output files are first written beside their final name and renamed into
-// place only when every file of the batch was written, so a failure never
-// leaves a partial file behind.
+// Output files are first written beside their final name (under a name no
+// file has) and renamed into place only when every file of the batch was
+// written, so a failure never leaves a partial file behind. Writing to a name
+// that a directory has is refused at once (InputError naming it).
 class OutputBatch {
 public:
   OutputBatch() = default;
@@ -122,7 +129,11 @@ public:
   void write_poly(const std::string &path, const MeshView &mesh, const std::vector<Point> &holes,
                   const std::vector<Region> &regions, const WriteOptions &options);
   void write_text(const std::string &path, const std::string &contents);
-  void commit(); // renames every temporary into place
+  // Renames every temporary into place, all or nothing: every target is
+  // checked first, a replaced file is kept aside until the end, and when a
+  // rename fails the files already placed are removed and the replaced ones
+  // restored before the InputError (naming the file) is thrown.
+  void commit();
 
 private:
   std::string temporary_for(const std::string &path);

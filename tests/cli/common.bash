@@ -36,7 +36,8 @@ finish() {
 
 # expect WHAT STATUS WORDS... -- ARGS...: runs clmesh ARGS, wants exit STATUS,
 # a single stderr line starting with 'clmesh: ' and holding every WORD, and
-# the data directory unchanged.
+# the data directory unchanged. The run is stopped after $expect_seconds
+# seconds (default 300), which gives the status 124.
 expect() {
   local what="$1" want_status="$2"
   shift 2
@@ -48,7 +49,7 @@ expect() {
   shift
   local before after status=0
   before="$(ls -A | sort)"
-  "$bin" "$@" > "$work/log/out" 2> "$work/log/err" || status=$?
+  timeout "${expect_seconds:-300}" "$bin" "$@" > "$work/log/out" 2> "$work/log/err" || status=$?
   after="$(ls -A | sort)"
   local err
   err="$(cat "$work/log/err")"

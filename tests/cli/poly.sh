@@ -23,6 +23,9 @@ printf "$tri"'3 0\n1 1 2\n2 2 3\n' > short.poly
 printf "$tri"'3 0\n1 1 2\n2 2 3\n3 3 1\n0\n1\n1 0.2 0.2\n' > region.poly
 printf '0 2 0 0\n3 0\n1 1 2\n2 2 3\n3 3 1\n0\n' > badnode.poly
 printf '3 2 0 0\n1 0 0\n2 1 0\n3 zero 1\n' > badnode.node
+printf "$tri"'3 1\n1 1 2 0\n2 2 3\n3 3 1 0\n0\n' > nomarker.poly
+printf '0 2 0 0\n3 0\n1 1 2\n2 2 3\n3 3 1\n0\n' > nomarker2.poly
+printf '3 2 0 1\n1 0 0 0\n2 1 0\n3 0 1 0\n' > nomarker2.node
 
 
 expect "endpoint out of range" 1 "endpoint.poly:8:" "endpoint 4 of segment 3" "out of range" \
@@ -34,6 +37,10 @@ expect "count 0 without .node" 1 "nonode.poly:2:" "nonode.node" -- -p nonode.pol
 expect "premature end of file" 1 "short.poly:8:" "after 2 of 3 segments" -- -p short
 expect "region without attribute" 1 "region.poly:11:" "region 1" -- -pA region.poly
 expect "error in the .node beside the .poly" 1 "badnode.node:4:" "'zero'" -- -p badnode.poly
+expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
+  "segment 2 has no boundary marker" -- nomarker.poly
+expect "vertex without the marker its header announces, in the .node beside" 1 \
+  "nomarker2.node:3:" "boundary marker" -- nomarker2.poly
 expect "missing .poly" 1 "missing.poly" -- -p missing
 expect "-p with -q" 2 "-q" "not supported" "-p" -- -pq endpoint.poly
 expect "-p with -a" 2 "-a" "not supported" "-p" -- -a -p endpoint.poly

@@ -1,0 +1,571 @@
+// clmesh — writing Triangle's files: the edges and markers Triangle reports, and the
+// all-or-nothing batch of output files (see clmesh/io.hpp).
+#include "clmesh/io.hpp"
+
+#include "clmesh/errors.hpp"
+#include "io/system_error.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string_view>
+#include <unordered_map>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace clmesh {
+
+// ---------------------------------------------------------------------------
+// Mesh helpers
+// ---------------------------------------------------------------------------
+
+namespace {
+
+// Key of the undirected edge {a, b}.
+uint64_t edge_key(int32_t a, int32_t b) {
+  const uint32_t lo = static_cast<uint32_t>(std::min(a, b)),
+                 hi = static_cast<uint32_t>(std::max(a, b));
+  return (static_cast<uint64_t>(lo) << 32) | hi;
+}
+
+void check_neighbors(const std::vector<Triangle> &triangles,
+                     const std::vector<std::array<int32_t, 3>> &neighbors, const char *caller) {
+  if (neighbors.size() != triangles.size())
+    throw InternalError(std::string(caller) + ": " + std::to_string(triangles.size()) +
+                        " triangles but " + std::to_string(neighbors.size()) +
+                        " neighbour entries");
+}
+
+// Every edge of the mesh, mapped to whether it lies on the mesh boundary.
+std::unordered_map<uint64_t, bool>
+edges_on_boundary(const std::vector<Triangle> &triangles,
+                  const std::vector<std::array<int32_t, 3>> &neighbors) {
+  std::unordered_map<uint64_t, bool> edges;
+  edges.reserve(triangles.size() * 2 + 4);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      edges.emplace(edge_key(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]),
+                    neighbors[t][i] == -1);
+  return edges;
+}
+
+// Triangle's -p marker of a segment in the mesh: its own when non-zero, else 1
+// when it lies on the mesh boundary (Triangle marks the subsegments that
+// become boundary when it carves holes and the exterior), else 0.
+int segment_marker(const Segment &segment, bool on_boundary) {
+  return segment.marker != 0 ? segment.marker : on_boundary ? 1 : 0;
+}
+
+} // namespace
+
+std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
+                             const std::vector<std::array<int32_t, 3>> &neighbors) {
+  check_neighbors(triangles, neighbors, "mesh_edges");
+  std::vector<Edge> edges;
+  edges.reserve(triangles.size() * 3 / 2 + 3);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int i = 0; i < 3; ++i) {
+      // Edge i lies opposite vertex i, from vertex i+1 to vertex i+2 (Triangle's
+      // org/dest of orientation i); an interior edge is written by the triangle
+      // with the smaller index.
+      int32_t other = neighbors[t][i];
+      if (other == -1 || static_cast<int64_t>(t) < other)
+        edges.push_back(Edge{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], other == -1});
+    }
+  }
+  return edges;
+}
+
+std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
+                             const std::vector<std::array<int32_t, 3>> &neighbors,
+                             const std::vector<Segment> &segments) {
+  std::vector<Edge> edges = mesh_edges(triangles, neighbors);
+  std::unordered_map<uint64_t, int> marker_of; // segment edge -> its marker (first one wins)
+  marker_of.reserve(segments.size() * 2 + 1);
+  for (const Segment &segment : segments)
+    marker_of.emplace(edge_key(segment.a, segment.b), segment.marker);
+  for (Edge &edge : edges) {
+    auto found = marker_of.find(edge_key(edge.a, edge.b));
+    if (found != marker_of.end())
+      edge.marker = segment_marker(Segment{edge.a, edge.b, found->second}, edge.marker == 1);
+  }
+  return edges;
+}
+
+void MeshView::set_points(const PointSet &set) {
+  points = &set.points;
+  attribute_count = set.attribute_count;
+  point_attributes = &set.attributes;
+  point_markers = set.has_markers ? &set.markers : nullptr;
+}
+
+MeshView view_of(const Mesh &mesh) {
+  MeshView view;
+  view.points = &mesh.points;
+  view.attribute_count = mesh.attribute_count;
+  view.point_attributes = &mesh.point_attributes;
+  view.point_markers = &mesh.point_markers;
+  view.triangles = &mesh.triangles;
+  view.neighbors = &mesh.neighbors;
+  view.duplicate_of = &mesh.duplicate_of;
+  if (mesh.statistics.constrained)
+    view.segments = &mesh.segments;
+  if (mesh.triangle_attribute_count > 0)
+    view.triangle_attributes = &mesh.triangle_attributes;
+  return view;
+}
+
+std::vector<int> output_vertex_markers(const MeshView &mesh) {
+  const std::size_t n = mesh.points ? mesh.points->size() : 0;
+  std::vector<int> markers(n, 0);
+  if (mesh.point_markers && mesh.point_markers->size() == n)
+    markers = *mesh.point_markers;
+  auto in_range = [n](int32_t v) { return v >= 0 && static_cast<std::size_t>(v) < n; };
+  // As Triangle inserts the segments in order: an endpoint whose marker is
+  // still 0 takes the segment's.
+  if (mesh.segments)
+    for (const Segment &segment : *mesh.segments)
+      for (int32_t v : {segment.a, segment.b})
+        if (in_range(v) && markers[v] == 0)
+          markers[v] = segment.marker;
+  // Vertices on the mesh boundary (the convex hull without -p) whose marker is 0 get 1.
+  if (mesh.triangles && mesh.neighbors && mesh.neighbors->size() == mesh.triangles->size()) {
+    for (std::size_t t = 0; t < mesh.triangles->size(); ++t)
+      for (int i = 0; i < 3; ++i)
+        if ((*mesh.neighbors)[t][i] == -1)
+          for (int k = 1; k <= 2; ++k) {
+            int32_t v = (*mesh.triangles)[t][(i + k) % 3];
+            if (in_range(v) && markers[v] == 0)
+              markers[v] = 1;
+          }
+  }
+  return markers;
+}
+
+std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options) {
+  std::size_t n = mesh.points ? mesh.points->size() : 0;
+  std::vector<char> dropped(n, 0);
+  if (options.jettison_duplicates) {
+    const std::vector<int32_t> *duplicates = mesh.duplicate_of;
+    if (duplicates && duplicates->size() == n)
+      for (std::size_t i = 0; i < n; ++i)
+        dropped[i] = (*duplicates)[i] != -1;
+    // -p: Triangle's -j also drops the vertices that are in no triangle.
+    if (mesh.segments && mesh.triangles) {
+      std::vector<char> used(n, 0);
+      for (const Triangle &t : *mesh.triangles)
+        for (int32_t v : t)
+          if (v >= 0 && static_cast<std::size_t>(v) < n)
+            used[v] = 1;
+      for (std::size_t i = 0; i < n; ++i)
+        dropped[i] = dropped[i] || !used[i];
+    }
+  }
+  std::vector<int32_t> numbers(n);
+  int32_t next = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    numbers[i] = dropped[i] ? -1 : next++;
+  return numbers;
+}
+
+// ---------------------------------------------------------------------------
+// Writing
+// ---------------------------------------------------------------------------
+namespace {
+
+// Buffered text output to a temporary file; errors name the final file.
+class TextFile {
+public:
+  TextFile(const std::string &temporary, const std::string &final_path)
+      : temporary_(temporary), final_(final_path) {
+    file_ = std::fopen(temporary.c_str(), "wbx"); // exclusive: a new file or an error
+    if (!file_) {
+      int error = errno;
+      throw InputError(final_, 0, "cannot write: " + describe_errno(error));
+    }
+    buffer_.reserve(kFlushAt + 4096);
+  }
+  TextFile(const TextFile &) = delete;
+  TextFile &operator=(const TextFile &) = delete;
+  ~TextFile() {
+    if (file_)
+      std::fclose(file_);
+  }
+
+  [[gnu::format(printf, 2, 3)]] void format(const char *pattern, ...) {
+    char line[512];
+    va_list args;
+    va_start(args, pattern);
+    int length = std::vsnprintf(line, sizeof line, pattern, args);
+    va_end(args);
+    if (length < 0)
+      fail(EINVAL);
+    if (static_cast<std::size_t>(length) < sizeof line) {
+      buffer_.append(line, static_cast<std::size_t>(length));
+    } else {
+      std::string big(static_cast<std::size_t>(length) + 1, '\0');
+      va_start(args, pattern);
+      std::vsnprintf(&big[0], big.size(), pattern, args);
+      va_end(args);
+      buffer_.append(big.data(), static_cast<std::size_t>(length));
+    }
+    if (buffer_.size() >= kFlushAt)
+      flush();
+  }
+  // Appends `value` right-aligned in `width` characters, as printf's "%*ld"
+  // (the integer columns of .ele, .edge and .neigh are by far the bulk).
+  void integer(long value, int width = 0) {
+    char digits[24];
+    const auto result = std::to_chars(digits, digits + sizeof digits, value);
+    const auto count = static_cast<int>(result.ptr - digits);
+    if (width > count)
+      buffer_.append(static_cast<std::size_t>(width - count), ' ');
+    buffer_.append(digits, result.ptr);
+  }
+  // Appends `value` as printf's "%.17g" does (std::to_chars promises the
+  // same characters), without printf's cost: coordinates fill .node files.
+  void real(double value) {
+    char digits[32];
+    const auto result =
+        std::to_chars(digits, digits + sizeof digits, value, std::chars_format::general, 17);
+    buffer_.append(digits, result.ptr);
+  }
+  void text(const char *words) { buffer_ += words; }
+  void end_line() {
+    buffer_ += '\n';
+    if (buffer_.size() >= kFlushAt)
+      flush();
+  }
+  void append(const std::string &text) {
+    buffer_ += text;
+    if (buffer_.size() >= kFlushAt)
+      flush();
+  }
+  void footer(const WriteOptions &options) {
+    if (!options.command_line.empty())
+      append("# Generated by " + options.command_line + "\n");
+  }
+  void close() {
+    flush();
+    std::FILE *file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0)
+      fail(errno);
+  }
+
+private:
+  static constexpr std::size_t kFlushAt = 1 << 20;
+  void flush() {
+    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+      fail(errno);
+    buffer_.clear();
+  }
+  [[noreturn]] void fail(int error) {
+    throw InputError(final_, 0, "cannot write: " + describe_errno(error));
+  }
+  std::string temporary_, final_;
+  std::FILE *file_ = nullptr;
+  std::string buffer_;
+};
+
+const std::vector<Point> &points_of(const MeshView &mesh) {
+  if (!mesh.points)
+    throw InternalError("output writer called without points");
+  return *mesh.points;
+}
+const std::vector<Triangle> &triangles_of(const MeshView &mesh) {
+  if (!mesh.triangles)
+    throw InternalError("output writer called without triangles");
+  return *mesh.triangles;
+}
+const std::vector<std::array<int32_t, 3>> &neighbors_of(const MeshView &mesh) {
+  if (!mesh.neighbors || mesh.neighbors->size() != triangles_of(mesh).size())
+    throw InternalError("output writer called without neighbours for every triangle");
+  return *mesh.neighbors;
+}
+
+// Vertex number as written: renumbered for -j, then shifted to first_index.
+int32_t written_vertex(const std::vector<int32_t> &numbers, int32_t vertex, const WriteOptions &o) {
+  if (vertex < 0 || static_cast<std::size_t>(vertex) >= numbers.size() || numbers[vertex] < 0)
+    throw InternalError("mesh refers to vertex " + std::to_string(vertex) +
+                        ", which is not written");
+  return numbers[vertex] + o.first_index;
+}
+
+} // namespace
+
+OutputBatch::~OutputBatch() {
+  for (const auto &file : files_)
+    std::remove(file.first.c_str());
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Whether anything (a file, a directory, a link, even a dangling one) has that name.
+bool name_taken(const std::string &path) {
+  std::error_code error;
+  return fs::symlink_status(path, error).type() != fs::file_type::not_found && !error;
+}
+
+// `stem`, or `stem` followed by ".1", ".2"... : the first name nothing has.
+std::string free_name(const std::string &stem) {
+  std::string name = stem;
+  for (int k = 1; name_taken(name); ++k)
+    name = stem + "." + std::to_string(k);
+  return name;
+}
+
+// An output file can replace a file or a link, never a directory.
+void check_target(const std::string &path) {
+  std::error_code error;
+  if (fs::symlink_status(path, error).type() == fs::file_type::directory)
+    throw InputError(path, 0, "cannot write: a directory has that name");
+}
+
+} // namespace
+
+std::string OutputBatch::temporary_for(const std::string &path) {
+  check_target(path);
+  // Written again: the earlier temporary is dropped, the new one replaces it.
+  for (auto file = files_.begin(); file != files_.end(); ++file)
+    if (file->second == path) {
+      std::remove(file->first.c_str());
+      files_.erase(file);
+      break;
+    }
+  // A name no file has, so that no file of the user's is ever overwritten
+  // (TextFile creates it exclusively).
+  std::string temporary = free_name(path + ".tmp-clmesh");
+  files_.emplace_back(temporary, path);
+  return temporary;
+}
+
+void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
+                             const WriteOptions &options) {
+  const std::vector<Point> &points = points_of(mesh);
+  const std::size_t n = points.size();
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  std::size_t written = 0;
+  for (int32_t number : numbers)
+    written += number >= 0;
+  const std::vector<int> markers =
+      options.boundary_markers ? output_vertex_markers(mesh) : std::vector<int>();
+
+  const std::size_t attributes = static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
+  if (attributes > 0 && (!mesh.point_attributes || mesh.point_attributes->size() < n * attributes))
+    throw InternalError("point set holds fewer attributes than its attribute count says");
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  2  %zu  %d\n", written, attributes, options.boundary_markers ? 1 : 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (numbers[i] < 0)
+      continue;
+    // "%4ld    %.17g  %.17g", then "  %.17g" per attribute, then "    %d"
+    file.integer(static_cast<long>(numbers[i]) + options.first_index, 4);
+    file.text("    ");
+    file.real(points[i].x);
+    file.text("  ");
+    file.real(points[i].y);
+    for (std::size_t a = 0; a < attributes; ++a) {
+      file.text("  ");
+      file.real((*mesh.point_attributes)[i * attributes + a]);
+    }
+    if (options.boundary_markers) {
+      file.text("    ");
+      file.integer(markers[i]);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
+                            const WriteOptions &options) {
+  const std::vector<Triangle> &triangles = triangles_of(mesh);
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  const std::vector<double> *attributes = mesh.triangle_attributes;
+  if (attributes && attributes->size() != triangles.size())
+    throw InternalError("output writer called with " + std::to_string(attributes->size()) +
+                        " triangle attributes for " + std::to_string(triangles.size()) +
+                        " triangles");
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  3  %d\n", triangles.size(), attributes ? 1 : 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    // "%4ld    %4d  %4d  %4d", then "  %.17g" per attribute
+    file.integer(static_cast<long>(t) + options.first_index, 4);
+    for (int k = 0; k < 3; ++k) {
+      file.text(k == 0 ? "    " : "  ");
+      file.integer(written_vertex(numbers, triangles[t][k], options), 4);
+    }
+    if (attributes) {
+      file.text("  ");
+      file.real((*attributes)[t]);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_edge(const std::string &path, const MeshView &mesh,
+                             const WriteOptions &options) {
+  const std::vector<Edge> edges =
+      mesh.segments ? mesh_edges(triangles_of(mesh), neighbors_of(mesh), *mesh.segments)
+                    : mesh_edges(triangles_of(mesh), neighbors_of(mesh));
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  %d\n", edges.size(), options.boundary_markers ? 1 : 0);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    // "%4ld   %d  %d  %d" ("%4ld   %d  %d" with -B)
+    file.integer(static_cast<long>(e) + options.first_index, 4);
+    file.text("   ");
+    file.integer(written_vertex(numbers, edges[e].a, options));
+    file.text("  ");
+    file.integer(written_vertex(numbers, edges[e].b, options));
+    if (options.boundary_markers) {
+      file.text("  ");
+      file.integer(edges[e].marker);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_poly(const std::string &path, const MeshView &mesh,
+                             const std::vector<Point> &holes, const std::vector<Region> &regions,
+                             const WriteOptions &options) {
+  if (!mesh.segments)
+    throw InternalError("write_poly called without segments");
+  const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  struct Written {
+    int32_t a, b;
+    int marker;
+  };
+  std::vector<Written> segments;
+  segments.reserve(mesh.segments->size());
+  for (const Segment &segment : *mesh.segments) {
+    auto edge = on_boundary.find(edge_key(segment.a, segment.b));
+    if (edge == on_boundary.end())
+      continue; // no edge of the mesh: eaten with a hole or the exterior
+    segments.push_back(Written{written_vertex(numbers, segment.a, options),
+                               written_vertex(numbers, segment.b, options),
+                               segment_marker(segment, edge->second)});
+  }
+  const int flag = options.boundary_markers ? 1 : 0;
+  TextFile file(temporary_for(path), path);
+  // The vertices are in the .node file: 0 of them here.
+  file.format("0  2  %d  %d\n", std::max(mesh.attribute_count, 0), flag);
+  file.format("%zu  %d\n", segments.size(), flag);
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const long id = static_cast<long>(s) + options.first_index;
+    if (options.boundary_markers)
+      file.format("%4ld    %4d  %4d    %4d\n", id, segments[s].a, segments[s].b,
+                  segments[s].marker);
+    else
+      file.format("%4ld    %4d  %4d\n", id, segments[s].a, segments[s].b);
+  }
+  file.format("%zu\n", holes.size());
+  for (std::size_t h = 0; h < holes.size(); ++h)
+    file.format("%4ld   %.17g  %.17g\n", static_cast<long>(h) + options.first_index, holes[h].x,
+                holes[h].y);
+  if (!regions.empty()) {
+    file.format("%zu\n", regions.size());
+    for (std::size_t r = 0; r < regions.size(); ++r)
+      file.format("%4ld   %.17g  %.17g  %.17g  %.17g\n", static_cast<long>(r) + options.first_index,
+                  regions[r].seed.x, regions[r].seed.y, regions[r].attribute, regions[r].max_area);
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_neigh(const std::string &path, const MeshView &mesh,
+                              const WriteOptions &options) {
+  const std::vector<std::array<int32_t, 3>> &neighbors = neighbors_of(mesh);
+  auto number = [&](int32_t t) { return t < 0 ? -1 : t + options.first_index; };
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  3\n", neighbors.size());
+  for (std::size_t t = 0; t < neighbors.size(); ++t) {
+    // "%4ld    %d  %d  %d"
+    file.integer(static_cast<long>(t) + options.first_index, 4);
+    for (int k = 0; k < 3; ++k) {
+      file.text(k == 0 ? "    " : "  ");
+      file.integer(number(neighbors[t][k]));
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_text(const std::string &path, const std::string &contents) {
+  TextFile file(temporary_for(path), path);
+  file.append(contents);
+  file.close();
+}
+
+void OutputBatch::commit() {
+  // Every target is checked before the first rename, so that the usual
+  // failure (a directory with an output's name) moves nothing.
+  for (const auto &file : files_)
+    check_target(file.second);
+  // Each file that is replaced is first renamed aside, so that a failure
+  // further on can put it back: a failed commit leaves no new file and
+  // changes no existing one.
+  struct Step {
+    std::string path, backup; // backup: the replaced file's name meanwhile, empty if none
+    bool placed = false;      // the new file is at path
+  };
+  std::vector<Step> steps;
+  // Undoes the steps so far, last first; says which replaced file could not
+  // be put back, and where it is.
+  auto roll_back = [&steps]() {
+    std::string kept;
+    for (auto step = steps.rbegin(); step != steps.rend(); ++step) {
+      if (step->placed)
+        std::remove(step->path.c_str());
+      if (!step->backup.empty() && std::rename(step->backup.c_str(), step->path.c_str()) != 0)
+        kept += "; the file it replaced is kept as " + printable(step->backup);
+    }
+    return kept;
+  };
+  for (const auto &file : files_) {
+    const std::string &path = file.second;
+    steps.push_back(Step{path, "", false});
+    Step &step = steps.back();
+    const char *problem = nullptr;
+    if (name_taken(path)) {
+      const std::string backup = free_name(path + ".old-clmesh");
+      if (std::rename(path.c_str(), backup.c_str()) != 0)
+        problem = "cannot replace the existing file: ";
+      else
+        step.backup = backup;
+    }
+    if (!problem && std::rename(file.first.c_str(), path.c_str()) != 0)
+      problem = "cannot move the finished file into place: ";
+    if (problem) {
+      const int error = errno;
+      throw InputError(path, 0, problem + describe_errno(error) + roll_back());
+    }
+    step.placed = true;
+  }
+  for (const Step &step : steps)
+    if (!step.backup.empty())
+      std::remove(step.backup.c_str());
+  files_.clear();
+}
+
+} // namespace clmesh

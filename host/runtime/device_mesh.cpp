@@ -53,13 +53,17 @@ std::size_t DeviceMesh::FreeList::take(std::size_t wanted) {
   return wanted - reused;
 }
 
+cl_uint DeviceMesh::bind_triangulation(cl::Kernel &kernel, cl_uint first) const {
+  return set_args_from(
+      kernel, first, points.buffer(), tri_vertex.buffer(), tri_neighbor.buffer(), tri_mark.buffer(),
+      modified_stamp.buffer(), children.buffer(), vertex_triangle.buffer(),
+      constraint_start.buffer(), constraint_adjacent.buffer(), static_cast<cl_int>(has_constraints),
+      original_id.buffer(), duplicate_of.buffer(), location.buffer(), location_edge.buffer());
+}
+
 cl_uint DeviceMesh::bind(cl::Kernel &kernel, cl_uint first) const {
-  return set_args_from(kernel, first, points.buffer(), tri_vertex.buffer(), tri_neighbor.buffer(),
-                       tri_mark.buffer(), modified_stamp.buffer(), children.buffer(),
-                       vertex_triangle.buffer(), constraint_start.buffer(),
-                       constraint_adjacent.buffer(), static_cast<cl_int>(has_constraints),
-                       point_state.buffer(), insertion_radius2.buffer(), point_priority.buffer(),
-                       original_id.buffer(), location.buffer(), location_edge.buffer());
+  return set_args_from(kernel, bind_triangulation(kernel, first), point_state.buffer(),
+                       insertion_radius2.buffer(), point_priority.buffer());
 }
 
 void DeviceMesh::enable_refinement(Device &device) {

@@ -145,9 +145,12 @@ struct DeviceMesh {
   DeviceArray<cl_uint> point_priority;
   void enable_refinement(Device &device);
 
-  // Sets the buffers of CLM_MESH_PARAMS (cl/mesh_params.h), in its order, as
-  // the arguments of `kernel` from index `first` on; returns the index after
-  // them. Bound at every launch: refinement swaps and grows the buffers.
+  // Set the buffers of CLM_TRIANGULATION_PARAMS, or of CLM_MESH_PARAMS (the
+  // same and the refinement-only ones; after enable_refinement), in the
+  // order of cl/mesh_params.h, as the arguments of `kernel` from index
+  // `first` on; return the index after them. Bound at every launch: growing
+  // and refinement swap the buffers.
+  cl_uint bind_triangulation(cl::Kernel &kernel, cl_uint first) const;
   cl_uint bind(cl::Kernel &kernel, cl_uint first) const;
 
   // Makes room for `extra_points` more points (and their triangles), keeping

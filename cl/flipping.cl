@@ -12,6 +12,7 @@
 // sharing a hull vertex flip when that vertex is reflex; real-ghost edges
 // never flip.
 #include "common.h"
+#include "mesh_params.h"
 #include "prefetch.h"
 
 // active_round[t] = round for the triangles of this pass's list.
@@ -127,14 +128,11 @@ inline int relink_and_list(int t, int prop, int flipped, __global const int *tri
 // flags[gid]: check_triangle's bits for active[gid]. The triangles the
 // filter decided propose at once (proposal[gid]); the others do in
 // flip_check_exact.
-__kernel void flip_check_fast(__global const int *active, __global const double2 *points,
-                              __global const int *tri_vertex, __global const int *tri_neighbor,
-                              __global const int *constraint_start,
-                              __global const int *constraint_adjacent, const int constrained,
+__kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *active,
                               const int fixed_boundary, __global const int *active_round,
                               const int round, __global int *flags, __global int *exact_list,
-                              volatile __global int *exact_count, volatile __global uint *tri_mark,
-                              __global int *proposal, const int n) {
+                              volatile __global int *exact_count, __global int *proposal,
+                              const int n) {
   const int gid = get_global_id(0);
   prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
   if (gid >= n)
@@ -151,11 +149,9 @@ __kernel void flip_check_fast(__global const int *active, __global const double2
 }
 
 // Resolves the uncertain edges with the exact, perturbed in-circle test.
-__kernel void flip_check_exact(__global const int *exact_list, __global const int *active,
-                               __global const double2 *points, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global int *flags,
-                               volatile __global uint *tri_mark, __global int *proposal,
-                               const int n) {
+__kernel void flip_check_exact(CLM_TRIANGULATION_PARAMS, __global const int *exact_list,
+                               __global const int *active, __global int *flags,
+                               __global int *proposal, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -166,10 +162,8 @@ __kernel void flip_check_exact(__global const int *exact_list, __global const in
 }
 
 // 2-2 flip of the proposals that own both marks (apply_proposal).
-__kernel void flip_apply(__global const int *active, __global const int *proposal,
-                         __global const uint *tri_mark, __global int *tri_vertex,
-                         __global int *tri_neighbor, __global int *modified_stamp,
-                         __global int *children, __global int *flipped,
+__kernel void flip_apply(CLM_TRIANGULATION_PARAMS, __global const int *active,
+                         __global const int *proposal, __global int *flipped,
                          volatile __global int *pass_counts, const int stamp, const int n) {
   const int gid = get_global_id(0);
   const int ahead = entry_ahead(proposal, gid, 1, n); // prefetching (prefetch.h)
@@ -191,11 +185,8 @@ __kernel void flip_apply(__global const int *active, __global const int *proposa
 
 // Second step (relink_and_list): listed triangles get active_round =
 // next_round; pass_counts[1]: the next list's length.
-__kernel void flip_relink_and_collect(__global const int *active, __global const int *proposal,
-                                      __global const int *flipped, __global const int *tri_vertex,
-                                      __global int *tri_neighbor,
-                                      __global const int *modified_stamp,
-                                      __global const int *children, __global uint *tri_mark,
+__kernel void flip_relink_and_collect(CLM_TRIANGULATION_PARAMS, __global const int *active,
+                                      __global const int *proposal, __global const int *flipped,
                                       const int stamp, __global int *next_active,
                                       __global int *active_round, const int next_round,
                                       volatile __global int *pass_counts, const int n) {
@@ -226,14 +217,10 @@ __kernel void flip_relink_and_collect(__global const int *active, __global const
 // edges flip depends only on the keys. result: [0] passes, [1] flips, [2]
 // the last list's length (in list_b after an odd number of passes), [3]
 // uncertain triangles.
-__kernel void flip_passes_in_group(__global int *list_a, __global int *list_b, const int n_first,
-                                   __global const double2 *points, __global int *tri_vertex,
-                                   __global int *tri_neighbor, __global const int *constraint_start,
-                                   __global const int *constraint_adjacent, const int constrained,
+__kernel void flip_passes_in_group(CLM_TRIANGULATION_PARAMS, __global int *list_a,
+                                   __global int *list_b, const int n_first,
                                    const int fixed_boundary, __global int *active_round,
-                                   const int round, volatile __global uint *tri_mark,
-                                   __global int *proposal, __global int *flipped,
-                                   __global int *modified_stamp, __global int *children,
+                                   const int round, __global int *proposal, __global int *flipped,
                                    const int stamp, const int limit, const int max_passes,
                                    __global int *result) {
   const int lid = get_local_id(0), size = get_local_size(0);

@@ -37,19 +37,17 @@ void Flipping::mark_active(const DeviceArray<cl_int> &active, std::size_t n) {
 void Flipping::propose(std::size_t n, FlipCounts &counts) {
   const auto items = static_cast<cl_int>(n);
   exact_count_.fill(device_, 0, 1);
-  set_args(check_fast_, active_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.constraint_start.buffer(),
-           mesh_.constraint_adjacent.buffer(), static_cast<cl_int>(mesh_.has_constraints),
-           static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_, flags_.buffer(),
-           exact_list_.buffer(), exact_count_.buffer(), mesh_.tri_mark.buffer(), proposal_.buffer(),
-           items);
+  set_args_from(check_fast_, mesh_.bind_triangulation(check_fast_, 0), active_.buffer(),
+                static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_,
+                flags_.buffer(), exact_list_.buffer(), exact_count_.buffer(), proposal_.buffer(),
+                items);
   launch(device_, check_fast_, n, kPhase);
   const int uncertain = exact_count_.read(device_, 0);
   if (uncertain > 0) {
     counts.exact_checks += uncertain;
-    set_args(check_exact_, exact_list_.buffer(), active_.buffer(), mesh_.points.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), flags_.buffer(),
-             mesh_.tri_mark.buffer(), proposal_.buffer(), static_cast<cl_int>(uncertain));
+    set_args_from(check_exact_, mesh_.bind_triangulation(check_exact_, 0), exact_list_.buffer(),
+                  active_.buffer(), flags_.buffer(), proposal_.buffer(),
+                  static_cast<cl_int>(uncertain));
     launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
   }
 }
@@ -70,14 +68,11 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     if (n <= limit) {
       const std::size_t group = std::min(device_.work_group(), passes_group_limit_);
       const long left = max_passes < 0 ? std::numeric_limits<cl_int>::max() : max_passes - pass;
-      set_args(passes_in_group_, active_.buffer(), next_active_.buffer(), static_cast<cl_int>(n),
-               mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-               mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(),
-               static_cast<cl_int>(mesh_.has_constraints), static_cast<cl_int>(fixed_boundary_),
-               active_round_.buffer(), round_, mesh_.tri_mark.buffer(), proposal_.buffer(),
-               flipped_.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
-               static_cast<cl_int>(stamp), static_cast<cl_int>(limit), static_cast<cl_int>(left),
-               group_result_.buffer());
+      set_args_from(passes_in_group_, mesh_.bind_triangulation(passes_in_group_, 0),
+                    active_.buffer(), next_active_.buffer(), static_cast<cl_int>(n),
+                    static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_,
+                    proposal_.buffer(), flipped_.buffer(), static_cast<cl_int>(stamp),
+                    static_cast<cl_int>(limit), static_cast<cl_int>(left), group_result_.buffer());
       launch(device_, passes_in_group_, group, kPhase, group);
       const std::vector<cl_int> result = group_result_.download(device_, 4);
       stamp += result[0];
@@ -95,14 +90,13 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     pass_counts_.fill(device_, 0, 2);
     propose(n, counts);
-    set_args(apply_, active_.buffer(), proposal_.buffer(), mesh_.tri_mark.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
-             mesh_.children.buffer(), flipped_.buffer(), pass_counts_.buffer(), pass_stamp, items);
+    set_args_from(apply_, mesh_.bind_triangulation(apply_, 0), active_.buffer(), proposal_.buffer(),
+                  flipped_.buffer(), pass_counts_.buffer(), pass_stamp, items);
     launch(device_, apply_, n, kPhase);
-    set_args(relink_and_collect_, active_.buffer(), proposal_.buffer(), flipped_.buffer(),
-             mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(),
-             mesh_.children.buffer(), mesh_.tri_mark.buffer(), pass_stamp, next_active_.buffer(),
-             active_round_.buffer(), round_ + 1, pass_counts_.buffer(), items);
+    set_args_from(relink_and_collect_, mesh_.bind_triangulation(relink_and_collect_, 0),
+                  active_.buffer(), proposal_.buffer(), flipped_.buffer(), pass_stamp,
+                  next_active_.buffer(), active_round_.buffer(), round_ + 1, pass_counts_.buffer(),
+                  items);
     launch(device_, relink_and_collect_, n, kPhase);
     const std::vector<cl_int> pass_counts = pass_counts_.download(device_, 2);
     ++round_;

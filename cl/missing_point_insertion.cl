@@ -10,6 +10,7 @@
 // phase restores the Delaunay property after each round, so walks always run
 // in a Delaunay triangulation, where the visibility walk cannot cycle.
 #include "common.h"
+#include "mesh_params.h"
 #include "prefetch.h"
 
 #define CLM_PENDING 0
@@ -20,11 +21,9 @@
 // not rewritten since the last walk (stamp `since`) stays where it is.
 // Results: location[p], location_edge[p] (-1: interior or ghost region, i: on
 // edge i), status.
-__kernel void locate_points(__global const double2 *points, __global const int *tri_vertex,
-                            __global const int *tri_neighbor, __global const int *modified_stamp,
-                            const int since, __global const int *remaining, __global int *location,
-                            __global int *location_edge, __global int *duplicate_of,
-                            __global int *status, const int max_steps, const int n) {
+__kernel void locate_points(CLM_TRIANGULATION_PARAMS, const int since,
+                            __global const int *remaining, __global int *status,
+                            const int max_steps, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -59,11 +58,8 @@ inline int next_visible_ghost(__global const double2 *points, __global const int
 }
 
 // Marks the triangle(s) each pending point would split with its priority.
-__kernel void mark_containers(__global const int *remaining, __global const int *location,
-                              __global const int *location_edge, __global const int *status,
-                              __global const double2 *points, __global const int *tri_vertex,
-                              __global const int *tri_neighbor, volatile __global uint *tri_mark,
-                              const int n) {
+__kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global const int *status, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || status[gid] != CLM_PENDING)
     return;
@@ -80,11 +76,8 @@ __kernel void mark_containers(__global const int *remaining, __global const int 
 }
 
 // winner[gid] = 1 when every mark written by the point survived.
-__kernel void select_winners(__global const int *remaining, __global const int *location,
-                             __global const int *location_edge, __global const int *status,
-                             __global const double2 *points, __global const int *tri_vertex,
-                             __global const int *tri_neighbor, __global const uint *tri_mark,
-                             __global int *winner, const int n) {
+__kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                             __global const int *status, __global int *winner, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -105,11 +98,8 @@ __kernel void select_winners(__global const int *remaining, __global const int *
 }
 
 // Clears the marks of this round (before the topology changes).
-__kernel void clear_container_marks(__global const int *remaining, __global const int *location,
-                                    __global const int *location_edge, __global const int *status,
-                                    __global const double2 *points, __global const int *tri_vertex,
-                                    __global const int *tri_neighbor, __global uint *tri_mark,
-                                    const int n) {
+__kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                    __global const int *status, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || status[gid] != CLM_PENDING)
     return;
@@ -151,11 +141,8 @@ inline void prefetch_split(__global const int *remaining, __global const int *wi
 // allocate_slot); every child has the new point at index 2,
 // so its edge 2 is the only one facing outwards. Children are listed in
 // changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
-__kernel void split_triangles(__global const int *remaining, __global const int *winner,
-                              __global const int *winner_offset, __global const int *location,
-                              __global const int *location_edge, __global int *tri_vertex,
-                              __global int *tri_neighbor, __global int *modified_stamp,
-                              __global int *children, __global int *vertex_triangle,
+__kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global const int *winner, __global const int *winner_offset,
                               __global int *changed, const int stamp, __global const int *free_list,
                               const int free_first, const int free_count, const int first_slot,
                               const int n) {
@@ -214,9 +201,8 @@ __kernel void split_triangles(__global const int *remaining, __global const int 
 }
 
 // Second step: link each child's outward edge (edge 2) to its true neighbour.
-__kernel void relink_split_children(__global const int *changed, __global const int *tri_vertex,
-                                    __global int *tri_neighbor, __global const int *modified_stamp,
-                                    __global const int *children, const int stamp, const int n) {
+__kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int *changed,
+                                    const int stamp, const int n) {
   const int gid = get_global_id(0);
   const int far = entry_ahead(changed, gid, 2, n);
   if (far >= 0)

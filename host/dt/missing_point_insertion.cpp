@@ -46,27 +46,23 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   // Any walk in a Delaunay triangulation visits each triangle at most once.
   const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
   if (walk) {
-    set_args(locate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.modified_stamp.buffer(), static_cast<cl_int>(located_since_),
-             remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-             mesh_.duplicate_of.buffer(), status_.buffer(), max_steps, n);
+    set_args_from(locate_, mesh_.bind_triangulation(locate_, 0),
+                  static_cast<cl_int>(located_since_), remaining_.buffer(), status_.buffer(),
+                  max_steps, n);
     launch(device_, locate_, pending_, kPhase);
     located_since_ = stamp; // this round's changes and later ones move points
   } else {
     status_.fill(device_, 0, pending_); // all pending where they stand
   }
 
-  set_args(mark_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+  set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
+                n);
   launch(device_, mark_, pending_, kPhase);
-  set_args(select_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), winner_.buffer(), n);
+  set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
+                status_.buffer(), winner_.buffer(), n);
   launch(device_, select_, pending_, kPhase);
-  set_args(clear_marks_, remaining_.buffer(), mesh_.location.buffer(), mesh_.location_edge.buffer(),
-           status_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(), n);
+  set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
+                status_.buffer(), n);
   launch(device_, clear_marks_, pending_, kPhase);
 
   const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
@@ -79,16 +75,13 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
       4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
     throw InternalError("missing-point insertion: triangle slots exhausted");
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
-  set_args(split_, remaining_.buffer(), winner_.buffer(), winner_offset_.buffer(),
-           mesh_.location.buffer(), mesh_.location_edge.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), mesh_.modified_stamp.buffer(), mesh_.children.buffer(),
-           mesh_.vertex_triangle.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
-           free_first, free_count, first_slot, n);
+  set_args_from(split_, mesh_.bind_triangulation(split_, 0), remaining_.buffer(), winner_.buffer(),
+                winner_offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
+                free_first, free_count, first_slot, n);
   launch(device_, split_, pending_, kPhase);
   mesh_.triangle_count += new_slots;
-  set_args(relink_, changed_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.modified_stamp.buffer(), mesh_.children.buffer(), static_cast<cl_int>(stamp),
-           static_cast<cl_int>(4 * winners));
+  set_args_from(relink_, mesh_.bind_triangulation(relink_, 0), changed_.buffer(),
+                static_cast<cl_int>(stamp), static_cast<cl_int>(4 * winners));
   launch(device_, relink_, 4 * static_cast<std::size_t>(winners), kPhase);
 
   set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),

@@ -25,6 +25,7 @@
 // 4.4.1) and the loop ends; every flip is one of the thesis's cases, so the
 // flips inside a run end too (Claim 4.4.2).
 #include "common.h"
+#include "mesh_params.h"
 
 #define CLM_SEGMENT_PENDING 0
 #define CLM_SEGMENT_PRESENT 1
@@ -201,13 +202,11 @@ inline int mark_constraint(__global const double2 *points, __global const int *t
 }
 
 __kernel void mark_constraint_triangles(
-    __global const double2 *points, __global const int *tri_vertex,
-    __global const int *tri_neighbor, __global const int *vertex_triangle,
-    __global const int *constraint_start, __global const int *constraint_adjacent,
-    __global const int *walk_order, __global const int *segment_a, __global const int *segment_b,
-    __global int *segment_state, __global int *split_vertex, __global int *crossed_vertex,
-    __global int *crossed_triangle, volatile __global int *constraint_mark,
-    volatile __global int *counters, const int max_steps, const int m) {
+    CLM_TRIANGULATION_PARAMS, __global const int *walk_order, __global const int *segment_a,
+    __global const int *segment_b, __global int *segment_state, __global int *split_vertex,
+    __global int *crossed_vertex, __global int *crossed_triangle,
+    volatile __global int *constraint_mark, volatile __global int *counters, const int max_steps,
+    const int m) {
   // counters[0]: segments still pending, [1]: constraint-triangle intersections,
   // [2]: segments to split, crossing another, or lost (read back only then)
   const int gid = get_global_id(0), s = gid < m ? walk_order[gid] : -1;
@@ -414,13 +413,12 @@ inline void link_outer_edges(__global int *tri_neighbor, __global const int *run
 // or 3 with B the previous triangle, when B is in the run); after a flip it
 // steps back to B, whose pair has changed, and otherwise goes on to C. When
 // the walk leaves the run, no pair of the run is flippable.
-__kernel void flip_along_runs(__global const int *run_start, __global const double2 *points,
-                              __global int *tri_vertex, __global int *tri_neighbor,
+__kernel void flip_along_runs(CLM_TRIANGULATION_PARAMS, __global const int *run_start,
                               __global const int *constraint_mark, __global const int *segment_a,
                               __global const int *segment_b, __global const int *run_of,
                               __global int *boundary_log, volatile __global int *run_counters,
-                              __global int *touched, __global int *vertex_triangle,
-                              const int log_capacity, const int max_steps, const int n) {
+                              __global int *touched, const int log_capacity, const int max_steps,
+                              const int n) {
   const int gid = get_global_id(0);
   int flips = 0;
   if (gid < n) {

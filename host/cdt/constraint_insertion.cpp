@@ -162,12 +162,11 @@ long ConstraintInsertion::mark(ConstrainedStats &stats, bool first,
   }
   constraint_mark_.fill(device_, 0x7fffffff, slots);
   counters_.fill(device_, 0, kCounters);
-  set_args(mark_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.vertex_triangle.buffer(), mesh_.constraint_start.buffer(),
-           mesh_.constraint_adjacent.buffer(), walk_order_.buffer(), segment_a_.buffer(),
-           segment_b_.buffer(), segment_state_.buffer(), split_vertex_.buffer(),
-           crossed_vertex_.buffer(), crossed_triangle_.buffer(), constraint_mark_.buffer(),
-           counters_.buffer(), static_cast<cl_int>(slots + 8), static_cast<cl_int>(m));
+  set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), walk_order_.buffer(),
+                segment_a_.buffer(), segment_b_.buffer(), segment_state_.buffer(),
+                split_vertex_.buffer(), crossed_vertex_.buffer(), crossed_triangle_.buffer(),
+                constraint_mark_.buffer(), counters_.buffer(), static_cast<cl_int>(slots + 8),
+                static_cast<cl_int>(m));
   launch(device_, mark_, m, kPhase);
   const auto counters = counters_.download(device_, kCounters);
   if (first)
@@ -292,11 +291,11 @@ ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
            run_of_.buffer(), max_steps, static_cast<cl_int>(runs));
   launch(device_, claim_runs_, runs, kPhase);
   const auto log_capacity = static_cast<cl_int>(boundary_log_.size());
-  set_args(flip_along_runs_, run_start_.buffer(), mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-           mesh_.tri_neighbor.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
-           segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(), run_counters_.buffer(),
-           touched_.buffer(), mesh_.vertex_triangle.buffer(), log_capacity, max_steps,
-           static_cast<cl_int>(runs));
+  set_args_from(flip_along_runs_, mesh_.bind_triangulation(flip_along_runs_, 0),
+                run_start_.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
+                segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(),
+                run_counters_.buffer(), touched_.buffer(), log_capacity, max_steps,
+                static_cast<cl_int>(runs));
   launch(device_, flip_along_runs_, runs, kPhase);
   const auto counts = run_counters_.download(device_, kRunCounters);
   const std::size_t logged =

@@ -5,6 +5,7 @@
 // the next frontier; the order of a frontier never reaches the output, only
 // the set of removed triangles does.
 #include "common.h"
+#include "mesh_params.h"
 
 inline void claim(__global int *removed, __global int *frontier, volatile __global int *count,
                   int t) {
@@ -27,9 +28,7 @@ inline int flood_neighbor(__global const int *tri_vertex, __global const int *tr
 }
 
 // Real triangles on the hull whose hull edge is not a constraint.
-__kernel void seed_from_hull(__global const int *tri_vertex, __global const int *tri_neighbor,
-                             __global const int *constraint_start,
-                             __global const int *constraint_adjacent, __global int *removed,
+__kernel void seed_from_hull(CLM_TRIANGULATION_PARAMS, __global int *removed,
                              __global int *frontier, volatile __global int *count, const int n) {
   const int g = get_global_id(0);
   if (g >= n)
@@ -44,8 +43,7 @@ __kernel void seed_from_hull(__global const int *tri_vertex, __global const int 
 }
 
 // Hole seeds: the real triangle holding each seed (seeds outside the hull are ignored).
-__kernel void seed_from_points(__global const double2 *points, __global const int *tri_vertex,
-                               __global const int *tri_neighbor, __global const double2 *seeds,
+__kernel void seed_from_points(CLM_TRIANGULATION_PARAMS, __global const double2 *seeds,
                                const int start, const int max_steps, __global int *removed,
                                __global int *frontier, volatile __global int *count, const int n) {
   const int i = get_global_id(0);
@@ -60,8 +58,7 @@ __kernel void seed_from_points(__global const double2 *points, __global const in
 
 // Regional attributes (-A): region r's seed floods its area, bounded by
 // constraints; regions are run in order, so a later seed in the same area wins.
-__kernel void seed_label(__global const double2 *points, __global const int *tri_vertex,
-                         __global const int *tri_neighbor, __global const int *removed,
+__kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed,
                          const double2 seed, const int start, const int max_steps, const int region,
                          __global int *label, __global int *frontier,
                          volatile __global int *count) {
@@ -77,12 +74,10 @@ __kernel void seed_label(__global const double2 *points, __global const int *tri
 
 // One wave of a flood: removal (region < 0: claims removed[]) or labelling
 // of region `region` (claims label[]), never across a constraint.
-__kernel void spread_flood(__global const int *frontier, __global const int *tri_vertex,
-                           __global const int *tri_neighbor, __global const int *constraint_start,
-                           __global const int *constraint_adjacent, volatile __global int *removed,
-                           const int region, volatile __global int *label,
-                           __global int *next_frontier, volatile __global int *next_count,
-                           const int n) {
+__kernel void spread_flood(CLM_TRIANGULATION_PARAMS, __global const int *frontier,
+                           volatile __global int *removed, const int region,
+                           volatile __global int *label, __global int *next_frontier,
+                           volatile __global int *next_count, const int n) {
   const int i = get_global_id(0);
   int claimed[3], count = 0;
   if (i < n) {

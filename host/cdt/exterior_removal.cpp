@@ -23,9 +23,8 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
   const std::size_t slots = mesh_.triangle_count;
   count_.fill(device_, 0, 1);
   if (from_hull) {
-    set_args(seed_from_hull_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), removed_.buffer(),
-             frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+    set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0), removed_.buffer(),
+                  frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
     launch(device_, seed_from_hull_, slots, kPhase);
   }
   if (!holes.empty()) {
@@ -34,10 +33,10 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
       seeds.push_back({{p.x, p.y}});
     DeviceArray<cl_double2> seed_buffer(device_, seeds.size());
     seed_buffer.upload(device_, seeds);
-    set_args(seed_from_points_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), seed_buffer.buffer(), static_cast<cl_int>(0),
-             static_cast<cl_int>(slots + 8), removed_.buffer(), frontier_.buffer(), count_.buffer(),
-             static_cast<cl_int>(seeds.size()));
+    set_args_from(seed_from_points_, mesh_.bind_triangulation(seed_from_points_, 0),
+                  seed_buffer.buffer(), static_cast<cl_int>(0), static_cast<cl_int>(slots + 8),
+                  removed_.buffer(), frontier_.buffer(), count_.buffer(),
+                  static_cast<cl_int>(seeds.size()));
     launch(device_, seed_from_points_, seeds.size(), kPhase);
   }
   return flood(-1);
@@ -48,10 +47,9 @@ long ExteriorRemoval::flood(int region) {
   for (int front = count_.read(device_, 0); front > 0;) {
     reached += front;
     count_.fill(device_, 0, 1);
-    set_args(spread_, frontier_.buffer(), mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(),
-             mesh_.constraint_start.buffer(), mesh_.constraint_adjacent.buffer(), removed_.buffer(),
-             static_cast<cl_int>(region), label_.buffer(), next_frontier_.buffer(), count_.buffer(),
-             static_cast<cl_int>(front));
+    set_args_from(spread_, mesh_.bind_triangulation(spread_, 0), frontier_.buffer(),
+                  removed_.buffer(), static_cast<cl_int>(region), label_.buffer(),
+                  next_frontier_.buffer(), count_.buffer(), static_cast<cl_int>(front));
     launch(device_, spread_, static_cast<std::size_t>(front), kPhase);
     std::swap(frontier_, next_frontier_);
     front = count_.read(device_, 0);
@@ -65,10 +63,10 @@ const DeviceArray<cl_int> &ExteriorRemoval::label_regions(const std::vector<Poin
   label_.fill(device_, -1, mesh_.triangle_capacity);
   for (std::size_t r = 0; r < seeds.size(); ++r) {
     count_.fill(device_, 0, 1);
-    set_args(seed_label_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), removed_.buffer(), cl_double2{{seeds[r].x, seeds[r].y}},
-             static_cast<cl_int>(0), static_cast<cl_int>(slots + 8), static_cast<cl_int>(r),
-             label_.buffer(), frontier_.buffer(), count_.buffer());
+    set_args_from(seed_label_, mesh_.bind_triangulation(seed_label_, 0), removed_.buffer(),
+                  cl_double2{{seeds[r].x, seeds[r].y}}, static_cast<cl_int>(0),
+                  static_cast<cl_int>(slots + 8), static_cast<cl_int>(r), label_.buffer(),
+                  frontier_.buffer(), count_.buffer());
     launch(device_, seed_label_, 1, kPhase);
     flood(static_cast<int>(r));
   }

@@ -8,6 +8,7 @@
 // them by cell (PrefixScan::bucket), each cell is sorted (sort_cells), and the
 // triangles move there. The Steiner points follow likewise.
 #include "common.h"
+#include "mesh_params.h"
 #include "prefetch.h"
 #include "refinement.h"
 
@@ -168,13 +169,10 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
 // Every point q < n of the new arrays takes its coordinates, state,
 // insertion radius and priority from point p: itself for an input point
 // (q < first), first + order[q - first] for a Steiner point.
-__kernel void move_steiner_points(__global const int *order, __global const double2 *points,
-                                  __global const int *point_state,
-                                  __global const double *insertion_radius2,
-                                  __global const uint *point_priority,
+__kernel void move_steiner_points(CLM_MESH_PARAMS, __global const int *order,
                                   __global double2 *moved_point, __global int *moved_state,
                                   __global double *moved_radius2, __global uint *moved_priority,
-                                  __global int *original_id, const int first, const int n) {
+                                  const int first, const int n) {
   const int q = get_global_id(0);
   if (q >= n)
     return;

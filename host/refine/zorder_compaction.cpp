@@ -100,10 +100,9 @@ void ZOrderCompaction::compact_steiner_points(Point low, double side, std::size_
   DeviceArray<cl_int> state(device_, capacity);
   DeviceArray<cl_double> radius2(device_, capacity);
   DeviceArray<cl_uint> priority(device_, capacity);
-  set_args(move_points_, order.buffer(), mesh_.points.buffer(), mesh_.point_state.buffer(),
-           mesh_.insertion_radius2.buffer(), mesh_.point_priority.buffer(), points.buffer(),
-           state.buffer(), radius2.buffer(), priority.buffer(), mesh_.original_id.buffer(),
-           static_cast<cl_int>(first), static_cast<cl_int>(first + live));
+  set_args_from(move_points_, mesh_.bind(move_points_, 0), order.buffer(), points.buffer(),
+                state.buffer(), radius2.buffer(), priority.buffer(), static_cast<cl_int>(first),
+                static_cast<cl_int>(first + live));
   launch(device_, move_points_, first + live, kPhase);
   set_args(renumber_vertices_, new_slot.buffer(), mesh_.tri_vertex.buffer(),
            static_cast<cl_int>(first), static_cast<cl_int>(3 * mesh_.triangle_count));

@@ -189,8 +189,8 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 // tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and
 // links, then the marks of theirs.
 inline void prefetch_two_rings(__global const int *list, int k, int n,
-                               __global const uint *tri_mark, __global const int *tie_mark,
-                               __global const int *tri_neighbor) {
+                               volatile __global const uint *tri_mark,
+                               __global const int *tie_mark, __global const int *tri_neighbor) {
   const int far = entry_ahead(list, k, 3, n);
   if (far >= 0) {
     warm(tri_mark + far);
@@ -444,7 +444,7 @@ inline bool closer_than(__global const double2 *candidate, __global const double
 // when it goes first (better priority, or equal and a smaller index) and the
 // two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
 // orthogonal), of which k would be deleted again.
-inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
+inline bool beaten(volatile __global const uint *tri_mark, __global const int *tie_mark,
                    __global const double2 *candidate, __global const double *radius2, int x,
                    int ring, int rings, int distance_rings, double near2, int k, uint mine) {
   const uint mark = tri_mark[x];
@@ -477,11 +477,11 @@ inline bool beaten(__global const uint *tri_mark, __global const int *tie_mark,
 // only midpoints rank before it and two midpoints never conflict: they split
 // different hull edges (a container or partner they share goes by its mark)
 // and are never a dependent pair.
-__kernel void insertion_filter(__global const int *container, __global const int *split_edge,
-                               __global const uint *priority, __global const uint *tri_mark,
-                               __global const int *tie_mark, __global const int *tri_neighbor,
-                               __global const double2 *candidate, __global const double *radius2,
-                               const int rings, const int distance_rings, const double near2,
+__kernel void insertion_filter(CLM_MESH_PARAMS, __global const int *container,
+                               __global const int *split_edge, __global const uint *priority,
+                               __global const int *tie_mark, __global const double2 *candidate,
+                               __global const double *radius2, const int rings,
+                               const int distance_rings, const double near2,
                                const int parallel_midpoints, __global int *survive, const int n) {
   const int k = get_global_id(0);
   prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);

@@ -142,11 +142,10 @@ void OffcenterInsertion::filter_candidates() {
   set_args(ties_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            priority_.buffer(), mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, ties_, candidates_, kPhase);
-  set_args(filter_, container_.buffer(), split_edge_.buffer(), priority_.buffer(),
-           mesh_.tri_mark.buffer(), tie_mark_.buffer(), mesh_.tri_neighbor.buffer(),
-           candidate_.buffer(), radius2_.buffer(), static_cast<cl_int>(filter_rings_),
-           static_cast<cl_int>(filter_distance_rings_), filter_near2_,
-           static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
+  set_args_from(filter_, mesh_.bind(filter_, 0), container_.buffer(), split_edge_.buffer(),
+                priority_.buffer(), tie_mark_.buffer(), candidate_.buffer(), radius2_.buffer(),
+                static_cast<cl_int>(filter_rings_), static_cast<cl_int>(filter_distance_rings_),
+                filter_near2_, static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
   launch(device_, filter_, candidates_, kPhase);
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);

@@ -55,6 +55,26 @@ std::string count(const char *name, long value, bool last = false) {
 
 } // namespace
 
+const char *stop_reason_name(RefineStop reason) {
+  switch (reason) {
+  case RefineStop::done:
+    return "done";
+  case RefineStop::steiner_limit:
+    return "steiner_limit";
+  case RefineStop::area_bound:
+    return "area_bound";
+  case RefineStop::angle_bound:
+    return "angle_bound";
+  case RefineStop::device_memory:
+    return "device_memory";
+  case RefineStop::iteration_limit:
+    return "iteration_limit";
+  case RefineStop::no_insertion:
+    return "no_insertion";
+  }
+  return "unknown";
+}
+
 std::string format_statistics(const Mesh &mesh) {
   const DelaunayStats &s = mesh.statistics.delaunay;
   std::string out;
@@ -99,7 +119,8 @@ std::string format_statistics(const Mesh &mesh) {
         r.insertions, r.deleted);
     add("    Steiner points: %ld (%ld hull midpoints)\n", r.inserted, r.boundary_splits);
     add("    Delaunay flips / deleting flips: %ld / %ld\n", r.delaunay_flips, r.non_delaunay_flips);
-    add("    Triangles left below the bounds: %ld\n\n", r.remaining_bad);
+    add("    Triangles left below the bounds: %ld\n", r.remaining_bad);
+    add("    Stopped: %s\n\n", stop_reason_name(r.stop_reason));
   }
   add("  Phases (seconds):\n");
   for (const PhaseTime &p : s.phases)
@@ -161,7 +182,9 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
     json += count("delaunay_flips", r.delaunay_flips);
     json += count("non_delaunay_flips", r.non_delaunay_flips);
     json += count("growths", r.growths);
-    json += count("remaining_bad_triangles", r.remaining_bad, true);
+    json += count("remaining_bad_triangles", r.remaining_bad);
+    json += "    \"area_bound_points\": " + json_number(r.area_bound_points) + ",\n";
+    json += "    \"stop_reason\": " + json_string(stop_reason_name(r.stop_reason)) + "\n";
     json += "  },\n";
   }
   json += "  \"construction\": " + json_string(s.construction) + ",\n";

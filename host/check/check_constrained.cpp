@@ -15,17 +15,20 @@
 //    domain was eaten) and the walk goes on at the next point lying on the segment, found in
 //    the lexicographically sorted points (points on a segment are in lexicographic order along
 //    it, so only points between c and b in that order are candidates).
+//    Points the run added where segments cross (first_added on) are rounded: the walk steps
+//    onto one where it lies within rounding of the segment, a test in floating point.
 //  - Constrained Delaunay: every edge between two triangles that is not part of a segment is
 //    locally Delaunay (clm_incircle_sos == -1 for the vertex across it); without whole_hull
 //    every boundary edge is part of a segment.
-#include "clmesh/check.hpp"
 #include "cdt/constrained.hpp"
+#include "clmesh/check.hpp"
 
 #include "check/check_support.hpp"
 #include "predicates.h"
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <unordered_set>
 
@@ -44,13 +47,25 @@ bool between_on_segment(const Point &c, const Point &w, const Point &b) {
   return forward ? (lex_less(c, w) && !lex_less(b, w)) : (lex_less(w, c) && !lex_less(w, b));
 }
 
+// For a point the run computed where segments cross: does it lie on a-b up
+// to its rounding? Its distance from the line is at most a few units in the
+// last place of the coordinates; 1e-12 of their magnitude allows for that.
+bool within_rounding_of(const Point &a, const Point &b, const Point &w) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double cross = dx * (w.y - a.y) - dy * (w.x - a.x);
+  const double magnitude = std::max(
+      {std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y), std::abs(w.x), std::abs(w.y)});
+  return std::abs(cross) <= 1e-12 * magnitude * std::hypot(dx, dy);
+}
+
 } // namespace
 
 CheckReport check_constrained(const std::vector<Point> &points,
                               const std::vector<Triangle> &triangles,
                               const std::vector<std::array<int32_t, 3>> &neighbors,
                               const std::vector<int32_t> &duplicate_of,
-                              const std::vector<Segment> &segments, bool whole_hull) {
+                              const std::vector<Segment> &segments, bool whole_hull,
+                              int32_t first_added) {
   CheckReport report;
   const int64_t n = static_cast<int64_t>(points.size());
   const int64_t nt = static_cast<int64_t>(triangles.size());
@@ -235,12 +250,21 @@ CheckReport check_constrained(const std::vector<Point> &points,
     const Point &pb = points[b];
     int32_t c = a;
     while (c != b) {
+      // The nearest neighbour of c along the segment towards b: exactly on it,
+      // else (a rounded crossing) within rounding of it.
       int32_t next = -1;
-      for (int32_t q = first[c]; q < first[c + 1]; ++q) {
-        const int32_t w = adjacent[q];
-        if (orient(points, a, b, w) == 0 && between_on_segment(points[c], points[w], pb) &&
-            (next < 0 || between_on_segment(points[c], points[w], points[next])))
-          next = w;
+      for (const bool exact : {true, false}) {
+        for (int32_t q = first[c]; q < first[c + 1]; ++q) {
+          const int32_t w = adjacent[q];
+          const bool on_segment =
+              exact ? orient(points, a, b, w) == 0
+                    : w >= first_added && within_rounding_of(points[a], pb, points[w]);
+          if (on_segment && between_on_segment(points[c], points[w], pb) &&
+              (next < 0 || between_on_segment(points[c], points[w], points[next])))
+            next = w;
+        }
+        if (next >= 0)
+          break;
       }
       if (next >= 0) {
         segment_edges.insert(edge_key(c, next));

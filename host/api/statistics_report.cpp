@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace clmesh {
 
@@ -56,23 +57,12 @@ std::string count(const char *name, long value, bool last = false) {
 } // namespace
 
 const char *stop_reason_name(RefineStop reason) {
-  switch (reason) {
-  case RefineStop::done:
-    return "done";
-  case RefineStop::steiner_limit:
-    return "steiner_limit";
-  case RefineStop::area_bound:
-    return "area_bound";
-  case RefineStop::angle_bound:
-    return "angle_bound";
-  case RefineStop::device_memory:
-    return "device_memory";
-  case RefineStop::iteration_limit:
-    return "iteration_limit";
-  case RefineStop::no_insertion:
-    return "no_insertion";
-  }
-  return "unknown";
+  // In the order of RefineStop's values.
+  static const char *const names[] = {"done",        "steiner_limit", "area_bound",
+                                      "angle_bound", "device_memory", "iteration_limit",
+                                      "no_insertion"};
+  const auto index = static_cast<std::size_t>(reason);
+  return index < std::size(names) ? names[index] : "unknown";
 }
 
 std::string format_statistics(const Mesh &mesh) {

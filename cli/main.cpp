@@ -75,8 +75,12 @@ void print_help() {
       "      Up to 30 degrees refinement ends (away from hull angles sharper than the\n"
       "      bound, which are left and reported); above about 33 degrees it need not\n"
       "      end and stops, reported, when the device is full.\n"
-      "  -a  Maximum triangle area, after it (-a0.01). Point sets only.\n"
+      "  -a  Maximum triangle area, after it (-a0.01). Point sets only. A bound the\n"
+      "      device cannot hold (it needs at least half the convex hull's area over the\n"
+      "      bound in points) is refused, unless -S stops the refinement sooner.\n"
       "  -S  At most the number after it of Steiner points (-S1000).\n"
+      "      A refinement that stops early says why: -S, the device's memory (full\n"
+      "      because of -a, or of -q above about 33 degrees) or the iteration limit.\n"
       "\n"
       "Triangle switches not supported yet (they are refused): -r -u -D -v -g -P -X -o2\n"
       "-Y -i -F -l -s, -a without a number (.area files). With -p, clmesh does not refine\n"
@@ -343,6 +347,59 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
   std::printf("\n");
 }
 
+// One warning line when the refinement left bad triangles, naming why it
+// stopped: the -S limit, the device's memory (full because of the area bound,
+// an angle bound above about 33 degrees or the input's size), the iteration
+// limit, or hull angles sharper than the bound.
+void warn_refinement(const clmesh::Options &options, const clmesh::RefineStats &refinement) {
+  using clmesh::RefineStop;
+  const long bad = refinement.remaining_bad;
+  const char *const full = "Warning:  refinement stopped: the device's memory cannot hold more "
+                           "Steiner points";
+  switch (refinement.stop_reason) {
+  case RefineStop::done:
+    if (bad > 0)
+      std::fprintf(stderr,
+                   "Warning:  %ld triangles keep angles below the bound at hull angles of the "
+                   "input sharper than it, which no Steiner point mends.\n",
+                   bad);
+    return;
+  case RefineStop::steiner_limit:
+    std::fprintf(stderr,
+                 "Warning:  refinement stopped at the Steiner point limit (-S%ld): %ld triangles "
+                 "still miss the quality or area bound.\n",
+                 options.max_steiner.value_or(0), bad);
+    return;
+  case RefineStop::area_bound:
+    std::fprintf(stderr,
+                 "%s: the area bound (-a%g) needs at least ~%.2g points on this domain; %ld "
+                 "triangles still miss the bounds.\n",
+                 full, options.max_area.value_or(0), refinement.area_bound_points, bad);
+    return;
+  case RefineStop::angle_bound:
+    std::fprintf(stderr,
+                 "%s: refinement to minimum angles above about 33 degrees (-q%g) need not "
+                 "terminate; %ld triangles still miss the bound.\n",
+                 full, options.min_angle, bad);
+    return;
+  case RefineStop::device_memory:
+    std::fprintf(stderr, "%s for this input; %ld triangles still miss the bounds.\n", full, bad);
+    return;
+  case RefineStop::iteration_limit:
+    std::fprintf(stderr,
+                 "Warning:  refinement stopped at its iteration limit; %ld triangles still miss "
+                 "the bounds.\n",
+                 bad);
+    return;
+  case RefineStop::no_insertion:
+    std::fprintf(stderr,
+                 "Warning:  refinement stopped: no candidate Steiner point could be inserted "
+                 "(each lands on a vertex); %ld triangles still miss the bounds.\n",
+                 bad);
+    return;
+  }
+}
+
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -381,14 +438,7 @@ int run(const CommandLine &command) {
   phase = Clock::now();
   const clmesh::Mesh mesh = clmesh::triangulate(*device, input, options);
   const clmesh::RefineStats &refinement = mesh.statistics.refinement;
-  if (refinement.out_of_memory)
-    std::fprintf(stderr, "Warning:  refinement stopped: the device cannot hold more Steiner points "
-                         "(minimum angles above about 33 degrees need not terminate).\n");
-  if (refinement.remaining_bad > 0)
-    std::fprintf(stderr,
-                 "Warning:  %ld triangles still miss the quality or area bound (small angles "
-                 "of the input or the Steiner point limit).\n",
-                 refinement.remaining_bad);
+  warn_refinement(options, refinement);
   const double compute_wall = seconds_since(phase);
   const double device_compute = mesh.statistics.delaunay.compute_seconds;
   seconds.compute = device_compute > 0 ? device_compute : compute_wall;

@@ -404,3 +404,32 @@ TEST_CASE("refine: bad options are refused") {
   clmesh::Options pslg_quality = clmesh::parse_switches("pq");
   CHECK_THROWS_AS(clmesh::validate(pslg_quality), clmesh::OptionError);
 }
+
+TEST_CASE("refine: an area bound the device cannot hold is refused before any work") {
+  const std::vector<Point> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  try {
+    refine(square, clmesh::parse_switches("a1e-30"));
+    FAIL("-a1e-30 on a unit square was not refused");
+  } catch (const clmesh::OptionError &error) {
+    const std::string message = error.what();
+    INFO(message);
+    CHECK(message.find("-a1e-30") != std::string::npos);
+    CHECK(message.find("~5e29 points") != std::string::npos);
+    CHECK(message.find("(area 1)") != std::string::npos);
+    CHECK(message.find("memory holds") != std::string::npos);
+  }
+  CHECK_THROWS_AS(refine(square, clmesh::parse_switches("q30a1e-9")), clmesh::OptionError);
+  // -S stops the refinement well before the device is full: it runs, and
+  // says the Steiner point limit stopped it.
+  const clmesh::Mesh capped = refine(square, clmesh::parse_switches("a1e-9S100"));
+  const clmesh::RefineStats &stats = capped.statistics.refinement;
+  CHECK(steiner_points(capped) == 100);
+  CHECK(stats.stop_reason == clmesh::RefineStop::steiner_limit);
+  CHECK(stats.remaining_bad > 0);
+  CHECK(stats.area_bound_points == doctest::Approx(5e8));
+  CHECK(std::string(clmesh::stop_reason_name(stats.stop_reason)) == "steiner_limit");
+  // A bound within reach: refined to the end.
+  const clmesh::Mesh done = refine(square, clmesh::parse_switches("a0.01"));
+  CHECK(done.statistics.refinement.stop_reason == clmesh::RefineStop::done);
+  CHECK(done.statistics.refinement.area_bound_points == doctest::Approx(50));
+}

@@ -26,8 +26,9 @@ CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &opti
   std::vector<Segment> segments = input.segments;
   if (options.convex_hull)
     segments.insert(segments.end(), mesh.segments.begin(), mesh.segments.end());
+  // The points after the input's are where segments cross, rounded.
   return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of, segments,
-                           whole_hull);
+                           whole_hull, static_cast<int32_t>(input.points.size()));
 }
 
 } // namespace clmesh

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace clmesh {
 
@@ -55,6 +56,15 @@ std::string count(const char *name, long value, bool last = false) {
 
 } // namespace
 
+const char *stop_reason_name(RefineStop reason) {
+  // In the order of RefineStop's values.
+  static const char *const names[] = {"done",        "steiner_limit", "area_bound",
+                                      "angle_bound", "device_memory", "iteration_limit",
+                                      "no_insertion"};
+  const auto index = static_cast<std::size_t>(reason);
+  return index < std::size(names) ? names[index] : "unknown";
+}
+
 std::string format_statistics(const Mesh &mesh) {
   const DelaunayStats &s = mesh.statistics.delaunay;
   std::string out;
@@ -99,7 +109,8 @@ std::string format_statistics(const Mesh &mesh) {
         r.insertions, r.deleted);
     add("    Steiner points: %ld (%ld hull midpoints)\n", r.inserted, r.boundary_splits);
     add("    Delaunay flips / deleting flips: %ld / %ld\n", r.delaunay_flips, r.non_delaunay_flips);
-    add("    Triangles left below the bounds: %ld\n\n", r.remaining_bad);
+    add("    Triangles left below the bounds: %ld\n", r.remaining_bad);
+    add("    Stopped: %s\n\n", stop_reason_name(r.stop_reason));
   }
   add("  Phases (seconds):\n");
   for (const PhaseTime &p : s.phases)
@@ -161,7 +172,9 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
     json += count("delaunay_flips", r.delaunay_flips);
     json += count("non_delaunay_flips", r.non_delaunay_flips);
     json += count("growths", r.growths);
-    json += count("remaining_bad_triangles", r.remaining_bad, true);
+    json += count("remaining_bad_triangles", r.remaining_bad);
+    json += "    \"area_bound_points\": " + json_number(r.area_bound_points) + ",\n";
+    json += "    \"stop_reason\": " + json_string(stop_reason_name(r.stop_reason)) + "\n";
     json += "  },\n";
   }
   json += "  \"construction\": " + json_string(s.construction) + ",\n";

@@ -3,6 +3,8 @@
 #include "priority.h"
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <utility>
@@ -14,6 +16,47 @@ const char *kFile = "constraint_marking.cl";
 constexpr int kPresent = 1, kSplit = 2, kCrossing = 3;
 constexpr std::size_t kCounters = 3;    // see mark_constraint_triangles
 constexpr std::size_t kRunCounters = 3; // see find_run_starts
+// Where segments a-b and p-q cross: a + t (b - a) on line p-q, in extended
+// precision, rounded once. A segment far longer than the crossing's distance
+// from its nearer endpoint (a coordinate of 1e20 among ones near 1) loses
+// the crossing in the rounding of t (b - a), and the point lands off both
+// segments; it is then taken from the endpoint, of either segment, whose
+// offset to it is the smallest, the best conditioned of the four.
+Point crossing_point(const Point &a, const Point &b, const Point &p, const Point &q) {
+  using Real = long double;
+  auto cross = [](Real ux, Real uy, Real vx, Real vy) { return ux * vy - uy * vx; };
+  const Real dx = static_cast<Real>(b.x) - a.x, dy = static_cast<Real>(b.y) - a.y;
+  const Real ex = static_cast<Real>(q.x) - p.x, ey = static_cast<Real>(q.y) - p.y;
+  const Real d_cross_e = cross(dx, dy, ex, ey);
+  const Real t =
+      cross(static_cast<Real>(p.x) - a.x, static_cast<Real>(p.y) - a.y, ex, ey) / d_cross_e;
+  const Point point{static_cast<double>(a.x + t * dx), static_cast<double>(a.y + t * dy)};
+  auto in_box = [&](const Point &u, const Point &w) {
+    return point.x >= std::min(u.x, w.x) && point.x <= std::max(u.x, w.x) &&
+           point.y >= std::min(u.y, w.y) && point.y <= std::max(u.y, w.y);
+  };
+  if (in_box(a, b) && in_box(p, q))
+    return point;
+  struct From {
+    Point base;
+    Real along, ux, uy; // the point is base + along (ux, uy)
+  };
+  const From from[] = {
+      {a, t, dx, dy},
+      {b, cross(static_cast<Real>(b.x) - p.x, static_cast<Real>(b.y) - p.y, ex, ey) / d_cross_e,
+       -dx, -dy},
+      {p, cross(static_cast<Real>(p.x) - a.x, static_cast<Real>(p.y) - a.y, dx, dy) / d_cross_e, ex,
+       ey},
+      {q, cross(static_cast<Real>(a.x) - q.x, static_cast<Real>(a.y) - q.y, dx, dy) / d_cross_e,
+       -ex, -ey}};
+  auto offset = [](const From &f) { return std::abs(f.along) * (std::abs(f.ux) + std::abs(f.uy)); };
+  const From &best =
+      *std::min_element(std::begin(from), std::end(from),
+                        [&](const From &u, const From &w) { return offset(u) < offset(w); });
+  return {static_cast<double>(best.base.x + best.along * best.ux),
+          static_cast<double>(best.base.y + best.along * best.uy)};
+}
+
 } // namespace
 
 ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
@@ -235,15 +278,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
     busy[s] = busy[piece] = 1;
     const Point a = coordinates(segments_[s].a), b = coordinates(segments_[s].b);
     const Point p = coordinates(segments_[piece].a), q = coordinates(segments_[piece].b);
-    // a + t (b - a) on line p-q, in extended precision, rounded once.
-    const long double dx = static_cast<long double>(b.x) - a.x,
-                      dy = static_cast<long double>(b.y) - a.y;
-    const long double ex = static_cast<long double>(q.x) - p.x,
-                      ey = static_cast<long double>(q.y) - p.y;
-    const long double t =
-        ((static_cast<long double>(p.x) - a.x) * ey - (static_cast<long double>(p.y) - a.y) * ex) /
-        (dx * ey - dy * ex);
-    where.push_back({static_cast<double>(a.x + t * dx), static_cast<double>(a.y + t * dy)});
+    where.push_back(crossing_point(a, b, p, q));
     near.push_back(triangle[s]);
     crossings.emplace_back(s, piece);
   }

@@ -15,17 +15,20 @@
 //    domain was eaten) and the walk goes on at the next point lying on the segment, found in
 //    the lexicographically sorted points (points on a segment are in lexicographic order along
 //    it, so only points between c and b in that order are candidates).
+//    Points the run added where segments cross (first_added on) are rounded: the walk steps
+//    onto one where it lies within rounding of the segment, a test in floating point.
 //  - Constrained Delaunay: every edge between two triangles that is not part of a segment is
 //    locally Delaunay (clm_incircle_sos == -1 for the vertex across it); without whole_hull
 //    every boundary edge is part of a segment.
-#include "clmesh/check.hpp"
 #include "cdt/constrained.hpp"
+#include "clmesh/check.hpp"
 
 #include "check/check_support.hpp"
 #include "predicates.h"
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <unordered_set>
 
@@ -44,13 +47,35 @@ bool between_on_segment(const Point &c, const Point &w, const Point &b) {
   return forward ? (lex_less(c, w) && !lex_less(b, w)) : (lex_less(w, c) && !lex_less(w, b));
 }
 
+// Is w ahead of c along the direction from a to b? The offset w - c, of two
+// points near each other, keeps its digits; a projection from a would not.
+bool ahead_along(const Point &a, const Point &b, const Point &c, const Point &w) {
+  return (w.x - c.x) * (b.x - a.x) + (w.y - c.y) * (b.y - a.y) > 0;
+}
+
+// In a mesh with rounded crossings: does w lie on a-b up to rounding? Its
+// distance from the line, measured from the endpoint nearer to it, is at most
+// 1e-12 of the magnitude of its coordinates and that endpoint's (a rounded
+// crossing is a few units in the last place off; a far endpoint, at 1e20 say,
+// does not widen the test).
+bool within_rounding_of(const Point &a, const Point &b, const Point &w) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const Point &e =
+      std::abs(w.x - a.x) + std::abs(w.y - a.y) <= std::abs(w.x - b.x) + std::abs(w.y - b.y) ? a
+                                                                                             : b;
+  const double cross = dx * (w.y - e.y) - dy * (w.x - e.x);
+  const double magnitude = std::max({std::abs(e.x), std::abs(e.y), std::abs(w.x), std::abs(w.y)});
+  return std::abs(cross) <= 1e-12 * magnitude * std::hypot(dx, dy);
+}
+
 } // namespace
 
 CheckReport check_constrained(const std::vector<Point> &points,
                               const std::vector<Triangle> &triangles,
                               const std::vector<std::array<int32_t, 3>> &neighbors,
                               const std::vector<int32_t> &duplicate_of,
-                              const std::vector<Segment> &segments, bool whole_hull) {
+                              const std::vector<Segment> &segments, bool whole_hull,
+                              int32_t first_added) {
   CheckReport report;
   const int64_t n = static_cast<int64_t>(points.size());
   const int64_t nt = static_cast<int64_t>(triangles.size());
@@ -219,6 +244,9 @@ CheckReport check_constrained(const std::vector<Point> &points,
       adjacent[fill[to_of(e)]++] = from_of(e);
     }
   }
+  // Points from first_added on are rounded crossings: segments split at them
+  // are followed within rounding too.
+  const bool rounded = first_added < n;
   std::vector<int32_t> sorted; // for the search of points on a segment that left the mesh
   std::unordered_set<uint64_t> segment_edges, seen_segments;
   int64_t missing = 0;
@@ -234,13 +262,41 @@ CheckReport check_constrained(const std::vector<Point> &points,
       continue; // zero length or repeated
     const Point &pb = points[b];
     int32_t c = a;
-    while (c != b) {
+    // Each step moves ahead along the segment, exactly or within rounding:
+    // more steps than points means the rounding turned the walk around.
+    for (int64_t steps = 0; c != b; ++steps) {
+      if (steps > n) {
+        report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
+                    point_text(points, ib) + "): the walk along it does not end");
+        break;
+      }
+      // The nearest neighbour of c along the segment towards b: exactly on it
+      // (ordered lexicographically, and ahead of c, which may be a rounded
+      // crossing a hair off the segment), else, in a mesh with rounded
+      // crossings, a point within rounding of it (a crossing, else a vertex
+      // on a piece split at one), ordered by its offset along the segment
+      // (the rounding may break the lexicographic order on a nearly vertical
+      // or horizontal one).
       int32_t next = -1;
       for (int32_t q = first[c]; q < first[c + 1]; ++q) {
         const int32_t w = adjacent[q];
         if (orient(points, a, b, w) == 0 && between_on_segment(points[c], points[w], pb) &&
+            ahead_along(points[a], pb, points[c], points[w]) &&
             (next < 0 || between_on_segment(points[c], points[w], points[next])))
           next = w;
+      }
+      for (const bool crossings_only : {true, false}) {
+        if (next >= 0 || !rounded)
+          break;
+        for (int32_t q = first[c]; q < first[c + 1]; ++q) {
+          const int32_t w = adjacent[q];
+          if ((w >= first_added || !crossings_only) &&
+              within_rounding_of(points[a], pb, points[w]) &&
+              ahead_along(points[a], pb, points[c], points[w]) &&
+              !ahead_along(points[a], pb, pb, points[w]) &&
+              (next < 0 || ahead_along(points[a], pb, points[w], points[next])))
+            next = w;
+        }
       }
       if (next >= 0) {
         segment_edges.insert(edge_key(c, next));
@@ -263,18 +319,25 @@ CheckReport check_constrained(const std::vector<Point> &points,
                   [&](int32_t p, int32_t q) { return lex_less(points[p], points[q]); });
       }
       const bool forward = lex_less(points[c], pb);
+      // b, or a point ahead of c exactly on the segment or (a rounded
+      // crossing) within rounding of it.
+      auto on_line = [&](int32_t p) {
+        return p == b || ((orient(points, a, b, p) == 0 ||
+                           (rounded && within_rounding_of(points[a], pb, points[p]))) &&
+                          ahead_along(points[a], pb, points[c], points[p]));
+      };
       auto by_point = [&](int32_t p, const Point &q) { return lex_less(points[p], q); };
       auto point_by = [&](const Point &q, int32_t p) { return lex_less(q, points[p]); };
       if (forward) {
         auto it = std::upper_bound(sorted.begin(), sorted.end(), points[c], point_by);
         for (; it != sorted.end() && next < 0; ++it)
-          if (*it == b || orient(points, a, b, *it) == 0)
+          if (on_line(*it))
             next = *it;
       } else {
         auto it = std::lower_bound(sorted.begin(), sorted.end(), points[c], by_point);
         while (it != sorted.begin() && next < 0) {
           --it;
-          if (*it == b || orient(points, a, b, *it) == 0)
+          if (on_line(*it))
             next = *it;
         }
       }

@@ -21,23 +21,103 @@
 #include "refine/steiner_renumbering.hpp"
 #include "refine/zorder_compaction.hpp"
 
+#include "clmesh/errors.hpp"
+
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 
 namespace clmesh {
 
 namespace {
 
-// Can the device hold the refinement's arrays for `points` points? About 600
+// How many points the device can hold in the refinement's arrays: about 600
 // bytes per point in all; the largest array (flip-flop's stars, 4 entries
 // per list entry) takes 16 x 8/3 bytes per point.
-bool device_holds(const Device &device, std::size_t points) {
+double device_point_capacity(const Device &device) {
   const double per_point = 600, largest_per_point = 16.0 * 8 / 3;
-  return per_point * static_cast<double>(points) <
-             0.9 * static_cast<double>(device.global_memory()) &&
-         largest_per_point * static_cast<double>(points) <
-             static_cast<double>(device.max_allocation());
+  return std::min(0.9 * static_cast<double>(device.global_memory()) / per_point,
+                  static_cast<double>(device.max_allocation()) / largest_per_point);
+}
+
+// Can the device hold the refinement's arrays for `points` points?
+bool device_holds(const Device &device, std::size_t points) {
+  return static_cast<double>(points) < device_point_capacity(device);
+}
+
+// The area of the points' convex hull (Andrew's monotone chain), in long
+// double: the products of any two finite coordinates fit.
+long double hull_area(std::vector<Point> points) {
+  if (points.size() < 3)
+    return 0;
+  std::sort(points.begin(), points.end(),
+            [](const Point &a, const Point &b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  auto cross = [](const Point &o, const Point &a, const Point &b) {
+    return (static_cast<long double>(a.x) - o.x) * (static_cast<long double>(b.y) - o.y) -
+           (static_cast<long double>(a.y) - o.y) * (static_cast<long double>(b.x) - o.x);
+  };
+  std::vector<Point> hull(2 * points.size() + 1);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) { // lower chain
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0)
+      --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) { // upper chain
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0)
+      --k;
+    hull[k++] = points[i];
+  }
+  long double twice = 0;
+  for (std::size_t i = 1; i + 1 < k; ++i)
+    twice += cross(hull[0], hull[i], hull[i + 1]);
+  return twice / 2;
+}
+
+// A count or size for a message, in a few digits ("5e29", "1.2e7", "0.25").
+std::string short_number(long double value, int digits = 2) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*Lg", digits, value);
+  std::string out = text;
+  for (const char *exponent : {"e+0", "e+", "e-0"}) {
+    const std::size_t at = out.find(exponent);
+    if (at != std::string::npos) {
+      out.replace(at, std::string(exponent).size(), exponent[1] == '-' ? "e-" : "e");
+      break;
+    }
+  }
+  return out;
+}
+
+// -a: the points the area bound needs at least, checked against what the
+// device holds before any work. The mesh covers the convex hull; triangles no
+// larger than the bound number at least its area over the bound, and V points
+// make fewer than 2V triangles. A bound the device cannot hold is refused,
+// unless the -S limit stops the refinement sooner (the user's choice).
+void check_area_bound(const Device &device, const std::vector<Point> &points,
+                      const RefineOptions &options, RefineStats &stats) {
+  if (!options.max_area)
+    return;
+  const long double area = hull_area(points);
+  const long double needed = area / (2.0L * *options.max_area);
+  stats.area_bound_points =
+      static_cast<double>(std::min<long double>(needed, std::numeric_limits<double>::max()));
+  const double capacity = device_point_capacity(device);
+  if (needed < capacity)
+    return;
+  if (options.max_steiner &&
+      static_cast<double>(points.size()) + static_cast<double>(*options.max_steiner) < capacity)
+    return;
+  throw OptionError(
+      "-a" + short_number(*options.max_area, 6) + " needs at least ~" + short_number(needed) +
+      " points on this domain (area " + short_number(area) +
+      "), more than the device's memory holds (about " + short_number(capacity) + " points)" +
+      (options.max_steiner
+           ? "; -S" + std::to_string(*options.max_steiner) + " does not stop the refinement sooner"
+           : std::string()));
 }
 
 // First room for Steiner points (thesis §3.6.1: the arrays grow when it runs
@@ -133,20 +213,30 @@ public:
         compact();
       const std::size_t bad = find_bad_triangles();
       const std::size_t candidates = elect_candidates();
-      if (bad == 0 || iteration == kMaxIterations || steiner_ >= limit_)
+      if (bad == 0)
         break;
+      if (iteration == kMaxIterations || steiner_ >= limit_) {
+        stats_.stop_reason =
+            steiner_ >= limit_ ? RefineStop::steiner_limit : RefineStop::iteration_limit;
+        break;
+      }
       const Room room = make_room(candidates);
       if (room == Room::grown)
         continue; // the candidates are found again in the larger arrays
       if (room == Room::exhausted)
-        break;
+        break; // the cause is told once the mesh is downloaded (finish())
       ++stats_.iterations;
       stats_.candidates += static_cast<long>(candidates);
       locate_candidates();
       filter_candidates();
       const std::size_t added = append_survivors();
-      if (added == 0)
-        break; // the -S limit, or every candidate fell on a vertex
+      if (added == 0) {
+        // The arrays did not grow past the -S limit, or every candidate fell
+        // on a vertex.
+        stats_.stop_reason =
+            steiner_ + candidates > limit_ ? RefineStop::steiner_limit : RefineStop::no_insertion;
+        break;
+      }
       const std::size_t inserted = insert_survivors(added);
       flip_flop(inserted, added);
     }
@@ -176,10 +266,32 @@ public:
     result_.mesh.duplicate_of.resize(n + survivors);
     stats_.inserted_more_than_once =
         deletion_log_.points_inserted_more_than_once(device_, result_.added_points);
+    if (stats_.out_of_memory)
+      stats_.stop_reason = memory_cause();
   }
 
 private:
   enum class Room { enough, grown, exhausted };
+
+  // Out of device memory, on the downloaded mesh: the area bound is to blame
+  // while triangles above it are left, else an angle bound above about 33
+  // degrees (refinement to it need not terminate), else the input's size.
+  RefineStop memory_cause() const {
+    const DelaunayResult &mesh = result_.mesh;
+    const std::size_t n = points_.size();
+    auto point = [&](int32_t v) {
+      const auto i = static_cast<std::size_t>(v);
+      return i < n ? points_[i] : result_.added_points[i - n];
+    };
+    if (options_.max_area)
+      for (const auto &t : mesh.triangles) {
+        const Point a = point(t[0]), b = point(t[1]), c = point(t[2]);
+        if (std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2 >
+            *options_.max_area)
+          return RefineStop::area_bound;
+      }
+    return options_.min_angle > 33 ? RefineStop::angle_bound : RefineStop::device_memory;
+  }
 
   DeviceMesh &mesh() { return scheduler_.mesh(); }
 
@@ -240,8 +352,7 @@ private:
       return Room::enough;
     const std::size_t extra = std::max(candidates, mesh().point_capacity / 2);
     if (!device_holds(device_, mesh().point_capacity + extra)) {
-      // Reported with the bad triangles left (angles above about 33 degrees
-      // may not end).
+      // Reported with the bad triangles left and the bound to blame.
       stats_.out_of_memory = true;
       return Room::exhausted;
     }
@@ -322,6 +433,7 @@ private:
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
                              const RefineOptions &options) {
   RefineResult result;
+  check_area_bound(device, points, options, result.stats);
   Refinement refinement(device, points, options, result);
   if (!refinement.triangulate())
     return result;

@@ -41,6 +41,8 @@ CheckReport check_triangulation(const std::vector<Point> &points,
 //    triangles around every vertex turning at most once, and every boundary edge of the mesh
 //    part of a segment.  (Local checks: two pieces overlapping without sharing a vertex are not
 //    detected; checking that the mesh is a subset of the whole-hull mesh closes that gap.)
+// Points from first_added on were computed where segments cross, and rounded: a segment's chain
+// may pass through one that lies within rounding of the segment (not exactly on it).
 // In both modes every edge between two triangles that is not part of a segment must be
 // locally Delaunay with the symbolically perturbed in-circle test (clm_incircle_sos, the rule
 // of check_triangulation and of CGAL), so the constrained Delaunay triangulation accepted is
@@ -49,6 +51,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
                               const std::vector<Triangle> &triangles,
                               const std::vector<std::array<int32_t, 3>> &neighbors,
                               const std::vector<int32_t> &duplicate_of,
-                              const std::vector<Segment> &segments, bool whole_hull);
+                              const std::vector<Segment> &segments, bool whole_hull,
+                              int32_t first_added = INT32_MAX);
 
 } // namespace clmesh

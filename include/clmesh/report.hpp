@@ -6,6 +6,7 @@
 #include "clmesh/input.hpp"
 #include "clmesh/mesh.hpp"
 #include "clmesh/options.hpp"
+#include "clmesh/statistics.hpp"
 
 #include <array>
 #include <string>
@@ -29,6 +30,11 @@ struct QualityStatistics {
 QualityStatistics quality_statistics(const Mesh &mesh);
 // The table Triangle prints under "Mesh quality statistics".
 std::string format_quality(const QualityStatistics &quality);
+
+// The refinement's stop reason as a word: "done", "steiner_limit",
+// "area_bound", "angle_bound", "device_memory", "iteration_limit",
+// "no_insertion".
+const char *stop_reason_name(RefineStop reason);
 
 // The counts of a run as text, as -V prints them.
 std::string format_statistics(const Mesh &mesh);

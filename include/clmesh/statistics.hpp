@@ -47,6 +47,17 @@ struct ConstrainedStats {
   long eaten_triangles = 0;  // triangles removed as exterior or hole
 };
 
+// Why the refinement stopped.
+enum class RefineStop {
+  done,            // no triangle left to mend (those at hull angles below the bound stay)
+  steiner_limit,   // the -S limit was reached
+  area_bound,      // out of device memory: the area bound (-a) needs more points
+  angle_bound,     // out of device memory: angles above about 33 degrees need not terminate
+  device_memory,   // out of device memory, with neither bound to blame (a large input)
+  iteration_limit, // the bound on iterations was reached
+  no_insertion,    // no candidate could be inserted
+};
+
 // GPU-QM / GPU-QM-V (thesis chapter 3), with -q or -a.
 struct RefineStats {
   long iterations = 0;
@@ -62,6 +73,10 @@ struct RefineStats {
   long growths = 0;                 // times the mesh's arrays grew (thesis §3.6.1)
   bool out_of_memory = false;       // stopped: the device cannot hold more points
   long remaining_bad = 0;           // bad triangles left (small hull angles, -S reached)
+  RefineStop stop_reason = RefineStop::done;
+  // -a: at least this many points mesh the convex hull within the area bound
+  // (half its area over the bound); 0 without -a.
+  double area_bound_points = 0;
 };
 
 // Everything a run reports: the Delaunay phases always, the constraint

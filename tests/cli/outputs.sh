@@ -223,6 +223,8 @@ import json, sys
 r = json.load(open(sys.argv[1]))["refinement"]
 assert r["steiner_points"] > 0 and r["remaining_bad_triangles"] == 0, r
 assert r["steiner_points"] == r["insertions"] - r["deleted_redundant"], r
+# half the hull's area (under 1) over the bound (0.01)
+assert r["stop_reason"] == "done" and 40 < r["area_bound_points"] < 50, r
 for key in ("candidates", "delaunay_flips", "non_delaunay_flips", "boundary_splits"):
     assert key in r, key
 PY

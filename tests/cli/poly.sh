@@ -195,5 +195,28 @@ else
   fail "crossing: clmesh -pcQC x.poly failed: $(cat err.txt)"
 fi
 
+# Rounded crossings (cases the fuzz test found): a hexagon vertex moved just
+# outside the box (crossings off the segments' lines by rounding, one a hair
+# from a box vertex); a vertex moved to 1e16 or 1e20 (crossings of segments
+# far longer than their distance from the nearer endpoint). Each mesh passes
+# -C, and every crossing lies within the bounding boxes of both segments.
+sed 's/^42  0.2003    0.8366/42  -1e-7    0.8366/' "$inputs/double_hex2.poly" > outside.poly
+sed 's/^6   -100  -50      2/6   1e16  -50      2/' "$inputs/face.poly" > far.poly
+sed 's/^46  0.7000    0.4000  3/46  0.7000    1e20  3/' "$inputs/double_hex2.poly" > farther.poly
+# Two crossings on a segment that leaves the mesh between them; a vertex at
+# 1e20 whose two segments cross one near their nearly vertical ends.
+sed 's/^28 27 28$/28 25 28/' "$inputs/A.poly" > across.poly
+sed 's/^21 0.312000 -0.739600 -0.43$/21 0.312000 1e20 -0.43/' "$inputs/A.poly" > tall.poly
+for run in "-pQC outside.poly" "-pOQC outside.poly" "-pcOQC outside.poly" "-pjQC far.poly" \
+  "-pAOQC farther.poly" "-pQC farther.poly" "-pcOQC farther.poly" "-pQC across.poly" \
+  "-pzenQC tall.poly"; do
+  # shellcheck disable=SC2086 # the switches and the file, word-split
+  "$bin" $run 2> err.txt || fail "rounded crossings: clmesh $run failed: $(cat err.txt)"
+done
+grep -q '^ *49  *0.6502  *1 ' farther.1.node ||
+  fail "crossing far from the segment's start: not at (0.6502, 1): $(grep '^ *49 ' farther.1.node)"
+grep -q '^ *50  *0.6502  *1 ' farther.1.node ||
+  fail "crossing near the segment's end: not at (0.6502, 1): $(grep '^ *50 ' farther.1.node)"
+
 finish poly.sh
 echo "poly.sh: all checks passed"

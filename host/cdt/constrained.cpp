@@ -34,14 +34,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                                        const ConstrainedOptions &options) {
   ConstrainedResult result;
   ConstrainedStats &stats = result.stats;
-  const auto n = static_cast<int32_t>(pslg.points.size());
-  for (std::size_t i = 0; i < pslg.segments.size(); ++i) {
-    const Segment &s = pslg.segments[i];
-    if (s.a < 0 || s.a >= n || s.b < 0 || s.b >= n)
-      throw InputError("segment " + std::to_string(i), 0,
-                       "endpoint out of range (" + std::to_string(s.a) + ", " +
-                           std::to_string(s.b) + " of " + std::to_string(n) + " points)");
-  }
+  // Segment endpoints were checked by validate(Input), which triangulate() calls first.
   const std::size_t crossing_room = 1024 + pslg.segments.size();
   DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats,
                               crossing_room);

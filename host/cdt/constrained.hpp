@@ -43,8 +43,8 @@ struct ConstrainedResult {
 
 // Segments that cross are split at a new vertex at their intersection,
 // rounded to the nearest double, as Triangle does (at most 1024 + the number
-// of segments such vertices). Throws InputError for segment endpoints out of
-// range, and the errors of delaunay().
+// of segments such vertices). Segment endpoints are checked beforehand by
+// validate(Input); throws the errors of delaunay().
 ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                                        const ConstrainedOptions &options = {});
 

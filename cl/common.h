@@ -159,6 +159,32 @@ typedef struct {
   int vertex;   // the vertex at the point's position (CLM_WALK_AT_VERTEX)
 } WalkResult;
 
+// One step of a walk in the real triangle tri: the first edge that separates
+// p from it, or -1 when p is in it (then `result` says where: inside, on an
+// edge, or at a vertex).
+inline int edge_to_cross(__global const double2 *points, VertexTriple tri, double2 p,
+                         WalkResult *result) {
+  int zeros = 0, nonzero = -1, on_edge = -1;
+  for (int i = 0; i < 3; ++i) {
+    const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], p);
+    if (side < 0)
+      return i;
+    if (side == 0) {
+      ++zeros;
+      on_edge = i;
+    } else
+      nonzero = i;
+  }
+  if (zeros == 2) { // p coincides with the vertex shared by both edges
+    result->outcome = CLM_WALK_AT_VERTEX;
+    result->vertex = tri.v[nonzero];
+  } else {
+    result->outcome = CLM_WALK_LOCATED;
+    result->edge = zeros == 1 ? on_edge : -1;
+  }
+  return -1;
+}
+
 // Visibility walk from triangle t to point p, stepping across the first edge
 // that separates p from the triangle. It cannot cycle in a Delaunay
 // triangulation; max_steps guards against anything else.
@@ -192,27 +218,9 @@ inline WalkResult walk_to_point(__global const double2 *points, __global const i
           cross = (q > hi) == ((x_axis ? pa.x : pa.y) == hi) ? prev3(k) : next3(k);
       }
     } else {
-      int zeros = 0, nonzero = -1, on_edge = -1;
-      for (int i = 0; i < 3 && cross < 0; ++i) {
-        const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], p);
-        if (side < 0)
-          cross = i;
-        else if (side == 0) {
-          ++zeros;
-          on_edge = i;
-        } else
-          nonzero = i;
-      }
-      if (cross < 0) {
-        if (zeros == 2) { // p coincides with the vertex shared by both edges
-          result.outcome = CLM_WALK_AT_VERTEX;
-          result.vertex = tri.v[nonzero];
-        } else {
-          result.outcome = CLM_WALK_LOCATED;
-          result.edge = zeros == 1 ? on_edge : -1;
-        }
+      cross = edge_to_cross(points, tri, p, &result);
+      if (cross < 0)
         break;
-      }
     }
     t = link_triangle(tri_neighbor[3 * t + cross]);
     result.triangle = t;

@@ -213,8 +213,13 @@ inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS, C
         continue;
       flop = true;
     } else {
-      const int verdict = edge_must_flip(points, constraint_start, constraint_adjacent, constrained,
-                                         1, c, a, b, d, exact);
+      if (constrained && is_subsegment(constraint_start, constraint_adjacent, constraint_segment,
+                                       point_segment, segment_end, a, b))
+        continue; // subsegments stay, split only
+      // Constraints are subsegments (tested above): a segment refinement has
+      // split no longer stands between its ends.
+      const int verdict =
+          edge_must_flip(points, constraint_start, constraint_adjacent, 0, 1, c, a, b, d, exact);
       if (verdict == CLM_UNCERTAIN)
         return false;
       if (verdict == CLM_KEEP)

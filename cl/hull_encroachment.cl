@@ -38,6 +38,8 @@ __kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_p
   const int across_vx = link_triangle(tri_neighbor[3 * t + prev3(i)]);
   const int across_yv = link_triangle(tri_neighbor[3 * t + next3(i)]);
   const bool x_on_hull = is_ghost(load_vertices(tri_vertex, across_vx));
+  if (!x_on_hull && !is_ghost(load_vertices(tri_vertex, across_yv)))
+    return; // a split of an interior subsegment: four triangles around v
   const int a = x_on_hull ? x : y, c = x_on_hull ? y : x, other = x_on_hull ? across_yv : across_vx;
   const int j = index_in(tri_vertex, other, v);
   int b = tri_vertex[3 * other + next3(j)];

@@ -33,11 +33,17 @@
       location_edge
 
 // Refinement adds per point: point_state (refinement.h), insertion_radius2,
-// point_priority (allocated by DeviceMesh::enable_refinement).
+// point_priority, point_segment (refinement.h); and the segments:
+// segment_end (2 per segment) and constraint_segment (per entry of
+// constraint_adjacent: its segment). Allocated by
+// DeviceMesh::enable_refinement.
 #define CLM_MESH_PARAMS                                                                            \
   CLM_TRIANGULATION_PARAMS, __global int *point_state, __global double *insertion_radius2,         \
-      __global uint *point_priority
+      __global uint *point_priority, __global int *point_segment, __global const int *segment_end, \
+      __global int *constraint_segment
 
-#define CLM_MESH_ARGS CLM_TRIANGULATION_ARGS, point_state, insertion_radius2, point_priority
+#define CLM_MESH_ARGS                                                                              \
+  CLM_TRIANGULATION_ARGS, point_state, insertion_radius2, point_priority, point_segment,           \
+      segment_end, constraint_segment
 
 #endif

@@ -8,7 +8,11 @@
 // midpoint (as Triangle computes it). A candidate outside the hull, or inside
 // the diametral lens of a hull edge of its container (Triangle's test: the
 // candidate sees the edge at an angle of at least 180 - 2 x the minimum angle),
-// becomes the midpoint of that hull edge (the convex hull is the boundary). Priority: midpoints
+// becomes the midpoint of that hull edge (the convex hull is the boundary). A PSLG's domain is
+// closed by ghosts as a hull is (domain_boundary.cl), and its interior segments act alike: a walk
+// to a candidate stops at a subsegment, and a candidate in a subsegment's lens splits it. A
+// subsegment with one end where segments meet is split on a power of two from that end
+// (concentric shells, Ruppert's remedy for small input angles). Priority: midpoints
 // before off-centers (§3.4.1: segment-split before triangle-split), then the shorter the shortest
 // edge, the worse the triangle; containers are marked with atomic minimum of it, and a candidate
 // survives the insertion filter when it owns its container's mark and no neighbouring container
@@ -50,7 +54,9 @@ __kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const d
   const int c =
       following.v[next3(j)] == CLM_INFINITE ? following.v[prev3(j)] : following.v[next3(j)];
   point_state[b] = CLM_POINT_HULL;
-  if (!acute_bound || a < 0 || c < 0 || a == c)
+  // The domain lies left of c -> b -> a: a reflex corner of a PSLG's
+  // boundary is not acute, however small the angle between its edges.
+  if (!acute_bound || a < 0 || c < 0 || a == c || orient_vertices(points, c, b, a) <= 0)
     return;
   const double2 u = points[a] - points[b], w = points[c] - points[b];
   const double dot = u.x * w.x + u.y * w.y;
@@ -79,7 +85,29 @@ typedef struct {
   bool skinny, large, unfixable;
 } Quality;
 
+// Do the ends of edge x-y lie on two segments that meet at a small input
+// angle, at the same distance from where they meet? Then the triangle's small
+// angle is the input's, and splitting it would only cut the shells around that
+// vertex finer (Triangle leaves such triangles too).
+inline bool across_input_angle(__global const double2 *points, __global const int *point_segment,
+                               __global const int *segment_end, int x, int y) {
+  const int sx = point_segment[x], sy = point_segment[y];
+  if (sx < 0 || sy < 0 || sx == sy)
+    return false;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const int apex = segment_end[2 * sx + i];
+      if (apex != segment_end[2 * sy + j])
+        continue;
+      const double dx = squared_length(points[x] - points[apex]),
+                   dy = squared_length(points[y] - points[apex]);
+      return dx < 1.002 * dy && dy < 1.002 * dx;
+    }
+  return false;
+}
+
 inline Quality assess(__global const double2 *points, __global const int *point_state,
+                      __global const int *point_segment, __global const int *segment_end,
                       VertexTriple tri, double ratio_bound_squared, double max_area) {
   Quality q;
   for (int i = 0; i < 3; ++i)
@@ -98,7 +126,10 @@ inline Quality assess(__global const double2 *points, __global const int *point_
                                (4.0 * twice_area * twice_area * q.length_squared[q.shortest]);
   q.skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
   q.large = max_area > 0 && 0.5 * twice_area > max_area;
-  q.unfixable = q.skinny && !q.large && point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL;
+  q.unfixable = q.skinny && !q.large &&
+                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL ||
+                 across_input_angle(points, point_segment, segment_end, tri.v[next3(q.shortest)],
+                                    tri.v[prev3(q.shortest)]));
   return q;
 }
 
@@ -107,9 +138,12 @@ inline Quality assess(__global const double2 *points, __global const int *point_
 // edge) and its priority, the shortest edge's squared length as a float. The
 // search and the location both compute it, so that no per-slot copy is kept.
 inline bool bad_triangle_candidate(__global const double2 *points, __global const int *point_state,
-                                   VertexTriple tri, double ratio_bound_squared, double max_area,
-                                   double offconstant, double2 *steiner, uint *priority) {
-  const Quality q = assess(points, point_state, tri, ratio_bound_squared, max_area);
+                                   __global const int *point_segment,
+                                   __global const int *segment_end, VertexTriple tri,
+                                   double ratio_bound_squared, double max_area, double offconstant,
+                                   double2 *steiner, uint *priority) {
+  const Quality q =
+      assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if ((!q.skinny && !q.large) || q.unfixable)
     return false;
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
@@ -149,9 +183,10 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   const VertexTriple tri = load_vertices(tri_vertex, t);
   double2 steiner;
   uint priority;
-  const bool bad = !is_ghost(tri) && !is_dead(tri) &&
-                   bad_triangle_candidate(points, point_state, tri, ratio_bound_squared, max_area,
-                                          offconstant, &steiner, &priority);
+  const bool bad =
+      !is_ghost(tri) && !is_dead(tri) &&
+      bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
+                             ratio_bound_squared, max_area, offconstant, &steiner, &priority);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -168,7 +203,8 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
-  if (assess(points, point_state, tri, ratio_bound_squared, max_area).unfixable)
+  if (assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area)
+          .unfixable)
     atomic_inc(counts);
 }
 
@@ -189,8 +225,8 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 // tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and
 // links, then the marks of theirs.
 inline void prefetch_two_rings(__global const int *list, int k, int n,
-                               volatile __global const uint *tri_mark,
-                               __global const int *tie_mark, __global const int *tri_neighbor) {
+                               volatile __global const uint *tri_mark, __global const int *tie_mark,
+                               __global const int *tri_neighbor) {
   const int far = entry_ahead(list, k, 3, n);
   if (far >= 0) {
     warm(tri_mark + far);
@@ -268,38 +304,101 @@ inline int split_partner(__global const int *tri_neighbor, __global const int *c
   return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
 }
 
-// Whether located candidate k splits a hull edge (its partner is a ghost).
-inline bool splits_hull_edge(__global const int *tri_vertex, __global const int *tri_neighbor,
-                             __global const int *container, __global const int *split_edge, int k) {
+// Whether located candidate k splits a hull edge (its partner is a ghost) or
+// a subsegment.
+inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
+                              __global const int *split_edge, int k) {
   const int partner = split_partner(tri_neighbor, container, split_edge, k);
-  return partner >= 0 && is_ghost(load_vertices(tri_vertex, partner));
+  if (partner < 0)
+    return false;
+  if (is_ghost(load_vertices(tri_vertex, partner)))
+    return true;
+  const int t = container[k], e = split_edge[k];
+  return constrained &&
+         is_subsegment(constraint_start, constraint_adjacent, constraint_segment, point_segment,
+                       segment_end, tri_vertex[3 * t + next3(e)], tri_vertex[3 * t + prev3(e)]);
+}
+
+// Does subsegment a-b have exactly one end where segments meet? Then it is
+// split on a shell around that end.
+inline bool splits_on_shell(__global const int *point_segment, int a, int b) {
+  return (point_segment[a] == CLM_SEGMENT_JOINT) != (point_segment[b] == CLM_SEGMENT_JOINT);
+}
+
+// The point that splits subsegment (or hull edge) a-b: its midpoint; or, with
+// one end where segments meet, the point at a power of two from that end
+// between a third and two thirds of the way (concentric shells: segments that
+// meet at a small angle are split at the same distances from their common
+// vertex, so that they stop encroaching on each other).
+inline double2 subsegment_split(__global const double2 *points, __global const int *point_segment,
+                                int a, int b) {
+  if (!splits_on_shell(point_segment, a, b))
+    return 0.5 * (points[a] + points[b]);
+  const bool from_a = point_segment[a] == CLM_SEGMENT_JOINT;
+  const double2 from = from_a ? points[a] : points[b], to = from_a ? points[b] : points[a];
+  const double length = sqrt(squared_length(to - from));
+  int exponent;
+  frexp(length / 1.5, &exponent);
+  const double shell = ldexp(1.0, exponent - 1); // 1.5 shell <= length < 3 shell
+  return from + (to - from) * (shell / length);
 }
 
 // The insertion radius of located candidate k at c (thesis §3.5): the
-// distance to the nearest vertex of its bad triangle; half the hull edge for
-// a midpoint. Squared.
-inline double insertion_radius2_of(__global const double2 *points, __global const int *tri_vertex,
-                                   __global const int *tri_neighbor, __global const int *container,
+// distance to the nearest vertex of its bad triangle; for a split of a hull
+// edge or subsegment, to the nearer end. Squared.
+inline double insertion_radius2_of(CLM_MESH_PARAMS, __global const int *container,
                                    __global const int *split_edge, __global const int *origin,
                                    double2 c, int k) {
-  if (splits_hull_edge(tri_vertex, tri_neighbor, container, split_edge, k))
-    return squared_length(points[tri_vertex[3 * container[k] + next3(split_edge[k])]] - c);
+  if (splits_subsegment(CLM_MESH_ARGS, container, split_edge, k)) {
+    const int t = container[k], e = split_edge[k];
+    const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
+    const double to_a = squared_length(points[a] - c);
+    return splits_on_shell(point_segment, a, b) ? fmin(to_a, squared_length(points[b] - c)) : to_a;
+  }
   double radius2 = INFINITY;
   for (int i = 0; i < 3; ++i)
     radius2 = fmin(radius2, squared_length(points[tri_vertex[3 * origin[k] + i]] - c));
   return radius2;
 }
 
+#define CLM_WALK_BLOCKED 3
+
+// walk_to_point within the domain: the walk stops before it would cross the
+// domain's boundary (into a ghost) or a subsegment; that edge of
+// result.triangle is result.edge (outcome CLM_WALK_BLOCKED).
+inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_steps) {
+  WalkResult result = {CLM_WALK_LOST, t, -1, -1};
+  for (int step = 0; step < max_steps; ++step) {
+    const VertexTriple tri = load_vertices(tri_vertex, t);
+    const int cross = edge_to_cross(points, tri, p, &result);
+    if (cross < 0)
+      break;
+    const int u = link_triangle(tri_neighbor[3 * t + cross]);
+    if (is_ghost(load_vertices(tri_vertex, u)) ||
+        (constrained &&
+         is_subsegment(constraint_start, constraint_adjacent, constraint_segment, point_segment,
+                       segment_end, tri.v[next3(cross)], tri.v[prev3(cross)]))) {
+      result.outcome = CLM_WALK_BLOCKED;
+      result.edge = cross;
+      break;
+    }
+    t = u;
+    result.triangle = t;
+  }
+  return result;
+}
+
 // Computes the candidate of bad triangle origin[k] and its priority, and
 // locates it walking from that triangle, or from the container
 // found for it by the last search (last_container[origin], kept when neither
 // triangle was rewritten since: modified_stamp below located_stamp, the
-// stamp of that search). A candidate that ends in a ghost triangle, or
-// inside the diametral lens of a hull edge of its container, becomes that
-// hull edge's midpoint, inserted on that edge whatever the rounding of the
-// midpoint (as Triangle splits a segment). split_edge[k]: the edge of
-// container[k] the candidate lies on (the hull edge of a midpoint), or -1
-// inside; container[k] = -1 when it falls on a vertex.
+// stamp of that search). A candidate beyond the hull (or the domain's
+// boundary) or a subsegment, or inside the diametral lens of a hull edge or
+// subsegment of its container, splits that edge instead (subsegment_split),
+// inserted on that edge whatever the rounding of the split point (as Triangle
+// splits a segment). split_edge[k]: the edge of container[k] the candidate
+// lies on (the edge a split splits), or -1 inside; container[k] = -1 when it
+// falls on a vertex.
 // Prefetching for locate_candidates (prefetch.h): the bad triangle where a
 // walk starts, its corners and its neighbours.
 inline void prefetch_walk_start(__global const int *origin, int k, int n,
@@ -333,26 +432,22 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   const int bad = origin[k], known = last_container[bad];
   double2 c;
   uint rank;
-  bad_triangle_candidate(points, point_state, load_vertices(tri_vertex, bad), ratio_bound_squared,
-                         max_area, offconstant, &c, &rank); // bad: the search found it so
+  bad_triangle_candidate(points, point_state, point_segment, segment_end,
+                         load_vertices(tri_vertex, bad), ratio_bound_squared, max_area, offconstant,
+                         &c, &rank); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;
-  const WalkResult walk =
-      walk_to_point(points, tri_vertex, tri_neighbor, unchanged ? known : bad, c, max_steps);
+  const WalkResult walk = walk_in_domain(CLM_MESH_ARGS, unchanged ? known : bad, c, max_steps);
   int t = walk.outcome == CLM_WALK_LOST ? bad : walk.triangle;
   const VertexTriple tri = load_vertices(tri_vertex, t);
-  int hull_edge = -1;
-  if (is_ghost(tri)) {
-    const int g = infinite_index(tri);
-    const int link = tri_neighbor[3 * t + g];
-    t = link_triangle(link); // the real triangle on that hull edge
-    hull_edge = link_edge(link);
-  } else if (touches_hull(point_state, tri)) {
-    // A hull edge of the container, or of a neighbour that c's cavity
-    // takes (its circumcircle holds c), whose diametral lens holds c is
-    // encroached: it is split instead (Triangle tests the hull edges of the
-    // new star; every such edge near c has a vertex of the container).
+  int hull_edge = walk.outcome == CLM_WALK_BLOCKED ? walk.edge : -1;
+  if (hull_edge < 0 && touches_hull(point_state, tri)) {
+    // A hull edge or subsegment of the container, or of a neighbour that
+    // c's cavity takes (its circumcircle holds c), whose diametral lens
+    // holds c is encroached: it is split instead (Triangle tests the
+    // subsegments of the new star; every such edge near c has a vertex of
+    // the container).
     for (int r = -1; r < 3 && hull_edge < 0; ++r) {
       const int s = r < 0 ? t : link_triangle(tri_neighbor[3 * t + r]);
       const VertexTriple near = load_vertices(tri_vertex, s);
@@ -363,7 +458,9 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
         if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
           continue;
         const int u = link_triangle(tri_neighbor[3 * s + i]);
-        if (!is_ghost(load_vertices(tri_vertex, u)))
+        if (!is_ghost(load_vertices(tri_vertex, u)) &&
+            !(constrained && is_subsegment(constraint_start, constraint_adjacent,
+                                           constraint_segment, point_segment, segment_end, a, b)))
           continue;
         if (in_lens(points[a], points[b], c, lens) &&
             (r < 0 || circumcircle_holds(points, near, c))) {
@@ -377,12 +474,18 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   if (hull_edge >= 0) {
     const int a = tri_vertex[3 * t + next3(hull_edge)], b = tri_vertex[3 * t + prev3(hull_edge)],
               apex = tri_vertex[3 * t + hull_edge];
-    const double2 middle = 0.5 * (points[a] + points[b]);
-    candidate[k] = middle;
-    // The rounded midpoint must leave both halves counter-clockwise (on a
-    // nearly straight run of hull points it may not): else no split.
+    const double2 split = subsegment_split(points, point_segment, a, b);
+    candidate[k] = split;
+    // The rounded split point must leave every half counter-clockwise (on a
+    // nearly straight run of boundary points it may not): else no split.
     splits_cleanly =
-        orient_point(points, apex, a, middle) > 0 && orient_point(points, b, apex, middle) > 0;
+        orient_point(points, apex, a, split) > 0 && orient_point(points, b, apex, split) > 0;
+    const int link = tri_neighbor[3 * t + hull_edge], u = link_triangle(link);
+    if (!is_ghost(load_vertices(tri_vertex, u))) { // a subsegment: (across, b, a) splits too
+      const int across = tri_vertex[3 * u + link_edge(link)];
+      splits_cleanly = splits_cleanly && orient_point(points, across, b, split) > 0 &&
+                       orient_point(points, a, across, split) > 0;
+    }
   }
   // Segment-split goes before triangle-split (thesis §3.4.1): off-centers
   // rank after every midpoint, in their own order.
@@ -392,8 +495,8 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   last_container[bad] = located ? t : -1;
   split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;
   if (located)
-    radius2[k] = insertion_radius2_of(points, tri_vertex, tri_neighbor, container, split_edge,
-                                      origin, candidate[k], k);
+    radius2[k] =
+        insertion_radius2_of(CLM_MESH_ARGS, container, split_edge, origin, candidate[k], k);
 }
 
 // Marks each candidate's container (and its partner) with its priority.
@@ -541,8 +644,8 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // candidates, free slots first, see allocate_slot), listed in new_points,
 // each to be inserted in its container, on split_edge when it lies on an
 // edge. Each gets its state, priority and insertion radius (thesis §3.5: the
-// distance to the nearest vertex of its bad triangle; half the hull edge for
-// a midpoint).
+// distance to the nearest vertex of its bad triangle; to the nearer end for a
+// split of a hull edge or subsegment), and a split its segment.
 // Only the first `count` survivors are taken (the -S limit).
 __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidate,
                                __global const int *container, __global const int *split_edge,
@@ -556,7 +659,15 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
     return;
   const int p = allocate_slot(free_points, free_first, free_count, first_new, offset[k]);
   const double2 c = candidate[k];
-  const bool midpoint = splits_hull_edge(tri_vertex, tri_neighbor, container, split_edge, k);
+  const bool midpoint = splits_subsegment(CLM_MESH_ARGS, container, split_edge, k);
+  const int t = container[k], e = split_edge[k];
+  const int a = midpoint ? tri_vertex[3 * t + next3(e)] : -1,
+            b = midpoint ? tri_vertex[3 * t + prev3(e)] : -1;
+  point_segment[p] = midpoint ? segment_of_edge(constraint_start, constraint_adjacent,
+                                                constraint_segment, point_segment, a, b)
+                              : CLM_NO_SEGMENT;
+  if (midpoint && point_segment[p] >= 0 && point_segment[a] < 0 && point_segment[b] < 0)
+    mark_segment_split(constraint_start, constraint_adjacent, constraint_segment, a, b);
   points[p] = c;
   location[p] = container[k];
   location_edge[p] = split_edge[k];

@@ -4,6 +4,8 @@
 #ifndef CLMESH_REFINEMENT_H
 #define CLMESH_REFINEMENT_H
 
+#include "common.h"
+
 #define CLM_POINT_INPUT 0
 #define CLM_POINT_STEINER 1      // inserted in an earlier iteration
 #define CLM_POINT_NEW 2          // off-center inserted in this iteration
@@ -14,7 +16,11 @@
 #define CLM_POINT_ACUTE_HULL 7   // input point at a hull angle below the minimum angle
 #define CLM_POINT_HULL 8         // any other input point on the hull
 
-// Hull vertices stay on the hull: the boundary is fixed during refinement.
+// Hull vertices stay on the hull, segment vertices on their segments: the
+// boundary and the segments are fixed during refinement. (Hull here is the
+// domain's boundary: the convex hull of a point set, or the segments around a
+// PSLG's domain, which stand on ghost triangles as the hull does.) Midpoint
+// states mark every vertex added on a segment or hull edge.
 inline bool on_hull(int state) {
   return state == CLM_POINT_HULL || state == CLM_POINT_ACUTE_HULL || state == CLM_POINT_MIDPOINT ||
          state == CLM_POINT_NEW_MIDPOINT;
@@ -31,6 +37,76 @@ inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
   const double2 da = pa - c, db = pb - c;
   const double dot = da.x * db.x + da.y * db.y;
   return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
+}
+
+// point_segment of a vertex: the segment (an index into segment_end) that a
+// vertex added on a segment lies on; for the others one of these.
+#define CLM_NO_SEGMENT (-1)    // on no segment, or the end of a single segment
+#define CLM_SEGMENT_JOINT (-2) // an input vertex where two or more segments meet
+
+// The entry of edge a-b in the constraint rows, or -1.
+inline int constraint_entry(__global const int *constraint_start,
+                            __global const int *constraint_adjacent, int a, int b) {
+  for (int k = constraint_start[a]; k < constraint_start[a + 1]; ++k)
+    if (constraint_adjacent[k] == b)
+      return k;
+  return -1;
+}
+
+// constraint_segment holds each entry's segment s as it is, or -1 - s once
+// refinement has split the segment: then the edge between its ends, should
+// flips make one, is an ordinary edge.
+inline int segment_of_entry(__global const int *constraint_segment, int k) {
+  const int s = constraint_segment[k];
+  return s >= 0 ? s : -1 - s;
+}
+
+// Is edge a-b a subsegment: an input segment (as the constraints stand after
+// GPU-CDT, compressed rows per vertex) not split since, or a piece of one
+// split during refinement? A vertex added on segment s lies between its ends,
+// so an edge from it to s's ends or to another vertex on s runs along s.
+inline bool is_subsegment(__global const int *constraint_start,
+                          __global const int *constraint_adjacent,
+                          __global const int *constraint_segment, __global const int *point_segment,
+                          __global const int *segment_end, int a, int b) {
+  if (a < 0 || b < 0)
+    return false;
+  const int sa = point_segment[a], sb = point_segment[b];
+  if (sa >= 0 && sb >= 0)
+    return sa == sb;
+  if (sa >= 0)
+    return segment_end[2 * sa] == b || segment_end[2 * sa + 1] == b;
+  if (sb >= 0)
+    return segment_end[2 * sb] == a || segment_end[2 * sb + 1] == a;
+  const int k = constraint_entry(constraint_start, constraint_adjacent, a, b);
+  return k >= 0 && constraint_segment[k] >= 0;
+}
+
+// The segment that subsegment a-b is part of (is_subsegment holds), or -1 for
+// a hull edge of a point set.
+inline int segment_of_edge(__global const int *constraint_start,
+                           __global const int *constraint_adjacent,
+                           __global const int *constraint_segment,
+                           __global const int *point_segment, int a, int b) {
+  if (point_segment[a] >= 0)
+    return point_segment[a];
+  if (point_segment[b] >= 0)
+    return point_segment[b];
+  const int k = constraint_entry(constraint_start, constraint_adjacent, a, b);
+  return k >= 0 ? segment_of_entry(constraint_segment, k) : -1;
+}
+
+// Refinement splits input segment a-b (both ends input vertices): both of
+// its entries in the constraint rows say so.
+inline void mark_segment_split(__global const int *constraint_start,
+                               __global const int *constraint_adjacent,
+                               __global int *constraint_segment, int a, int b) {
+  const int ab = constraint_entry(constraint_start, constraint_adjacent, a, b),
+            ba = constraint_entry(constraint_start, constraint_adjacent, b, a);
+  if (ab >= 0 && constraint_segment[ab] >= 0)
+    constraint_segment[ab] = -1 - constraint_segment[ab];
+  if (ba >= 0 && constraint_segment[ba] >= 0)
+    constraint_segment[ba] = -1 - constraint_segment[ba];
 }
 
 #endif

@@ -167,12 +167,12 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
 }
 
 // Every point q < n of the new arrays takes its coordinates, state,
-// insertion radius and priority from point p: itself for an input point
+// insertion radius, priority and segment from point p: itself for an input point
 // (q < first), first + order[q - first] for a Steiner point.
 __kernel void move_steiner_points(CLM_MESH_PARAMS, __global const int *order,
                                   __global double2 *moved_point, __global int *moved_state,
                                   __global double *moved_radius2, __global uint *moved_priority,
-                                  const int first, const int n) {
+                                  __global int *moved_segment, const int first, const int n) {
   const int q = get_global_id(0);
   if (q >= n)
     return;
@@ -181,6 +181,7 @@ __kernel void move_steiner_points(CLM_MESH_PARAMS, __global const int *order,
   moved_state[q] = point_state[p];
   moved_radius2[q] = insertion_radius2[p];
   moved_priority[q] = point_priority[p];
+  moved_segment[q] = point_segment[p];
   if (q >= first)
     original_id[q] = q; // numbered again at the end (number_steiner_points)
 }

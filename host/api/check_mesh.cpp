@@ -4,6 +4,12 @@
 namespace clmesh {
 
 CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &options) {
+  if (mesh.statistics.refined && options.pslg) {
+    // Every subsegment is a mesh edge; the boundary edges of the domain are
+    // subsegments (or, with -c, hull edges, in mesh.segments too).
+    return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                             mesh.segments, false);
+  }
   if (mesh.statistics.refined) {
     // Hull edges split at rounded midpoints may leave the boundary a hair
     // from convex (as Triangle's do), so the boundary edges are checked as

@@ -185,11 +185,10 @@ Options parse_switches(const std::string &switches) {
 }
 
 void validate(const Options &options) {
-  if (options.pslg && (options.quality || options.max_area))
-    throw OptionError(std::string(options.quality ? "-q" : "-a") +
-                      " with -p (quality meshing of a PSLG) is not supported yet: with -p, clmesh "
-                      "computes the constrained Delaunay triangulation of the PSLG and does not "
-                      "refine it; clmesh supports " +
+  if (options.pslg && (options.quality || options.max_area) && options.regional_attributes)
+    throw OptionError(std::string("-A with -p and ") + (options.quality ? "-q" : "-a") +
+                      " (regional attributes of a refined PSLG) is not supported yet; clmesh "
+                      "supports " +
                       kSupported);
   if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
     throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");

@@ -53,12 +53,29 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
   delaunay_options.tuning = options.tuning;
   delaunay_options.want_voronoi_image = options.voronoi_image;
   Mesh mesh;
-  if (options.pslg) {
-    ConstrainedOptions constrained;
-    constrained.delaunay = delaunay_options;
-    constrained.keep_convex_hull = options.convex_hull;
-    constrained.ignore_holes = options.ignore_holes;
-    constrained.regional_attributes = options.regional_attributes;
+  RefineOptions refine;
+  refine.delaunay = delaunay_options;
+  refine.min_angle = options.quality ? options.min_angle : 0;
+  refine.max_area = options.max_area;
+  refine.max_steiner = options.max_steiner;
+  ConstrainedOptions constrained;
+  constrained.delaunay = delaunay_options;
+  constrained.keep_convex_hull = options.convex_hull;
+  constrained.ignore_holes = options.ignore_holes;
+  constrained.regional_attributes = options.regional_attributes;
+  const bool refined = options.quality || options.max_area;
+  if (options.pslg && refined) {
+    RefineResult result =
+        refine_constrained(device, Pslg{input.points, input.segments, input.holes, input.regions},
+                           constrained, refine);
+    take_points(mesh, input, result.added_points);
+    take_triangulation(mesh, std::move(result.mesh));
+    mesh.segments = std::move(result.segments);
+    mesh.statistics.constrained = true;
+    mesh.statistics.constraints = result.constraints;
+    mesh.statistics.refined = true;
+    mesh.statistics.refinement = result.stats;
+  } else if (options.pslg) {
     ConstrainedResult result = constrained_delaunay(
         device, Pslg{input.points, input.segments, input.holes, input.regions}, constrained);
     take_points(mesh, input, result.added_points);
@@ -74,12 +91,7 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
     }
     mesh.statistics.constrained = true;
     mesh.statistics.constraints = result.stats;
-  } else if (options.quality || options.max_area) {
-    RefineOptions refine;
-    refine.delaunay = delaunay_options;
-    refine.min_angle = options.quality ? options.min_angle : 0;
-    refine.max_area = options.max_area;
-    refine.max_steiner = options.max_steiner;
+  } else if (refined) {
     RefineResult result = refine_delaunay(device, input.points, refine);
     take_points(mesh, input, result.added_points);
     take_triangulation(mesh, std::move(result.mesh));

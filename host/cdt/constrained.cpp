@@ -4,14 +4,12 @@
 #include "cdt/constrained.hpp"
 
 #include "cdt/constraint_insertion.hpp"
-#include "dt/delaunay_scheduler.hpp"
 #include "cdt/exterior_removal.hpp"
+#include "dt/delaunay_scheduler.hpp"
 
 #include <algorithm>
 
 namespace clmesh {
-
-namespace {
 
 // Drops zero-length and repeated segments (first occurrence kept, its marker too).
 std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
@@ -28,24 +26,11 @@ std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
   return kept;
 }
 
-} // namespace
+std::size_t crossing_room(const Pslg &pslg) { return 1024 + pslg.segments.size(); }
 
-ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
-                                       const ConstrainedOptions &options) {
-  ConstrainedResult result;
-  ConstrainedStats &stats = result.stats;
-  // Segment endpoints were checked by validate(Input), which triangulate() calls first.
-  const std::size_t crossing_room = 1024 + pslg.segments.size();
-  DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats,
-                              crossing_room);
-  device.program("constraint_marking.cl", "setup");
-  device.program("exterior_removal.cl", "setup");
-  if (!scheduler.triangulate()) {
-    scheduler.download_collinear(result.mesh);
-    result.segments = distinct_segments(pslg.segments, stats);
-    return result;
-  }
-
+std::vector<Segment> insert_constraints(Device &device, DelaunayScheduler &scheduler,
+                                        const Pslg &pslg, ConstrainedStats &stats,
+                                        std::vector<Point> &added_points) {
   // Constraints in device numbering, duplicate endpoints resolved.
   std::vector<Segment> segments = pslg.segments;
   for (Segment &s : segments) {
@@ -62,7 +47,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     insertion.run(stats, [&](const std::vector<Point> &added, const std::vector<int32_t> &near) {
       return scheduler.insert_points(added, near);
     });
-    result.added_points = insertion.added_points();
+    added_points = insertion.added_points();
     constraints = insertion.segments();
     touched = insertion.take_touched();
     scheduler.timer().charge(ConstraintInsertion::kPhase);
@@ -71,16 +56,54 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
   FlipCounts flips;
   scheduler.flip_flagged(touched, flips, "constrained_flipping");
   stats.delaunay_flips = flips.flips;
+  return constraints;
+}
 
-  ExteriorRemoval removal(device, scheduler.mesh());
+bool remove_exterior(DelaunayScheduler &scheduler, ExteriorRemoval &removal, const Pslg &pslg,
+                     const ConstrainedOptions &options, ConstrainedStats &stats) {
   const bool from_hull = !options.keep_convex_hull;
   const std::vector<Point> no_holes;
   const auto &holes = options.ignore_holes ? no_holes : pslg.holes;
-  const bool eat = from_hull || !holes.empty();
-  if (eat) {
-    stats.eaten_triangles = removal.run(from_hull, holes);
-    scheduler.timer().charge(ExteriorRemoval::kPhase);
+  if (!from_hull && holes.empty())
+    return false;
+  stats.eaten_triangles = removal.run(from_hull, holes);
+  scheduler.timer().charge(ExteriorRemoval::kPhase);
+  return true;
+}
+
+std::vector<Segment> input_numbering(const std::vector<Segment> &constraints,
+                                     const DelaunayScheduler &scheduler,
+                                     const std::vector<int32_t> &duplicate_of) {
+  const auto &original = scheduler.original_ids();
+  auto input_point = [&](int32_t device_point) {
+    const int32_t input = original[device_point];
+    return duplicate_of[input] >= 0 ? duplicate_of[input] : input;
+  };
+  std::vector<Segment> result;
+  for (const Segment &s : constraints)
+    result.push_back({input_point(s.a), input_point(s.b), s.marker});
+  return result;
+}
+
+ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
+                                       const ConstrainedOptions &options) {
+  ConstrainedResult result;
+  ConstrainedStats &stats = result.stats;
+  // Segment endpoints were checked by validate(Input), which triangulate() calls first.
+  DelaunayScheduler scheduler(device, pslg.points, options.delaunay, result.mesh.stats,
+                              crossing_room(pslg));
+  device.program("constraint_marking.cl", "setup");
+  device.program("exterior_removal.cl", "setup");
+  if (!scheduler.triangulate()) {
+    scheduler.download_collinear(result.mesh);
+    result.segments = distinct_segments(pslg.segments, stats);
+    return result;
   }
+  const std::vector<Segment> constraints =
+      insert_constraints(device, scheduler, pslg, stats, result.added_points);
+
+  ExteriorRemoval removal(device, scheduler.mesh());
+  const bool eat = remove_exterior(scheduler, removal, pslg, options, stats);
   const DeviceArray<cl_int> *label = nullptr;
   if (options.regional_attributes) {
     std::vector<Point> seeds;
@@ -98,28 +121,23 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
   }
 
   // The segments as they stand, in input numbering; with -c the hull too.
-  const auto &original = scheduler.original_ids();
-  const auto &duplicate_of = result.mesh.duplicate_of;
-  auto input_point = [&](int32_t device_point) {
-    const int32_t input = original[device_point];
-    return duplicate_of[input] >= 0 ? duplicate_of[input] : input;
-  };
-  for (const Segment &s : constraints)
-    result.segments.push_back({input_point(s.a), input_point(s.b), s.marker});
-  if (options.keep_convex_hull) {
-    // Hull edges that are not constraints already.
-    std::vector<Segment> all = result.segments;
-    const auto &mesh = result.mesh;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-      for (int i = 0; i < 3; ++i)
-        if (mesh.neighbors[t][i] < 0)
-          all.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
-    const std::vector<char> first = first_occurrences(all);
-    for (std::size_t k = result.segments.size(); k < all.size(); ++k)
-      if (first[k])
-        result.segments.push_back(all[k]);
-  }
+  result.segments = input_numbering(constraints, scheduler, result.mesh.duplicate_of);
+  if (options.keep_convex_hull)
+    add_hull_edges(result.mesh, result.segments);
   return result;
+}
+
+void add_hull_edges(const DelaunayResult &mesh, std::vector<Segment> &segments) {
+  // Hull edges that are not constraints already.
+  std::vector<Segment> all = segments;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      if (mesh.neighbors[t][i] < 0)
+        all.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+  const std::vector<char> first = first_occurrences(all);
+  for (std::size_t k = segments.size(); k < all.size(); ++k)
+    if (first[k])
+      segments.push_back(all[k]);
 }
 
 } // namespace clmesh

@@ -48,4 +48,36 @@ struct ConstrainedResult {
 ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                                        const ConstrainedOptions &options = {});
 
+// The steps of constrained_delaunay(), shared with the refinement of a PSLG.
+class DelaunayScheduler;
+class ExteriorRemoval;
+
+// Room for the vertices added where segments cross.
+std::size_t crossing_room(const Pslg &pslg);
+
+// Drops zero-length and repeated segments (first occurrence kept, its marker too).
+std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
+                                       ConstrainedStats &stats);
+
+// GPU-CDT steps 2 and 3 on the scheduler's Delaunay triangulation: the
+// constraints inserted, then flipped to constrained Delaunay. Returns them as
+// they stand in the mesh (device numbering); added_points: the vertices added
+// where segments cross.
+std::vector<Segment> insert_constraints(Device &device, DelaunayScheduler &scheduler,
+                                        const Pslg &pslg, ConstrainedStats &stats,
+                                        std::vector<Point> &added_points);
+
+// GPU-CDT step 4: the exterior (unless -c) and the holes (unless -O) flagged
+// in removal.removed(). Returns whether anything was looked for.
+bool remove_exterior(DelaunayScheduler &scheduler, ExteriorRemoval &removal, const Pslg &pslg,
+                     const ConstrainedOptions &options, ConstrainedStats &stats);
+
+// Constraints in device numbering, in input numbering (duplicates resolved).
+std::vector<Segment> input_numbering(const std::vector<Segment> &constraints,
+                                     const DelaunayScheduler &scheduler,
+                                     const std::vector<int32_t> &duplicate_of);
+
+// With -c: the hull edges of `mesh` that are not segments yet, marker 1.
+void add_hull_edges(const DelaunayResult &mesh, std::vector<Segment> &segments);
+
 } // namespace clmesh

@@ -136,19 +136,8 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
     throw InputError("segments", 0, "more than 2^27 segments (a triangle's mark holds 27 bits)");
   segments_ = segments;
   origin_ = origin;
-  const std::size_t n = mesh_.point_capacity, m = segments.size();
-  std::vector<cl_int> start(n + 1, 0), adjacent(2 * m), a(m), b(m);
-  for (const Segment &s : segments) {
-    ++start[s.a + 1];
-    ++start[s.b + 1];
-  }
-  for (std::size_t v = 0; v < n; ++v)
-    start[v + 1] += start[v];
-  std::vector<cl_int> cursor(start.begin(), start.end() - 1);
-  for (const Segment &s : segments) {
-    adjacent[cursor[s.a]++] = s.b;
-    adjacent[cursor[s.b]++] = s.a;
-  }
+  const std::size_t m = segments.size();
+  std::vector<cl_int> a(m), b(m);
   // Marks keep the constraint of smallest device index. Input files list
   // segments along chains and contours, so neighbouring constraints would
   // have neighbouring priorities and each would wait for the one beside it:
@@ -176,10 +165,7 @@ void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
   });
   for (cl_int &i : walk_order)
     i = device_index[i];
-  mesh_.constraint_start.upload(device_, start);
-  mesh_.constraint_adjacent = DeviceArray<cl_int>(device_, adjacent.size());
-  mesh_.constraint_adjacent.upload(device_, adjacent);
-  mesh_.has_constraints = !adjacent.empty();
+  mesh_.set_constraint_rows(device_, segments);
   segment_a_ = DeviceArray<cl_int>(device_, m);
   segment_b_ = DeviceArray<cl_int>(device_, m);
   segment_state_ = DeviceArray<cl_int>(device_, m);

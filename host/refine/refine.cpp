@@ -10,11 +10,16 @@
 //      points (§3.3.2, §3.5), after the boundary routine (§3.4.1).
 // Between iterations the arrays are compacted into spatial order at times,
 // and the empty slots collected or the arrays grown when room runs short
-// (§3.6.1).
+// (§3.6.1). A PSLG is first triangulated by GPU-CDT (chapter 4), its
+// exterior and holes removed and its domain closed by ghosts
+// (domain_boundary.cl); the iterations then treat its segments as the hull
+// edges of a point set.
 #include "refine/refine.hpp"
 
+#include "cdt/exterior_removal.hpp"
 #include "dt/delaunay_scheduler.hpp"
 #include "dt/missing_point_insertion.hpp"
+#include "refine/domain_boundary.hpp"
 #include "refine/flip_flop.hpp"
 #include "refine/free_slots.hpp"
 #include "refine/offcenter_insertion.hpp"
@@ -174,32 +179,46 @@ struct RefinementSteps {
 constexpr long kMaxIterations = 1000;
 
 // One refinement: the mesh, its phase objects and what the iterations count.
+// With a PSLG (pslg and constrained not null), of its domain.
 class Refinement {
 public:
   Refinement(Device &device, const std::vector<Point> &points, const RefineOptions &options,
-             RefineResult &result)
+             RefineResult &result, const Pslg *pslg = nullptr,
+             const ConstrainedOptions *constrained = nullptr)
       : device_(device), points_(points), options_(options), result_(result), stats_(result.stats),
+        pslg_(pslg), constrained_(constrained),
         // Refinement breaks ties by triangle slot; its first compaction gives
         // the triangles a layout that depends on them alone, whichever
         // construction (and grid) built them.
         scheduler_(device, points, options.delaunay, result.mesh.stats,
-                   first_room(device, points.size(), options)),
+                   first_room(device, points.size(), options) + (pslg ? crossing_room(*pslg) : 0)),
         limit_(options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
                                    : std::numeric_limits<std::size_t>::max()) {}
 
-  // GPU-DT; false when all points are collinear (the result then holds them
-  // without triangles).
+  // GPU-DT, and for a PSLG GPU-CDT and its domain; false when all points
+  // are collinear (the result then holds them without triangles).
   bool triangulate() {
     for (const char *file : kPrograms)
       device_.program(file, "setup");
+    if (pslg_)
+      for (const char *file :
+           {"constraint_marking.cl", "exterior_removal.cl", "domain_boundary.cl"})
+        device_.program(file, "setup");
     if (!scheduler_.triangulate()) {
       scheduler_.download_collinear(result_.mesh);
+      if (pslg_)
+        result_.segments = distinct_segments(pslg_->segments, result_.constraints);
       return false;
     }
     const auto [low, side] = bounding_square(points_);
     low_ = low;
     side_ = side;
+    if (pslg_)
+      constrain();
+    first_steiner_ = mesh().point_count;
     scheduler_.mesh().enable_refinement(device_);
+    if (pslg_)
+      set_segments();
     scheduler_.flipping().set_fixed_boundary(true);
     steps_ = std::make_unique<RefinementSteps>(scheduler_, options_);
     acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
@@ -245,18 +264,11 @@ public:
   // The statistics, the Steiner points numbered after the input points, and
   // the mesh downloaded.
   void finish() {
-    if (acute_hull_vertices_ > 0)
-      stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
-    stats_.deleted = flips_.deleted;
-    stats_.kept_redundant = flips_.kept_redundant;
-    stats_.boundary_splits = flips_.midpoints;
-    stats_.delaunay_flips = flips_.delaunay_flips;
-    stats_.non_delaunay_flips = flips_.non_delaunay_flips;
-    DelaunayStats &mesh_stats = result_.mesh.stats;
-    mesh_stats.flips += flips_.delaunay_flips + flips_.non_delaunay_flips;
-    mesh_stats.flip_passes += flips_.passes;
-    mesh_stats.exact_predicate_calls += flips_.exact_checks;
-
+    if (pslg_) {
+      finish_pslg();
+      return;
+    }
+    collect_statistics();
     const std::size_t n = points_.size();
     result_.added_points = steps_->renumbering.number(n);
     const std::size_t survivors = result_.added_points.size();
@@ -273,16 +285,106 @@ public:
 private:
   enum class Room { enough, grown, exhausted };
 
+  // GPU-CDT, the exterior and holes removed, and the domain closed by ghosts.
+  void constrain() {
+    constraints_ = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
+    ExteriorRemoval removal(device_, mesh());
+    if (!remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints))
+      return; // -c without holes: the convex hull is the domain
+    DomainBoundary boundary(device_, mesh(), scheduler_.scan());
+    const std::size_t ghosts = boundary.room_needed(removal.removed());
+    if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
+      scheduler_.grow(ghosts / 2 + 1);
+    boundary.close(removal.removed());
+    scheduler_.timer().charge(DomainBoundary::kPhase);
+  }
+
+  // The segments as refinement's constraints; their vertices are boundary
+  // vertices (never deleted, and their triangles' candidates are tested
+  // against the subsegments near them).
+  void set_segments() {
+    DeviceMesh &m = mesh();
+    m.set_segments(device_, constraints_);
+    std::vector<cl_int> states(m.point_count, 0); // CLM_POINT_INPUT
+    for (const Segment &s : constraints_)
+      states[static_cast<std::size_t>(s.a)] = states[static_cast<std::size_t>(s.b)] =
+          8; // CLM_POINT_HULL
+    m.point_state.upload(device_, states);
+  }
+
+  // finish() for a PSLG: the mesh, the points added where segments cross
+  // and the Steiner points, and the segments as chains of subsegments.
+  void finish_pslg() {
+    collect_statistics();
+    std::vector<int32_t> on_segment;
+    std::vector<Point> steiner = steps_->renumbering.number(first_steiner_, &on_segment);
+    stats_.inserted = static_cast<long>(steiner.size());
+    steps_.reset();
+    scheduler_.download(result_.mesh);
+    stats_.inserted_more_than_once = deletion_log_.points_inserted_more_than_once(device_, steiner);
+    result_.added_points = crossings_;
+    result_.added_points.insert(result_.added_points.end(), steiner.begin(), steiner.end());
+    result_.mesh.duplicate_of.resize(points_.size() + result_.added_points.size(), -1);
+    if (stats_.out_of_memory)
+      stats_.stop_reason = memory_cause();
+
+    // Each segment's chain: its ends and the Steiner points on it, in order
+    // of their distance from its first end.
+    const std::vector<Segment> pieces =
+        input_numbering(constraints_, scheduler_, result_.mesh.duplicate_of);
+    std::vector<std::vector<int32_t>> on_piece(pieces.size());
+    for (std::size_t k = 0; k < steiner.size(); ++k)
+      if (on_segment[k] >= 0)
+        on_piece[static_cast<std::size_t>(on_segment[k])].push_back(
+            static_cast<int32_t>(first_steiner_ + k));
+    for (std::size_t j = 0; j < pieces.size(); ++j) {
+      const Point a = point(pieces[j].a);
+      auto from_a = [&](int32_t v) {
+        const Point p = point(v);
+        return (p.x - a.x) * (p.x - a.x) + (p.y - a.y) * (p.y - a.y);
+      };
+      std::vector<int32_t> &chain = on_piece[j];
+      std::sort(chain.begin(), chain.end(), [&](int32_t u, int32_t v) {
+        const double du = from_a(u), dv = from_a(v);
+        return du < dv || (du == dv && u < v);
+      });
+      int32_t previous = pieces[j].a;
+      for (int32_t v : chain) {
+        result_.segments.push_back({previous, v, pieces[j].marker});
+        previous = v;
+      }
+      result_.segments.push_back({previous, pieces[j].b, pieces[j].marker});
+    }
+    if (constrained_->keep_convex_hull)
+      add_hull_edges(result_.mesh, result_.segments);
+  }
+
+  // The statistics of the iterations' steps.
+  void collect_statistics() {
+    if (acute_hull_vertices_ > 0 || pslg_)
+      stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
+    stats_.deleted = flips_.deleted;
+    stats_.kept_redundant = flips_.kept_redundant;
+    stats_.boundary_splits = flips_.midpoints;
+    stats_.delaunay_flips = flips_.delaunay_flips;
+    stats_.non_delaunay_flips = flips_.non_delaunay_flips;
+    DelaunayStats &mesh_stats = result_.mesh.stats;
+    mesh_stats.flips += flips_.delaunay_flips + flips_.non_delaunay_flips;
+    mesh_stats.flip_passes += flips_.passes;
+    mesh_stats.exact_predicate_calls += flips_.exact_checks;
+  }
+
+  // Output point v (input numbering, then the added points) of the result.
+  Point point(int32_t v) const {
+    const auto i = static_cast<std::size_t>(v);
+    return i < points_.size() ? points_[i] : result_.added_points[i - points_.size()];
+  }
+
   // Out of device memory, on the downloaded mesh: the area bound is to blame
   // while triangles above it are left, else an angle bound above about 33
   // degrees (refinement to it need not terminate), else the input's size.
   RefineStop memory_cause() const {
     const DelaunayResult &mesh = result_.mesh;
-    const std::size_t n = points_.size();
-    auto point = [&](int32_t v) {
-      const auto i = static_cast<std::size_t>(v);
-      return i < n ? points_[i] : result_.added_points[i - n];
-    };
     if (options_.max_area)
       for (const auto &t : mesh.triangles) {
         const Point a = point(t[0]), b = point(t[1]), c = point(t[2]);
@@ -315,7 +417,7 @@ private:
   // Thesis §3.6.1: the live triangles and Steiner points move to the front,
   // in Z-order. Every slot number changes: the lists of triangles are void.
   void compact() {
-    steps_->compaction.compact(low_, side_, points_.size());
+    steps_->compaction.compact(low_, side_, first_steiner_);
     steps_->offcenter.forget_triangles();
     changed_.size = 0;
     deleted_since_collection_ = false;
@@ -413,7 +515,12 @@ private:
   const RefineOptions &options_;
   RefineResult &result_;
   RefineStats &stats_;
+  const Pslg *pslg_;
+  const ConstrainedOptions *constrained_;
   DelaunayScheduler scheduler_;
+  std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;     // vertices added where segments cross
+  std::size_t first_steiner_ = 0;    // slot of the first Steiner point
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   std::size_t acute_hull_vertices_ = 0;
@@ -435,6 +542,19 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
   RefineResult result;
   check_area_bound(device, points, options, result.stats);
   Refinement refinement(device, points, options, result);
+  if (!refinement.triangulate())
+    return result;
+  refinement.iterate();
+  refinement.finish();
+  return result;
+}
+
+RefineResult refine_constrained(Device &device, const Pslg &pslg,
+                                const ConstrainedOptions &constrained,
+                                const RefineOptions &options) {
+  RefineResult result;
+  check_area_bound(device, pslg.points, options, result.stats);
+  Refinement refinement(device, pslg.points, options, result, &pslg, &constrained);
   if (!refinement.triangulate())
     return result;
   refinement.iterate();

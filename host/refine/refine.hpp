@@ -5,6 +5,7 @@
 // when a candidate falls outside or encroaches them.
 #pragma once
 
+#include "cdt/constrained.hpp"
 #include "dt/delaunay.hpp"
 
 #include <optional>
@@ -20,13 +21,27 @@ struct RefineOptions {
 };
 
 struct RefineResult {
-  // Triangles over the input points followed by the Steiner points.
+  // Triangles over the input points followed by the added points.
   DelaunayResult mesh;
-  std::vector<Point> added_points; // Steiner point n + i is added_points[i]
+  // Point n + i is added_points[i]: the vertices added where segments cross
+  // (PSLG), then the Steiner points.
+  std::vector<Point> added_points;
   RefineStats stats;
+  // PSLG only: the subsegments (each input segment split into a chain at
+  // the vertices on it) with their segment's marker; with -c the hull edges
+  // too (marker 1); and the statistics of GPU-CDT.
+  std::vector<Segment> segments;
+  ConstrainedStats constraints;
 };
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
                              const RefineOptions &options);
+
+// Quality refinement of a PSLG's domain: GPU-CDT, the exterior and holes
+// removed (as constrained_delaunay()), then GPU-QM/QM-V within the domain,
+// every segment split where a candidate falls beyond or encroaches on it.
+RefineResult refine_constrained(Device &device, const Pslg &pslg,
+                                const ConstrainedOptions &constrained,
+                                const RefineOptions &options);
 
 } // namespace clmesh

@@ -7,7 +7,7 @@ SteinerRenumbering::SteinerRenumbering(Device &device, DeviceMesh &mesh, PrefixS
       flag_deleted_(device.kernel("free_slots.cl", "flag_deleted_points", kPhase)),
       number_(device.kernel("steiner_renumbering.cl", "number_steiner_points", kPhase)) {}
 
-std::vector<Point> SteinerRenumbering::number(std::size_t first) {
+std::vector<Point> SteinerRenumbering::number(std::size_t first, std::vector<int32_t> *segments) {
   const std::size_t n = mesh_.point_count - first;
   std::vector<Point> result;
   if (n == 0)
@@ -23,10 +23,15 @@ std::vector<Point> SteinerRenumbering::number(std::size_t first) {
   // The final download: the coordinates of the survivors, in slot order.
   const std::vector<cl_double2> points = mesh_.points.download(device_, n, first);
   const std::vector<cl_int> keep = survives.download(device_, n);
+  const std::vector<cl_int> on_segment =
+      segments ? mesh_.point_segment.download(device_, n, first) : std::vector<cl_int>();
   result.reserve(static_cast<std::size_t>(survivors));
   for (std::size_t k = 0; k < n; ++k)
-    if (keep[k])
+    if (keep[k]) {
       result.push_back({points[k].s[0], points[k].s[1]});
+      if (segments)
+        segments->push_back(on_segment[k]);
+    }
   return result;
 }
 

@@ -20,8 +20,10 @@ public:
 
   // Numbers the surviving Steiner points (slots first ..) after the input
   // points in slot order, the deleted ones after them (in original_id), and
-  // returns the survivors' coordinates in that order.
-  std::vector<Point> number(std::size_t first);
+  // returns the survivors' coordinates in that order; `segments`, when
+  // given, receives the segment each survivor lies on (cl/refinement.h
+  // point_segment).
+  std::vector<Point> number(std::size_t first, std::vector<int32_t> *segments = nullptr);
 
 private:
   Device &device_;

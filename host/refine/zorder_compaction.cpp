@@ -100,9 +100,10 @@ void ZOrderCompaction::compact_steiner_points(Point low, double side, std::size_
   DeviceArray<cl_int> state(device_, capacity);
   DeviceArray<cl_double> radius2(device_, capacity);
   DeviceArray<cl_uint> priority(device_, capacity);
+  DeviceArray<cl_int> segment(device_, capacity);
   set_args_from(move_points_, mesh_.bind(move_points_, 0), order.buffer(), points.buffer(),
-                state.buffer(), radius2.buffer(), priority.buffer(), static_cast<cl_int>(first),
-                static_cast<cl_int>(first + live));
+                state.buffer(), radius2.buffer(), priority.buffer(), segment.buffer(),
+                static_cast<cl_int>(first), static_cast<cl_int>(first + live));
   launch(device_, move_points_, first + live, kPhase);
   set_args(renumber_vertices_, new_slot.buffer(), mesh_.tri_vertex.buffer(),
            static_cast<cl_int>(first), static_cast<cl_int>(3 * mesh_.triangle_count));
@@ -111,6 +112,7 @@ void ZOrderCompaction::compact_steiner_points(Point low, double side, std::size_
   std::swap(mesh_.point_state, state);
   std::swap(mesh_.insertion_radius2, radius2);
   std::swap(mesh_.point_priority, priority);
+  std::swap(mesh_.point_segment, segment);
   mesh_.point_count = first + live;
   mesh_.free_points.first = mesh_.free_points.count = 0;
 }

@@ -15,7 +15,8 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
       modified_stamp(device, triangle_capacity), children(device, 3 * triangle_capacity),
       vertex_triangle(device, point_capacity), duplicate_of(device, point_capacity),
       location(device, point_capacity), location_edge(device, point_capacity),
-      constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1) {}
+      constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1),
+      constraint_segment(device, 1) {}
 
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   const std::size_t points_now = point_capacity + extra_points;
@@ -37,6 +38,7 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
     point_state = point_state.grown(device, points_now, 0);
     insertion_radius2 = insertion_radius2.grown(device, points_now, 0.0);
     point_priority = point_priority.grown(device, points_now, 0u);
+    point_segment = point_segment.grown(device, points_now, -1); // CLM_NO_SEGMENT
   }
   // Past the end of the old ranges there is room again: the free lists start over.
   free_triangles = FreeList{};
@@ -63,14 +65,61 @@ cl_uint DeviceMesh::bind_triangulation(cl::Kernel &kernel, cl_uint first) const 
 
 cl_uint DeviceMesh::bind(cl::Kernel &kernel, cl_uint first) const {
   return set_args_from(kernel, bind_triangulation(kernel, first), point_state.buffer(),
-                       insertion_radius2.buffer(), point_priority.buffer());
+                       insertion_radius2.buffer(), point_priority.buffer(), point_segment.buffer(),
+                       segment_end.buffer(), constraint_segment.buffer());
+}
+
+void DeviceMesh::set_constraint_rows(Device &device, const std::vector<Segment> &segments) {
+  const std::size_t n = point_capacity, m = segments.size();
+  std::vector<cl_int> start(n + 1, 0), adjacent(2 * m), segment(2 * m);
+  for (const Segment &s : segments) {
+    ++start[s.a + 1];
+    ++start[s.b + 1];
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  std::vector<cl_int> cursor(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < m; ++i) {
+    const Segment &s = segments[i];
+    segment[cursor[s.a]] = static_cast<cl_int>(i);
+    adjacent[cursor[s.a]++] = s.b;
+    segment[cursor[s.b]] = static_cast<cl_int>(i);
+    adjacent[cursor[s.b]++] = s.a;
+  }
+  constraint_start.upload(device, start);
+  constraint_adjacent = DeviceArray<cl_int>(device, adjacent.size());
+  constraint_adjacent.upload(device, adjacent);
+  constraint_segment = DeviceArray<cl_int>(device, segment.size());
+  constraint_segment.upload(device, segment);
+  has_constraints = !adjacent.empty();
 }
 
 void DeviceMesh::enable_refinement(Device &device) {
   point_state = DeviceArray<cl_int>(device, point_capacity);
   insertion_radius2 = DeviceArray<cl_double>(device, point_capacity);
   point_priority = DeviceArray<cl_uint>(device, point_capacity);
-  point_state.fill(device, 0, point_capacity); // every point so far is an input point
+  point_segment = DeviceArray<cl_int>(device, point_capacity);
+  segment_end = DeviceArray<cl_int>(device, 2);
+  point_state.fill(device, 0, point_capacity);    // every point so far is an input point
+  point_segment.fill(device, -1, point_capacity); // CLM_NO_SEGMENT
+}
+
+void DeviceMesh::set_segments(Device &device, const std::vector<Segment> &segments) {
+  set_constraint_rows(device, segments);
+  std::vector<cl_int> ends(2 * segments.size() + 2, -1);
+  std::vector<int> meeting(point_count, 0);
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    ends[2 * i] = segments[i].a;
+    ends[2 * i + 1] = segments[i].b;
+    ++meeting[static_cast<std::size_t>(segments[i].a)];
+    ++meeting[static_cast<std::size_t>(segments[i].b)];
+  }
+  segment_end = DeviceArray<cl_int>(device, ends.size());
+  segment_end.upload(device, ends);
+  std::vector<cl_int> on_segment(point_count);
+  for (std::size_t v = 0; v < point_count; ++v)
+    on_segment[v] = meeting[v] >= 2 ? -2 : -1; // CLM_SEGMENT_JOINT, CLM_NO_SEGMENT
+  point_segment.upload(device, on_segment);
 }
 
 } // namespace clmesh

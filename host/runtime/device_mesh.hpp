@@ -1,6 +1,7 @@
 // clmesh — every device buffer of a run, owned in one place (RAII through cl::Buffer).
 #pragma once
 
+#include "clmesh/input.hpp"
 #include "runtime/opencl_context.hpp"
 
 #include <cstddef>
@@ -121,7 +122,12 @@ struct DeviceMesh {
   // rows (all starts 0) for a plain Delaunay triangulation.
   DeviceArray<cl_int> constraint_start;    // point_capacity + 1
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
+  DeviceArray<cl_int> constraint_segment;  // per entry of constraint_adjacent: its constraint
   bool has_constraints = false;            // any row not empty
+
+  // Uploads `segments` (device point numbers, distinct, none of zero length)
+  // as the constraint rows.
+  void set_constraint_rows(Device &device, const std::vector<Segment> &segments);
 
   std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
 
@@ -139,11 +145,19 @@ struct DeviceMesh {
   FreeList free_triangles, free_points;
 
   // Refinement only (allocated by enable_refinement): per point its state
-  // (cl/refinement.h), insertion radius squared and priority (thesis §3.3, §3.5).
+  // (cl/refinement.h), insertion radius squared and priority (thesis §3.3,
+  // §3.5), and the segment it lies on (cl/refinement.h point_segment); the
+  // two ends of each segment.
   DeviceArray<cl_int> point_state;
   DeviceArray<cl_double> insertion_radius2;
   DeviceArray<cl_uint> point_priority;
+  DeviceArray<cl_int> point_segment;
+  DeviceArray<cl_int> segment_end;
   void enable_refinement(Device &device);
+  // Refinement of a PSLG: the segments as they stand in the mesh (device
+  // numbering) become the constraint rows and segment_end, and the input
+  // vertices where two or more meet are marked (CLM_SEGMENT_JOINT).
+  void set_segments(Device &device, const std::vector<Segment> &segments);
 
   // Set the buffers of CLM_TRIANGULATION_PARAMS, or of CLM_MESH_PARAMS (the
   // same and the refinement-only ones; after enable_refinement), in the

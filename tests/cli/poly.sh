@@ -42,9 +42,7 @@ expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
 expect "vertex without the marker its header announces, in the .node beside" 1 \
   "nomarker2.node:3:" "boundary marker" -- nomarker2.poly
 expect "missing .poly" 1 "missing.poly" -- -p missing
-expect "-p with -q" 2 "-q" "not supported" "-p" -- -pq endpoint.poly
-expect "-p with -a" 2 "-a" "not supported" "-p" -- -a -p endpoint.poly
-expect "-q with a .poly input" 2 "-q" "not supported" -- -q endpoint.poly
+expect "-p with -q and -A" 2 "-A" "not supported" "-p" -- -pqA endpoint.poly
 expect "-r stays refused" 2 "-r" "not supported" -- -r endpoint.poly
 
 # ---------------------------------------------------------------------------

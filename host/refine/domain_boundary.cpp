@@ -1,0 +1,60 @@
+#include "refine/domain_boundary.hpp"
+
+#include "clmesh/errors.hpp"
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "domain_boundary.cl";
+}
+
+DomainBoundary::DomainBoundary(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
+      count_(device.kernel(kFile, "count_boundary_edges", kPhase)),
+      make_ghosts_(device.kernel(kFile, "make_ghosts", kPhase)),
+      link_kept_(device.kernel(kFile, "link_kept_triangles", kPhase)),
+      retire_(device.kernel(kFile, "retire_exterior", kPhase)),
+      point_at_(device.kernel(kFile, "point_at_kept_triangles", kPhase)) {}
+
+std::size_t DomainBoundary::room_needed(const DeviceArray<cl_int> &removed) {
+  const std::size_t slots = mesh_.triangle_count;
+  boundary_edges_ = DeviceArray<cl_int>(device_, slots);
+  offset_ = DeviceArray<cl_int>(device_, slots);
+  set_args_from(count_, mesh_.bind_triangulation(count_, 0), removed.buffer(),
+                boundary_edges_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, count_, slots, kPhase);
+  return static_cast<std::size_t>(scan_.exclusive_scan(boundary_edges_, offset_, slots, kPhase));
+}
+
+std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
+  const std::size_t slots = mesh_.triangle_count;
+  const std::size_t ghosts = room_needed(removed);
+  if (slots + ghosts > mesh_.triangle_capacity)
+    throw InternalError("no room for the ghosts of the domain's boundary");
+  const auto first_ghost = static_cast<cl_int>(slots);
+  DeviceArray<cl_int> lost(device_, 1);
+  lost.fill(device_, 0, 1);
+  set_args_from(make_ghosts_, mesh_.bind_triangulation(make_ghosts_, 0), removed.buffer(),
+                offset_.buffer(), first_ghost, static_cast<cl_int>(slots + 8), lost.buffer(),
+                static_cast<cl_int>(slots));
+  launch(device_, make_ghosts_, slots, kPhase);
+  if (lost.read(device_, 0) != 0)
+    throw InternalError("a boundary loop of the domain could not be followed");
+  set_args_from(link_kept_, mesh_.bind_triangulation(link_kept_, 0), removed.buffer(),
+                offset_.buffer(), first_ghost, static_cast<cl_int>(slots));
+  launch(device_, link_kept_, slots, kPhase);
+  DeviceArray<cl_int> owner(device_, mesh_.point_count);
+  owner.fill(device_, 0x7fffffff, mesh_.point_count);
+  set_args_from(retire_, mesh_.bind_triangulation(retire_, 0), removed.buffer(), owner.buffer(),
+                static_cast<cl_int>(slots));
+  launch(device_, retire_, slots, kPhase);
+  set_args_from(point_at_, mesh_.bind_triangulation(point_at_, 0), owner.buffer(),
+                static_cast<cl_int>(mesh_.point_count));
+  launch(device_, point_at_, mesh_.point_count, kPhase);
+  mesh_.triangle_count = slots + ghosts;
+  boundary_edges_ = {};
+  offset_ = {};
+  return ghosts;
+}
+
+} // namespace clmesh

@@ -1,0 +1,34 @@
+// clmesh — the domain of a PSLG as refinement's boundary: after GPU-CDT has
+// flagged the exterior and the holes, each boundary edge of the domain gets
+// its own ghost triangle and the flagged triangles die, so that refinement
+// treats the domain's boundary as it treats a convex hull (thesis §3.4.1).
+// Kernels: cl/domain_boundary.cl.
+#pragma once
+
+#include "runtime/prefix_scan.hpp"
+
+namespace clmesh {
+
+class DomainBoundary {
+public:
+  static constexpr const char *kPhase = "domain_boundary";
+
+  DomainBoundary(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+
+  // Closes the domain left by `removed` (per triangle slot, 1: outside it)
+  // with ghosts. The mesh must have room for one more triangle per boundary
+  // edge (room_needed). Returns the number of boundary edges.
+  std::size_t close(const DeviceArray<cl_int> &removed);
+
+  // The triangle slots closing the domain takes beyond the ones in use.
+  std::size_t room_needed(const DeviceArray<cl_int> &removed);
+
+private:
+  Device &device_;
+  DeviceMesh &mesh_;
+  PrefixScan &scan_;
+  cl::Kernel count_, make_ghosts_, link_kept_, retire_, point_at_;
+  DeviceArray<cl_int> boundary_edges_, offset_;
+};
+
+} // namespace clmesh

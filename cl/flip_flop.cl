@@ -213,8 +213,8 @@ inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS, C
         continue;
       flop = true;
     } else {
-      if (constrained && is_subsegment(constraint_start, constraint_adjacent, constraint_segment,
-                                       point_segment, segment_end, a, b))
+      if (constrained && is_subsegment(points, constraint_start, constraint_adjacent,
+                                       constraint_segment, point_segment, segment_end, a, b, c, d))
         continue; // subsegments stay, split only
       // Constraints are subsegments (tested above): a segment refinement has
       // split no longer stands between its ends.

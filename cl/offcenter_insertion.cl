@@ -106,6 +106,23 @@ inline bool across_input_angle(__global const double2 *points, __global const in
   return false;
 }
 
+// Do all three corners of tri lie on one segment (at least one added on it)?
+// Rounded split points leave a segment a hair from straight, so flips may
+// make such a sliver; splitting it would only make more.
+inline bool along_one_segment(__global const int *point_segment, __global const int *segment_end,
+                              VertexTriple tri) {
+  int s = -1;
+  for (int i = 0; i < 3 && s < 0; ++i)
+    s = point_segment[tri.v[i]] >= 0 ? point_segment[tri.v[i]] : -1;
+  if (s < 0)
+    return false;
+  for (int i = 0; i < 3; ++i)
+    if (point_segment[tri.v[i]] != s && segment_end[2 * s] != tri.v[i] &&
+        segment_end[2 * s + 1] != tri.v[i])
+      return false;
+  return true;
+}
+
 inline Quality assess(__global const double2 *points, __global const int *point_state,
                       __global const int *point_segment, __global const int *segment_end,
                       VertexTriple tri, double ratio_bound_squared, double max_area) {
@@ -128,6 +145,7 @@ inline Quality assess(__global const double2 *points, __global const int *point_
   q.large = max_area > 0 && 0.5 * twice_area > max_area;
   q.unfixable = q.skinny && !q.large &&
                 (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL ||
+                 along_one_segment(point_segment, segment_end, tri) ||
                  across_input_angle(points, point_segment, segment_end, tri.v[next3(q.shortest)],
                                     tri.v[prev3(q.shortest)]));
   return q;
@@ -313,10 +331,7 @@ inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
     return false;
   if (is_ghost(load_vertices(tri_vertex, partner)))
     return true;
-  const int t = container[k], e = split_edge[k];
-  return constrained &&
-         is_subsegment(constraint_start, constraint_adjacent, constraint_segment, point_segment,
-                       segment_end, tri_vertex[3 * t + next3(e)], tri_vertex[3 * t + prev3(e)]);
+  return subsegment_at(CLM_MESH_ARGS, container[k], split_edge[k]);
 }
 
 // Does subsegment a-b have exactly one end where segments meet? Then it is
@@ -374,10 +389,7 @@ inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_step
     if (cross < 0)
       break;
     const int u = link_triangle(tri_neighbor[3 * t + cross]);
-    if (is_ghost(load_vertices(tri_vertex, u)) ||
-        (constrained &&
-         is_subsegment(constraint_start, constraint_adjacent, constraint_segment, point_segment,
-                       segment_end, tri.v[next3(cross)], tri.v[prev3(cross)]))) {
+    if (is_ghost(load_vertices(tri_vertex, u)) || subsegment_at(CLM_MESH_ARGS, t, cross)) {
       result.outcome = CLM_WALK_BLOCKED;
       result.edge = cross;
       break;
@@ -458,9 +470,7 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
         if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
           continue;
         const int u = link_triangle(tri_neighbor[3 * s + i]);
-        if (!is_ghost(load_vertices(tri_vertex, u)) &&
-            !(constrained && is_subsegment(constraint_start, constraint_adjacent,
-                                           constraint_segment, point_segment, segment_end, a, b)))
+        if (!is_ghost(load_vertices(tri_vertex, u)) && !subsegment_at(CLM_MESH_ARGS, s, i))
           continue;
         if (in_lens(points[a], points[b], c, lens) &&
             (r < 0 || circumcircle_holds(points, near, c))) {

@@ -5,6 +5,7 @@
 #define CLMESH_REFINEMENT_H
 
 #include "common.h"
+#include "mesh_params.h"
 
 #define CLM_POINT_INPUT 0
 #define CLM_POINT_STEINER 1      // inserted in an earlier iteration
@@ -61,25 +62,57 @@ inline int segment_of_entry(__global const int *constraint_segment, int k) {
   return s >= 0 ? s : -1 - s;
 }
 
-// Is edge a-b a subsegment: an input segment (as the constraints stand after
-// GPU-CDT, compressed rows per vertex) not split since, or a piece of one
-// split during refinement? A vertex added on segment s lies between its ends,
-// so an edge from it to s's ends or to another vertex on s runs along s.
-inline bool is_subsegment(__global const int *constraint_start,
+// Does vertex w, a vertex added on segment s, lie strictly between a and b
+// (on s or its ends) along s? Distances from s's first end order them.
+inline bool between_on_segment(__global const double2 *points, __global const int *point_segment,
+                               __global const int *segment_end, int s, int w, int a, int b) {
+  if (w < 0 || point_segment[w] != s)
+    return false;
+  const double2 origin = points[segment_end[2 * s]];
+  const double dw = squared_length(points[w] - origin), da = squared_length(points[a] - origin),
+               db = squared_length(points[b] - origin);
+  return fmin(da, db) < dw && dw < fmax(da, db);
+}
+
+// Is edge a-b, with apexes c and d on its two sides (-1 or a ghost's
+// CLM_INFINITE: none), a subsegment: an input segment (as the constraints
+// stand after GPU-CDT, compressed rows per vertex) not split since, or a piece
+// of one split during refinement? A vertex added on segment s lies on s, so
+// an edge from it to s's ends or to another vertex on s runs along s; it is a
+// piece of s unless a vertex of s lies between its ends. Rounded split points
+// leave s a hair from straight, and flips may join two vertices of s around
+// one between them: that vertex is then an apex of the edge.
+inline bool is_subsegment(__global const double2 *points, __global const int *constraint_start,
                           __global const int *constraint_adjacent,
                           __global const int *constraint_segment, __global const int *point_segment,
-                          __global const int *segment_end, int a, int b) {
+                          __global const int *segment_end, int a, int b, int c, int d) {
   if (a < 0 || b < 0)
     return false;
   const int sa = point_segment[a], sb = point_segment[b];
+  int s = -1;
   if (sa >= 0 && sb >= 0)
-    return sa == sb;
-  if (sa >= 0)
-    return segment_end[2 * sa] == b || segment_end[2 * sa + 1] == b;
-  if (sb >= 0)
-    return segment_end[2 * sb] == a || segment_end[2 * sb + 1] == a;
-  const int k = constraint_entry(constraint_start, constraint_adjacent, a, b);
-  return k >= 0 && constraint_segment[k] >= 0;
+    s = sa == sb ? sa : -1;
+  else if (sa >= 0)
+    s = segment_end[2 * sa] == b || segment_end[2 * sa + 1] == b ? sa : -1;
+  else if (sb >= 0)
+    s = segment_end[2 * sb] == a || segment_end[2 * sb + 1] == a ? sb : -1;
+  else {
+    const int k = constraint_entry(constraint_start, constraint_adjacent, a, b);
+    return k >= 0 && constraint_segment[k] >= 0;
+  }
+  return s >= 0 && !between_on_segment(points, point_segment, segment_end, s, c, a, b) &&
+         !between_on_segment(points, point_segment, segment_end, s, d, a, b);
+}
+
+// Is edge i of triangle t (opposite its vertex i) a subsegment?
+inline bool subsegment_at(CLM_MESH_PARAMS, int t, int i) {
+  if (!constrained)
+    return false;
+  const int link = tri_neighbor[3 * t + i];
+  const int across = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+  return is_subsegment(points, constraint_start, constraint_adjacent, constraint_segment,
+                       point_segment, segment_end, tri_vertex[3 * t + next3(i)],
+                       tri_vertex[3 * t + prev3(i)], tri_vertex[3 * t + i], across);
 }
 
 // The segment that subsegment a-b is part of (is_subsegment holds), or -1 for

@@ -1,0 +1,237 @@
+// Quality meshing of PSLGs (-pq, -pa): GPU-QM-V on the domain of GPU-CDT,
+// every output checked exactly and against the domain and segments of the
+// same input's constrained Delaunay triangulation (-p).
+#include <doctest/doctest.h>
+
+#include "clmesh/clmesh.hpp"
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+using clmesh::Point;
+using clmesh::Segment;
+using test_support::device;
+using test_support::problems;
+
+namespace {
+
+clmesh::Input load(const std::string &folder, const std::string &name) {
+  return clmesh::read_input(std::string(CLMESH_SHARED_DATA) + "/" + folder + "/" + name + ".poly");
+}
+
+double smallest_angle_degrees(const std::vector<Point> &p, const clmesh::Triangle &t) {
+  double smallest = 180;
+  for (int i = 0; i < 3; ++i) {
+    const Point &a = p[t[i]], &b = p[t[(i + 1) % 3]], &c = p[t[(i + 2) % 3]];
+    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
+    smallest = std::min(smallest,
+                        std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+  }
+  return smallest;
+}
+
+double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
+  const Point &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+}
+
+long double total_area(const clmesh::Mesh &mesh) {
+  long double sum = 0;
+  for (const auto &t : mesh.triangles)
+    sum += area(mesh.points, t);
+  return sum;
+}
+
+// Is every segment of `cdt` (the -p mesh of the same input: input segments
+// split where they cross) a chain of the refined mesh's subsegments, through
+// points added on it (within rounding of the line) only?
+bool segments_are_chains(const clmesh::Mesh &cdt, const clmesh::Mesh &refined) {
+  std::multimap<int32_t, int32_t> next;
+  for (const Segment &s : refined.segments) {
+    next.insert({s.a, s.b});
+    next.insert({s.b, s.a});
+  }
+  const auto first_steiner = static_cast<int32_t>(cdt.points.size());
+  for (const Segment &s : cdt.segments) {
+    const Point a = refined.points[s.a], b = refined.points[s.b];
+    const double length = std::hypot(b.x - a.x, b.y - a.y);
+    auto along = [&](int32_t v) { // distance from a along the segment, or -1 off it
+      const Point p = refined.points[v];
+      const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+      if (std::fabs(cross) > 1e-9 * length * length)
+        return -1.0;
+      return ((p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y)) / length;
+    };
+    int32_t at = s.a;
+    double reached = 0;
+    while (at != s.b) {
+      int32_t step = -1;
+      for (auto [it, end] = next.equal_range(at); it != end; ++it) {
+        const int32_t v = it->second;
+        if (v == s.b) {
+          step = v;
+          break;
+        }
+        const double d = along(v);
+        if (v >= first_steiner && d > reached && d < length)
+          step = v;
+      }
+      if (step < 0)
+        return false;
+      reached = step == s.b ? length : along(step);
+      at = step;
+    }
+  }
+  return true;
+}
+
+// Meshes pslg with `switches` (which hold -p and -q or -a), then checks: the
+// exact checker (valid, every subsegment an edge, every other edge locally
+// Delaunay); the domain of the -p mesh, with its segments as chains; every
+// point added on a segment carrying the segment's marker; the area bound
+// everywhere, and no angle below the bound beyond the triangles the
+// refinement reports it could not mend.
+clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switches) {
+  const clmesh::Options options = clmesh::parse_switches(switches);
+  clmesh::Options cdt_options = options;
+  cdt_options.quality = false;
+  cdt_options.max_area.reset();
+  const clmesh::Mesh cdt = clmesh::triangulate(device(), pslg, cdt_options);
+  const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
+  const auto report = clmesh::check_mesh(pslg, mesh, options);
+  INFO(switches);
+  INFO(problems(report));
+  CHECK(report.ok);
+  CHECK(mesh.statistics.refined);
+  CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::done);
+  REQUIRE(test_support::starts_with(mesh.points, cdt.points));
+  const long double domain = total_area(cdt);
+  CHECK(std::fabs(static_cast<double>(total_area(mesh) - domain)) <=
+        1e-9 * static_cast<double>(domain));
+  CHECK(segments_are_chains(cdt, mesh));
+  long below = 0;
+  double largest = 0;
+  for (const auto &t : mesh.triangles) {
+    below += options.quality && smallest_angle_degrees(mesh.points, t) < options.min_angle - 1e-6;
+    largest = std::max(largest, area(mesh.points, t));
+  }
+  CHECK(below <= mesh.statistics.refinement.remaining_bad);
+  if (options.max_area)
+    CHECK(largest <= *options.max_area * (1 + 1e-9));
+  return mesh;
+}
+
+} // namespace
+
+TEST_CASE("quality pslg: Triangle's examples, holes and concavities, 20 to 30 degrees") {
+  for (const char *name : {"A", "face", "double_hex", "square_circle_hole", "la"})
+    for (const char *switches : {"pq20", "pq25", "pq30", "pq30a0.5"}) {
+      INFO(std::string(name));
+      const clmesh::Mesh mesh = refine_checked(load("triangle-examples/inputs", name), switches);
+      CHECK(mesh.triangles.size() > 0);
+    }
+}
+
+TEST_CASE("quality pslg: segment markers go to the points and subsegments that split them") {
+  // box.poly: the left side of the outer box has marker 5, one side of the hole 10. Its
+  // outer box has one segment, so the other three sides are added (marker 1).
+  clmesh::Input box = load("triangle-examples/inputs", "box");
+  box.segments.push_back({0, 2, 1});
+  box.segments.push_back({2, 3, 1});
+  box.segments.push_back({3, 1, 1});
+  const clmesh::Mesh mesh = refine_checked(box, "pq30a0.05");
+  const auto input = static_cast<std::size_t>(mesh.input_points);
+  std::map<int, long> steiner_markers, subsegment_markers;
+  for (std::size_t v = input; v < mesh.points.size(); ++v)
+    ++steiner_markers[mesh.point_markers[v]];
+  for (const Segment &s : mesh.segments)
+    ++subsegment_markers[s.marker];
+  // Points on the left side (x = 0, between its ends) carry 5, on the marked side of the hole 10.
+  for (std::size_t v = input; v < mesh.points.size(); ++v) {
+    const Point p = mesh.points[v];
+    if (p.x == 0 && p.y > 0 && p.y < 3)
+      CHECK(mesh.point_markers[v] == 5);
+    else if (std::fabs(p.y - 2) < 1e-12 && p.x > 1 && p.x < 2)
+      CHECK(mesh.point_markers[v] == 10);
+  }
+  CHECK(steiner_markers[5] > 0);
+  CHECK(steiner_markers[10] > 0);
+  CHECK(subsegment_markers[5] == steiner_markers[5] + 1);
+  CHECK(subsegment_markers[10] == steiner_markers[10] + 1);
+}
+
+TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triangle's") {
+  // Vertex counts of the native Triangle 1.6 (../shared/tools/build-triangle.sh) on the same
+  // files: `triangle -pq<angle> name.poly`, first number of name.1.node.
+  struct Case {
+    const char *name;
+    int angle;
+    long triangle_vertices;
+  };
+  const Case cases[] = {{"water", 20, 5422},        {"water", 25, 7497},
+                        {"water", 30, 11604},       {"water2", 20, 2084},
+                        {"water2", 25, 2622},       {"water2", 30, 3570},
+                        {"water-huge2", 20, 12883}, {"water-huge2", 25, 18007},
+                        {"water-huge2", 30, 28018}, {"water4", 20, 1134}};
+  for (const Case &c : cases) {
+    INFO(std::string(c.name) << " -pq" << c.angle);
+    const clmesh::Mesh mesh = refine_checked(load("pslg", c.name), "pq" + std::to_string(c.angle));
+    const double ratio = static_cast<double>(mesh.points.size()) / c.triangle_vertices;
+    MESSAGE(std::string(c.name) << " -pq" << c.angle << ": " << mesh.points.size()
+                                << " vertices, Triangle " << c.triangle_vertices << " (" << ratio
+                                << "), " << mesh.statistics.refinement.remaining_bad
+                                << " triangles left at small angles");
+    CHECK(ratio > 0.95);
+    CHECK(ratio < 1.05);
+  }
+}
+
+TEST_CASE("quality pslg: tiny input angles, cracks and hanging edges finish") {
+  for (const char *name : {"img1", "butterfly", "clusters", "simplified-us-border", "island",
+                           "kidney", "square_with_crack", "ditch", "overlapping_constraints"})
+    for (const char *switches : {"pq30", "pq33"}) {
+      INFO(std::string(name));
+      refine_checked(load("pslg", name), switches);
+    }
+}
+
+TEST_CASE("quality pslg: a fan of segments one degree apart") {
+  // Forty segments from the origin, one degree apart, closed by a polyline around them: every
+  // pair of neighbouring segments meets at an angle far below the bound.
+  clmesh::Input fan;
+  fan.points.push_back({0, 0});
+  const int spokes = 40;
+  for (int k = 0; k < spokes; ++k) {
+    const double angle = (10 + k) * M_PI / 180;
+    fan.points.push_back({std::cos(angle), std::sin(angle)});
+    fan.segments.push_back({0, k + 1, 0});
+    if (k > 0)
+      fan.segments.push_back({k, k + 1, 0});
+  }
+  fan.segments.push_back({1, spokes, 0}); // closes it around the outside
+  const clmesh::Mesh mesh = refine_checked(fan, "pq30");
+  CHECK(mesh.statistics.refinement.remaining_bad > 0);
+  refine_checked(fan, "pq20a0.01");
+}
+
+TEST_CASE("quality pslg: the same mesh whatever the work-group size") {
+  const clmesh::Input water = load("pslg", "water2");
+  clmesh::Options options = clmesh::parse_switches("pq30");
+  const clmesh::Mesh reference = clmesh::triangulate(device(), water, options);
+  for (int work_group : {16, 64}) {
+    options.tuning.work_group = work_group;
+    test_support::check_same_mesh(clmesh::triangulate(device(), water, options), reference);
+  }
+}
+
+TEST_CASE("quality pslg: the Steiner point limit (-S) is obeyed") {
+  const clmesh::Input water = load("pslg", "water2");
+  const clmesh::Mesh mesh = clmesh::triangulate(device(), water, "pq30S100");
+  const clmesh::Mesh cdt = clmesh::triangulate(device(), water, "p");
+  CHECK(mesh.points.size() == cdt.points.size() + 100);
+  CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::steiner_limit);
+  CHECK(clmesh::check_mesh(water, mesh, clmesh::parse_switches("pq30S100")).ok);
+}

@@ -233,7 +233,6 @@ TEST_CASE("api: validate(Options) refuses choices that do not go together or are
   CHECK(validation_error(clmesh::parse_switches("q45a0.5S10")) == "");
   CHECK(validation_error(clmesh::parse_switches("pq30a0.5")) == "");
   CHECK(contains(validation_error(clmesh::parse_switches("pqA")), "-A with -p and -q"));
-  CHECK(contains(validation_error(clmesh::parse_switches("pca0.5")), "-c with -p and -a"));
   CHECK(contains(validation_error(clmesh::parse_switches("q50")), "minimum angle"));
   CHECK(contains(validation_error(clmesh::parse_switches("q45.5")), "minimum angle"));
   clmesh::Options options;

@@ -128,7 +128,7 @@ clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switch
 
 TEST_CASE("quality pslg: Triangle's examples, holes and concavities, 20 to 30 degrees") {
   for (const char *name : {"A", "face", "double_hex", "square_circle_hole", "la"})
-    for (const char *switches : {"pq20", "pq25", "pq30", "pq30a0.5"}) {
+    for (const char *switches : {"pq20", "pq25", "pq30", "pq30a0.5", "pcq30"}) {
       INFO(std::string(name));
       const clmesh::Mesh mesh = refine_checked(load("triangle-examples/inputs", name), switches);
       CHECK(mesh.triangles.size() > 0);
@@ -192,7 +192,7 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
 TEST_CASE("quality pslg: tiny input angles, cracks and hanging edges finish") {
   for (const char *name : {"img1", "butterfly", "clusters", "simplified-us-border", "island",
                            "kidney", "square_with_crack", "ditch", "overlapping_constraints"})
-    for (const char *switches : {"pq30", "pq33"}) {
+    for (const char *switches : {"pq30", "pcq30", "pq33"}) {
       INFO(std::string(name));
       refine_checked(load("pslg", name), switches);
     }

@@ -185,18 +185,11 @@ Options parse_switches(const std::string &switches) {
 }
 
 void validate(const Options &options) {
-  const bool refined_pslg = options.pslg && (options.quality || options.max_area);
-  const std::string refinement = options.quality ? "-q" : "-a";
-  if (refined_pslg && options.regional_attributes)
-    throw OptionError("-A with -p and " + refinement +
+  if (options.pslg && (options.quality || options.max_area) && options.regional_attributes)
+    throw OptionError(std::string("-A with -p and ") + (options.quality ? "-q" : "-a") +
                       " (regional attributes of a refined PSLG) is not supported yet; clmesh "
                       "supports " +
                       kSupported);
-  if (refined_pslg && options.convex_hull)
-    throw OptionError("-c with -p and " + refinement +
-                      " (refining the convex hull of a PSLG, whose hull edges would need to be "
-                      "segments) is not supported yet; refine the PSLG's own domain (-p" +
-                      refinement + ") or add its hull edges as segments");
   if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
     throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");
   if (options.max_area && !(*options.max_area > 0))

@@ -54,7 +54,19 @@ std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
   mesh_.triangle_count = slots + ghosts;
   boundary_edges_ = {};
   offset_ = {};
+  first_ghost_ = slots;
+  ghosts_ = ghosts;
   return ghosts;
+}
+
+std::vector<Segment> DomainBoundary::edges() const {
+  const std::vector<cl_int> corners =
+      mesh_.tri_vertex.download(device_, 3 * ghosts_, 3 * first_ghost_);
+  std::vector<Segment> edges;
+  edges.reserve(ghosts_);
+  for (std::size_t g = 0; g < ghosts_; ++g) // ghost (infinity, q, p) on edge p -> q
+    edges.push_back({corners[3 * g + 2], corners[3 * g + 1], 1});
+  return edges;
 }
 
 } // namespace clmesh

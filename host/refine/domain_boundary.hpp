@@ -23,12 +23,17 @@ public:
   // The triangle slots closing the domain takes beyond the ones in use.
   std::size_t room_needed(const DeviceArray<cl_int> &removed);
 
+  // The boundary edges the last close() found, each with the domain on its
+  // left, marker 1 (read from its ghosts: one small download).
+  std::vector<Segment> edges() const;
+
 private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel count_, make_ghosts_, link_kept_, retire_, point_at_;
   DeviceArray<cl_int> boundary_edges_, offset_;
+  std::size_t first_ghost_ = 0, ghosts_ = 0; // the ghosts of the last close()
 };
 
 } // namespace clmesh

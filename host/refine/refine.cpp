@@ -33,6 +33,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace clmesh {
@@ -286,17 +287,27 @@ private:
   enum class Room { enough, grown, exhausted };
 
   // GPU-CDT, the exterior and holes removed, and the domain closed by ghosts.
+  // With -c the domain is the convex hull (less the holes), and its hull
+  // edges join the segments, marker 1, as Triangle's -c makes them: they are
+  // split on shells where segments meet them at small angles.
   void constrain() {
     constraints_ = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     ExteriorRemoval removal(device_, mesh());
-    if (!remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints))
-      return; // -c without holes: the convex hull is the domain
+    remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints);
     DomainBoundary boundary(device_, mesh(), scheduler_.scan());
     const std::size_t ghosts = boundary.room_needed(removal.removed());
     if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
       scheduler_.grow(ghosts / 2 + 1);
     boundary.close(removal.removed());
     scheduler_.timer().charge(DomainBoundary::kPhase);
+    if (!constrained_->keep_convex_hull)
+      return;
+    std::set<std::pair<int32_t, int32_t>> segments;
+    for (const Segment &s : constraints_)
+      segments.insert(std::minmax(s.a, s.b));
+    for (const Segment &edge : boundary.edges())
+      if (segments.insert(std::minmax(edge.a, edge.b)).second)
+        constraints_.push_back(edge);
   }
 
   // The segments as refinement's constraints; their vertices are boundary
@@ -355,8 +366,6 @@ private:
       }
       result_.segments.push_back({previous, pieces[j].b, pieces[j].marker});
     }
-    if (constrained_->keep_convex_hull)
-      add_hull_edges(result_.mesh, result_.segments);
   }
 
   // The statistics of the iterations' steps.

@@ -43,7 +43,6 @@ expect "vertex without the marker its header announces, in the .node beside" 1 \
   "nomarker2.node:3:" "boundary marker" -- nomarker2.poly
 expect "missing .poly" 1 "missing.poly" -- -p missing
 expect "-p with -q and -A" 2 "-A" "not supported" "-p" -- -pqA endpoint.poly
-expect "-p with -q and -c" 2 "-c" "not supported" "-p" -- -pcq endpoint.poly
 expect "-r stays refused" 2 "-r" "not supported" -- -r endpoint.poly
 
 # ---------------------------------------------------------------------------

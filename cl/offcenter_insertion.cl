@@ -159,10 +159,10 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
                                    __global const int *point_segment,
                                    __global const int *segment_end, VertexTriple tri,
                                    double ratio_bound_squared, double max_area, double offconstant,
-                                   double2 *steiner, uint *priority) {
+                                   bool encroaching, double2 *steiner, uint *priority) {
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
-  if ((!q.skinny && !q.large) || q.unfixable)
+  if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
     return false;
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
   const int shortest = q.shortest;
@@ -174,7 +174,8 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
       (double2)((f.y * e2 - e.y * f2) / denominator, (e.x * f2 - f.x * e2) / denominator);
   const double2 middle = 0.5 * e, away = center - middle; // from the edge's midpoint
   const double reach = offconstant * sqrt(e2), distance = sqrt(squared_length(away));
-  const double2 offset = distance > reach ? middle + away * (reach / distance) : center;
+  const double2 offset =
+      !encroaching && distance > reach ? middle + away * (reach / distance) : center;
   *steiner = a + offset;
   *priority = as_uint((float)q.length_squared[shortest]);
   // A degenerate computation leaves the triangle alone.
@@ -186,10 +187,26 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
 // triangles changed since: the others are still good (thesis §3.3.2). With an
 // election, each bad triangle also marks its slot with its priority, ranked as
 // a midpoint's when a corner is on the hull (see elect_candidates).
+// -D (conforming Delaunay): does real triangle t have an edge on a subsegment
+// or the boundary whose diametral circle holds the opposite vertex (the angle
+// there is obtuse)? Its circumcenter then lies beyond that edge, so the walk
+// to it stops there and the edge is split.
+inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
+  for (int i = 0; i < 3; ++i) {
+    const double2 r = points[tri.v[i]], a = points[tri.v[next3(i)]] - r,
+                  b = points[tri.v[prev3(i)]] - r;
+    if (a.x * b.x + a.y * b.y >= 0)
+      continue;
+    return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
+           subsegment_at(CLM_MESH_ARGS, t, i);
+  }
+  return false;
+}
+
 __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
                                  const double ratio_bound_squared, const double max_area,
-                                 const double offconstant, __global int *is_bad, const int election,
-                                 const int n) {
+                                 const double offconstant, const int conforming,
+                                 __global int *is_bad, const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -204,7 +221,9 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   const bool bad =
       !is_ghost(tri) && !is_dead(tri) &&
       bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
-                             ratio_bound_squared, max_area, offconstant, &steiner, &priority);
+                             ratio_bound_squared, max_area, offconstant,
+                             conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), &steiner,
+                             &priority);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -429,13 +448,12 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
-                                const int located_stamp, const double ratio_bound_squared,
-                                const double max_area, const double offconstant,
-                                __global double2 *candidate, __global int *container,
-                                __global int *split_edge, __global const int *origin,
-                                __global uint *priority, __global double *radius2,
-                                const double lens, const int max_steps, const int n) {
+__kernel void
+locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
+                  const double ratio_bound_squared, const double max_area, const double offconstant,
+                  const int conforming, __global double2 *candidate, __global int *container,
+                  __global int *split_edge, __global const int *origin, __global uint *priority,
+                  __global double *radius2, const double lens, const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -444,9 +462,11 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   const int bad = origin[k], known = last_container[bad];
   double2 c;
   uint rank;
-  bad_triangle_candidate(points, point_state, point_segment, segment_end,
-                         load_vertices(tri_vertex, bad), ratio_bound_squared, max_area, offconstant,
-                         &c, &rank); // bad: the search found it so
+  const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
+  bad_triangle_candidate(points, point_state, point_segment, segment_end, bad_triangle,
+                         ratio_bound_squared, max_area, offconstant,
+                         conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle), &c,
+                         &rank); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;

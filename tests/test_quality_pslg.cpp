@@ -99,6 +99,7 @@ clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switch
   clmesh::Options cdt_options = options;
   cdt_options.quality = false;
   cdt_options.max_area.reset();
+  cdt_options.conforming_delaunay = false;
   const clmesh::Mesh cdt = clmesh::triangulate(device(), pslg, cdt_options);
   const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
   const auto report = clmesh::check_mesh(pslg, mesh, options);
@@ -234,4 +235,20 @@ TEST_CASE("quality pslg: the Steiner point limit (-S) is obeyed") {
   CHECK(mesh.points.size() == cdt.points.size() + 100);
   CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::steiner_limit);
   CHECK(clmesh::check_mesh(water, mesh, clmesh::parse_switches("pq30S100")).ok);
+}
+
+TEST_CASE("quality pslg: -D makes every triangle Delaunay, subsegments included") {
+  for (const char *name : {"A", "face", "la"})
+    for (const char *switches : {"pD", "pq25D", "pq30a0.5D"}) {
+      INFO(std::string(name));
+      refine_checked(load("triangle-examples/inputs", name), switches);
+    }
+  const clmesh::Input water = load("pslg", "water2");
+  const clmesh::Mesh conforming = refine_checked(water, "pq25D");
+  // The check of -D tests the subsegments too: the same input's -pq25 mesh, only constrained
+  // Delaunay, fails it.
+  const clmesh::Mesh constrained = refine_checked(water, "pq25");
+  CHECK(clmesh::check_mesh(water, conforming, clmesh::parse_switches("pq25D")).ok);
+  CHECK_FALSE(clmesh::check_mesh(water, constrained, clmesh::parse_switches("pq25D")).ok);
+  CHECK(conforming.points.size() > constrained.points.size());
 }

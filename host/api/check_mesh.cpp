@@ -3,24 +3,37 @@
 
 namespace clmesh {
 
+namespace {
+
+// The edges of the mesh with a triangle on one side only.
+std::vector<Segment> boundary_edges(const Mesh &mesh) {
+  std::vector<Segment> boundary;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      if (mesh.neighbors[t][i] < 0)
+        boundary.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
+  return boundary;
+}
+
+} // namespace
+
 CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &options) {
-  if (mesh.statistics.refined && options.pslg) {
-    // Every subsegment is a mesh edge; the boundary edges of the domain are
-    // subsegments (or, with -c, hull edges, in mesh.segments too).
-    return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
-                             mesh.segments, false);
-  }
   if (mesh.statistics.refined) {
     // Hull edges split at rounded midpoints may leave the boundary a hair
     // from convex (as Triangle's do), so the boundary edges are checked as
-    // constraints and every other edge as locally Delaunay.
-    std::vector<Segment> boundary;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-      for (int i = 0; i < 3; ++i)
-        if (mesh.neighbors[t][i] < 0)
-          boundary.push_back({mesh.triangles[t][(i + 1) % 3], mesh.triangles[t][(i + 2) % 3], 1});
-    return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
-                             boundary, false);
+    // constraints and every other edge as locally Delaunay: with -D every
+    // one, subsegments included.
+    const std::vector<Segment> boundary = boundary_edges(mesh);
+    CheckReport report = {};
+    if (!options.pslg || options.conforming_delaunay)
+      report = check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                                 boundary, false);
+    // A PSLG's subsegments are mesh edges, the boundary edges of its domain
+    // among them.
+    if (report.ok && options.pslg)
+      report = check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
+                                 mesh.segments, false);
+    return report;
   }
   if (!options.pslg)
     return check_triangulation(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,

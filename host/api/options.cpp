@@ -11,7 +11,7 @@ namespace clmesh {
 
 namespace {
 
-const char *const kSupported = "-p -c -O -A -B -q -a -S -z -e -n -N -E -I -j -Q -V -C -h";
+const char *const kSupported = "-p -c -O -A -D -B -q -a -S -z -e -n -N -E -I -j -Q -V -C -h";
 
 // Triangle's switches that clmesh does not implement yet, with what they do.
 const char *unsupported_switch(char letter) {
@@ -20,8 +20,6 @@ const char *unsupported_switch(char letter) {
     return "refining a previous mesh";
   case 'u':
     return "user-defined triangle constraints";
-  case 'D':
-    return "conforming Delaunay triangulation";
   case 'v':
     return "Voronoi diagram output";
   case 'g':
@@ -122,6 +120,9 @@ void parse_switches(const std::string &switches, Options &options) {
     case 'A':
       options.regional_attributes = true;
       break;
+    case 'D':
+      options.conforming_delaunay = true;
+      break;
     case 'B':
       options.no_boundary_markers = true;
       break;
@@ -185,8 +186,12 @@ Options parse_switches(const std::string &switches) {
 }
 
 void validate(const Options &options) {
-  if (options.pslg && (options.quality || options.max_area) && options.regional_attributes)
-    throw OptionError(std::string("-A with -p and ") + (options.quality ? "-q" : "-a") +
+  if (options.pslg && (options.quality || options.max_area || options.conforming_delaunay) &&
+      options.regional_attributes)
+    throw OptionError(std::string("-A with -p and ") +
+                      (options.quality    ? "-q"
+                       : options.max_area ? "-a"
+                                          : "-D") +
                       " (regional attributes of a refined PSLG) is not supported yet; clmesh "
                       "supports " +
                       kSupported);

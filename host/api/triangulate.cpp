@@ -58,12 +58,13 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
   refine.min_angle = options.quality ? options.min_angle : 0;
   refine.max_area = options.max_area;
   refine.max_steiner = options.max_steiner;
+  refine.conforming = options.conforming_delaunay;
   ConstrainedOptions constrained;
   constrained.delaunay = delaunay_options;
   constrained.keep_convex_hull = options.convex_hull;
   constrained.ignore_holes = options.ignore_holes;
   constrained.regional_attributes = options.regional_attributes;
-  const bool refined = options.quality || options.max_area;
+  const bool refined = options.quality || options.max_area || options.conforming_delaunay;
   if (options.pslg && refined) {
     RefineResult result =
         refine_constrained(device, Pslg{input.points, input.segments, input.holes, input.regions},

@@ -13,12 +13,12 @@ constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area, int filter_rings, int filter_distance_rings,
                                        double filter_near, bool parallel_midpoints,
-                                       int election_rings)
+                                       int election_rings, bool conforming)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
       parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
-      flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
+      conforming_(conforming), flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
@@ -45,7 +45,9 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
   ratio_bound_squared_ = min_angle > 0 ? 1.0 / (4 * std::sin(angle) * std::sin(angle)) : 0.0;
   // Triangle's diametral lens: a hull edge is encroached by a point that sees
   // it at an angle whose cosine is at most -cos(2 angle).
-  lens_ = std::cos(2 * angle) * std::cos(2 * angle);
+  // With -D, the diametral circle (every point that sees it at an obtuse
+  // angle).
+  lens_ = conforming ? 0.0 : std::cos(2 * angle) * std::cos(2 * angle);
   // Üngör's off-center distance, as Triangle computes it.
   offconstant_ =
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
@@ -94,7 +96,8 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   const auto items = static_cast<cl_int>(entries);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
                 static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_, offconstant_,
-                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
+                static_cast<cl_int>(conforming_), keep_.buffer(),
+                static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -125,10 +128,10 @@ void OffcenterInsertion::locate_candidates(int stamp) {
   // Each candidate's bad triangle: the elected ones, or every bad one.
   const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
   set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
-                ratio_bound_squared_, max_area_, offconstant_, candidate_.buffer(),
-                container_.buffer(), split_edge_.buffer(), origin.buffer(), priority_.buffer(),
-                radius2_.buffer(), lens_, static_cast<cl_int>(mesh_.triangle_count + 8),
-                static_cast<cl_int>(candidates_));
+                ratio_bound_squared_, max_area_, offconstant_, static_cast<cl_int>(conforming_),
+                candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
+                priority_.buffer(), radius2_.buffer(), lens_,
+                static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
   located_slots_ = std::max(located_slots_, mesh_.triangle_count);

@@ -22,10 +22,12 @@ public:
   // one out (0: at any distance); parallel_midpoints: hull midpoints never
   // keep each other out; election_rings: a bad triangle sends a candidate only
   // when none within that many rings has a better priority (0: every one, the
-  // thesis's way; see elect_candidates).
+  // thesis's way; see elect_candidates); conforming (-D): a triangle whose
+  // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
+  // subsegment's diametral circle splits it.
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
-                     bool parallel_midpoints, int election_rings);
+                     bool parallel_midpoints, int election_rings, bool conforming);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
@@ -71,6 +73,7 @@ private:
   double filter_near2_; // squared; infinite for any distance
   bool parallel_midpoints_;
   int election_rings_;
+  bool conforming_; // -D: triangles whose apex encroaches a subsegment are bad
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
       mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;

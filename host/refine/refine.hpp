@@ -18,6 +18,9 @@ struct RefineOptions {
   double min_angle = 20;    // degrees; 0: no angle bound
   std::optional<double> max_area;
   std::optional<long> max_steiner;
+  // -D: a subsegment (or hull edge) whose diametral circle holds a vertex is
+  // split, so that every triangle is Delaunay.
+  bool conforming = false;
 };
 
 struct RefineResult {

@@ -13,6 +13,7 @@ struct Options {
   bool convex_hull = false;         // -c: with -p, keep every triangle of the convex hull
   bool ignore_holes = false;        // -O: with -p, ignore the holes
   bool regional_attributes = false; // -A: with -p, each triangle gets its region's attribute
+  bool conforming_delaunay = false; // -D: with -p, every triangle Delaunay (segments split)
   bool quality = false;             // -q: quality mesh, no angle below min_angle
   double min_angle = 20;            // -q<angle>, degrees (0 to 45)
   std::optional<double> max_area;   // -a<area>: no triangle larger

@@ -3,6 +3,7 @@
 #include "clmesh/io.hpp"
 
 #include "clmesh/errors.hpp"
+#include "io/edge_order.hpp"
 #include "io/system_error.hpp"
 
 #include <algorithm>
@@ -73,16 +74,9 @@ std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
   check_neighbors(triangles, neighbors, "mesh_edges");
   std::vector<Edge> edges;
   edges.reserve(triangles.size() * 3 / 2 + 3);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int i = 0; i < 3; ++i) {
-      // Edge i lies opposite vertex i, from vertex i+1 to vertex i+2 (Triangle's
-      // org/dest of orientation i); an interior edge is written by the triangle
-      // with the smaller index.
-      int32_t other = neighbors[t][i];
-      if (other == -1 || static_cast<int64_t>(t) < other)
-        edges.push_back(Edge{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], other == -1});
-    }
-  }
+  visit_edges(triangles, neighbors, [&](std::size_t t, int i, int32_t other) {
+    edges.push_back(Edge{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], other == -1});
+  });
   return edges;
 }
 
@@ -122,6 +116,15 @@ MeshView view_of(const Mesh &mesh) {
     view.segments = &mesh.segments;
   if (mesh.triangle_attribute_count > 0)
     view.triangle_attributes = &mesh.triangle_attributes;
+  if (!mesh.triangle_midpoints.empty() || !mesh.edge_midpoints.empty()) {
+    view.edge_midpoints = &mesh.edge_midpoints;
+    view.edge_midpoint_attributes = &mesh.edge_midpoint_attributes;
+    view.edge_midpoint_markers = &mesh.edge_midpoint_markers;
+    view.triangle_midpoints = &mesh.triangle_midpoints;
+  }
+  view.voronoi_points = &mesh.voronoi_points;
+  view.voronoi_point_attributes = &mesh.voronoi_point_attributes;
+  view.voronoi_edges = &mesh.voronoi_edges;
   return view;
 }
 
@@ -352,41 +355,79 @@ std::string OutputBatch::temporary_for(const std::string &path) {
   return temporary;
 }
 
+namespace {
+
+std::size_t written_count(const std::vector<int32_t> &numbers) {
+  std::size_t written = 0;
+  for (int32_t number : numbers)
+    written += number >= 0;
+  return written;
+}
+
+std::size_t attributes_of(const MeshView &mesh) {
+  return static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
+}
+
+// -o2's middle nodes, checked against the triangles; empty without -o2.
+const std::vector<Point> &midpoints_of(const MeshView &mesh) {
+  static const std::vector<Point> none;
+  if (!mesh.edge_midpoints)
+    return none;
+  const std::size_t count = mesh.edge_midpoints->size(), attributes = attributes_of(mesh);
+  if (!mesh.triangle_midpoints || mesh.triangle_midpoints->size() != triangles_of(mesh).size() ||
+      !mesh.edge_midpoint_markers || mesh.edge_midpoint_markers->size() != count ||
+      !mesh.edge_midpoint_attributes || mesh.edge_midpoint_attributes->size() != count * attributes)
+    throw InternalError("output writer called with inconsistent middle nodes (-o2)");
+  return *mesh.edge_midpoints;
+}
+
+// One line of a .node file: "%4ld    %.17g  %.17g", then "  %.17g" per
+// attribute, then "    %d" when there is a marker.
+void node_line(TextFile &file, long number, const Point &point, const double *attributes,
+               std::size_t attribute_count, const int *marker) {
+  file.integer(number, 4);
+  file.text("    ");
+  file.real(point.x);
+  file.text("  ");
+  file.real(point.y);
+  for (std::size_t a = 0; a < attribute_count; ++a) {
+    file.text("  ");
+    file.real(attributes[a]);
+  }
+  if (marker) {
+    file.text("    ");
+    file.integer(*marker);
+  }
+  file.end_line();
+}
+
+} // namespace
+
 void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
                              const WriteOptions &options) {
   const std::vector<Point> &points = points_of(mesh);
   const std::size_t n = points.size();
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
-  std::size_t written = 0;
-  for (int32_t number : numbers)
-    written += number >= 0;
+  const std::size_t written = written_count(numbers);
+  const std::vector<Point> &midpoints = midpoints_of(mesh);
   const std::vector<int> markers =
       options.boundary_markers ? output_vertex_markers(mesh) : std::vector<int>();
 
-  const std::size_t attributes = static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
+  const std::size_t attributes = attributes_of(mesh);
   if (attributes > 0 && (!mesh.point_attributes || mesh.point_attributes->size() < n * attributes))
     throw InternalError("point set holds fewer attributes than its attribute count says");
   TextFile file(temporary_for(path), path);
-  file.format("%zu  2  %zu  %d\n", written, attributes, options.boundary_markers ? 1 : 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (numbers[i] < 0)
-      continue;
-    // "%4ld    %.17g  %.17g", then "  %.17g" per attribute, then "    %d"
-    file.integer(static_cast<long>(numbers[i]) + options.first_index, 4);
-    file.text("    ");
-    file.real(points[i].x);
-    file.text("  ");
-    file.real(points[i].y);
-    for (std::size_t a = 0; a < attributes; ++a) {
-      file.text("  ");
-      file.real((*mesh.point_attributes)[i * attributes + a]);
-    }
-    if (options.boundary_markers) {
-      file.text("    ");
-      file.integer(markers[i]);
-    }
-    file.end_line();
-  }
+  file.format("%zu  2  %zu  %d\n", written + midpoints.size(), attributes,
+              options.boundary_markers ? 1 : 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (numbers[i] >= 0)
+      node_line(file, static_cast<long>(numbers[i]) + options.first_index, points[i],
+                attributes ? &(*mesh.point_attributes)[i * attributes] : nullptr, attributes,
+                options.boundary_markers ? &markers[i] : nullptr);
+  for (std::size_t k = 0; k < midpoints.size(); ++k)
+    node_line(file, static_cast<long>(written + k) + options.first_index, midpoints[k],
+              attributes ? &(*mesh.edge_midpoint_attributes)[k * attributes] : nullptr, attributes,
+              options.boundary_markers ? &(*mesh.edge_midpoint_markers)[k] : nullptr);
   file.footer(options);
   file.close();
 }
@@ -400,14 +441,20 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
     throw InternalError("output writer called with " + std::to_string(attributes->size()) +
                         " triangle attributes for " + std::to_string(triangles.size()) +
                         " triangles");
+  const bool six_nodes = !midpoints_of(mesh).empty();
+  const long first_midpoint = static_cast<long>(written_count(numbers)) + options.first_index;
   TextFile file(temporary_for(path), path);
-  file.format("%zu  3  %d\n", triangles.size(), attributes ? 1 : 0);
+  file.format("%zu  %d  %d\n", triangles.size(), six_nodes ? 6 : 3, attributes ? 1 : 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    // "%4ld    %4d  %4d  %4d", then "  %.17g" per attribute
+    // "%4ld    %4d  %4d  %4d" (and "  %4d" per middle node), then "  %.17g" per attribute
     file.integer(static_cast<long>(t) + options.first_index, 4);
     for (int k = 0; k < 3; ++k) {
       file.text(k == 0 ? "    " : "  ");
       file.integer(written_vertex(numbers, triangles[t][k], options), 4);
+    }
+    for (int k = 0; six_nodes && k < 3; ++k) {
+      file.text("  ");
+      file.integer(first_midpoint + (*mesh.triangle_midpoints)[t][k], 4);
     }
     if (attributes) {
       file.text("  ");
@@ -508,6 +555,188 @@ void OutputBatch::write_neigh(const std::string &path, const MeshView &mesh,
     file.end_line();
   }
   file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_voronoi_node(const std::string &path, const MeshView &mesh,
+                                     const WriteOptions &options) {
+  if (!mesh.voronoi_points || !mesh.voronoi_point_attributes)
+    throw InternalError("write_voronoi_node called without a Voronoi diagram");
+  const std::vector<Point> &centers = *mesh.voronoi_points;
+  const std::size_t attributes = attributes_of(mesh);
+  if (mesh.voronoi_point_attributes->size() != centers.size() * attributes)
+    throw InternalError("write_voronoi_node: attributes do not match the Voronoi vertices");
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  2  %zu  0\n", centers.size(), attributes);
+  for (std::size_t t = 0; t < centers.size(); ++t)
+    node_line(file, static_cast<long>(t) + options.first_index, centers[t],
+              attributes ? &(*mesh.voronoi_point_attributes)[t * attributes] : nullptr, attributes,
+              nullptr);
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_voronoi_edge(const std::string &path, const MeshView &mesh,
+                                     const WriteOptions &options) {
+  if (!mesh.voronoi_edges)
+    throw InternalError("write_voronoi_edge called without a Voronoi diagram");
+  const std::vector<VoronoiEdge> &edges = *mesh.voronoi_edges;
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  0\n", edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    // "%4ld   %d  %d", or for a ray "%4ld   %d  -1   %.17g  %.17g"
+    file.integer(static_cast<long>(e) + options.first_index, 4);
+    file.text("   ");
+    file.integer(static_cast<long>(edges[e].a) + options.first_index);
+    file.text("  ");
+    if (edges[e].b >= 0) {
+      file.integer(static_cast<long>(edges[e].b) + options.first_index);
+    } else {
+      file.text("-1   ");
+      file.real(edges[e].direction.x);
+      file.text("  ");
+      file.real(edges[e].direction.y);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_off(const std::string &path, const MeshView &mesh,
+                            const WriteOptions &options) {
+  const std::vector<Point> &points = points_of(mesh);
+  const std::vector<Triangle> &triangles = triangles_of(mesh);
+  const std::vector<std::array<int32_t, 3>> &neighbors = neighbors_of(mesh);
+  const std::vector<Point> &midpoints = midpoints_of(mesh);
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  std::size_t hull = 0;
+  for (const auto &across : neighbors)
+    for (int32_t other : across)
+      hull += other == -1;
+  WriteOptions from_zero = options; // .off numbers its vertices from 0
+  from_zero.first_index = 0;
+  TextFile file(temporary_for(path), path);
+  file.format("OFF\n%zu  %zu  %zu\n", written_count(numbers) + midpoints.size(), triangles.size(),
+              (3 * triangles.size() + hull) / 2);
+  auto vertex_line = [&file](const Point &point) {
+    file.text(" ");
+    file.real(point.x);
+    file.text("  ");
+    file.real(point.y);
+    file.text("  0");
+    file.end_line();
+  };
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (numbers[i] >= 0)
+      vertex_line(points[i]);
+  for (const Point &midpoint : midpoints)
+    vertex_line(midpoint);
+  for (const Triangle &triangle : triangles) {
+    // " 3   %4d  %4d  %4d"
+    file.text(" 3   ");
+    for (int k = 0; k < 3; ++k) {
+      if (k > 0)
+        file.text("  ");
+      file.integer(written_vertex(numbers, triangle[k], from_zero), 4);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_vtu(const std::string &path, const MeshView &mesh,
+                            const WriteOptions &options) {
+  const std::vector<Point> &points = points_of(mesh);
+  const std::vector<Triangle> &triangles = triangles_of(mesh);
+  const std::vector<Point> &midpoints = midpoints_of(mesh);
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  const std::size_t written = written_count(numbers), attributes = attributes_of(mesh);
+  const bool six_nodes = !midpoints.empty();
+  WriteOptions from_zero = options; // VTK numbers its points from 0
+  from_zero.first_index = 0;
+  TextFile file(temporary_for(path), path);
+  file.text("<?xml version=\"1.0\"?>\n"
+            "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+            "<UnstructuredGrid>\n");
+  file.format("<Piece NumberOfPoints=\"%zu\" NumberOfCells=\"%zu\">\n", written + midpoints.size(),
+              triangles.size());
+  // Every written point (vertices, then middle nodes) through `value`.
+  auto point_values = [&](auto value) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (numbers[i] >= 0)
+        value(i, false);
+    for (std::size_t k = 0; k < midpoints.size(); ++k)
+      value(k, true);
+  };
+  file.text("<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+            "format=\"ascii\">\n");
+  point_values([&](std::size_t i, bool midpoint) {
+    const Point &p = midpoint ? midpoints[i] : points[i];
+    file.real(p.x);
+    file.text(" ");
+    file.real(p.y);
+    file.text(" 0");
+    file.end_line();
+  });
+  file.text("</DataArray>\n</Points>\n<Cells>\n"
+            "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      file.integer(written_vertex(numbers, triangles[t][k], from_zero));
+      file.text(" ");
+    }
+    // VTK's quadratic triangle: corners, then the middles of edges 01, 12, 20
+    // (opposite corners 2, 0, 1).
+    for (int k : {2, 0, 1})
+      if (six_nodes) {
+        file.integer(static_cast<long>(written) + (*mesh.triangle_midpoints)[t][k]);
+        file.text(" ");
+      }
+    file.end_line();
+  }
+  file.text("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    file.integer(static_cast<long>((t + 1) * (six_nodes ? 6 : 3)));
+    file.end_line();
+  }
+  file.text("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    file.integer(six_nodes ? 22 : 5); // VTK_QUADRATIC_TRIANGLE, VTK_TRIANGLE
+    file.end_line();
+  }
+  file.text("</DataArray>\n</Cells>\n<PointData>\n");
+  if (options.boundary_markers) {
+    const std::vector<int> markers = output_vertex_markers(mesh);
+    file.text("<DataArray type=\"Int32\" Name=\"marker\" format=\"ascii\">\n");
+    point_values([&](std::size_t i, bool midpoint) {
+      file.integer(midpoint ? (*mesh.edge_midpoint_markers)[i] : markers[i]);
+      file.end_line();
+    });
+    file.text("</DataArray>\n");
+  }
+  for (std::size_t a = 0; a < attributes; ++a) {
+    file.format("<DataArray type=\"Float64\" Name=\"attribute%zu\" format=\"ascii\">\n", a + 1);
+    point_values([&](std::size_t i, bool midpoint) {
+      file.real(midpoint ? (*mesh.edge_midpoint_attributes)[i * attributes + a]
+                         : (*mesh.point_attributes)[i * attributes + a]);
+      file.end_line();
+    });
+    file.text("</DataArray>\n");
+  }
+  file.text("</PointData>\n<CellData>\n");
+  if (mesh.triangle_attributes) {
+    if (mesh.triangle_attributes->size() != triangles.size())
+      throw InternalError("write_vtu: triangle attributes do not match the triangles");
+    file.text("<DataArray type=\"Float64\" Name=\"attribute1\" format=\"ascii\">\n");
+    for (double value : *mesh.triangle_attributes) {
+      file.real(value);
+      file.end_line();
+    }
+    file.text("</DataArray>\n");
+  }
+  file.text("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
   file.close();
 }
 

@@ -1,0 +1,119 @@
+// clmesh — the vertices of the Voronoi diagram (-v): the circumcentre of every
+// triangle of the output mesh, and the point attributes interpolated there
+// (Triangle's writevoronoi: org + xi * (dest - org) + eta * (apex - org)).
+//
+// The circumcentre is computed as an offset from the triangle's first vertex
+// a, with b and c the other two:
+//   dx = (cy |b|^2 - by |c|^2) / 2D,  dy = (bx |c|^2 - cx |b|^2) / 2D,
+//   D = bx cy - by cx,  bx = b.x - a.x (and so on),
+// where the differences, D and both numerators are exact floating-point
+// expansions (cl/predicates.h) from the input coordinates: nothing cancels,
+// however flat the triangle. Each of D and the numerators is then rounded to
+// a double (relative error below 3 eps, eps = 2^-53), the offset is one
+// division (relative error below 8 eps in all) and the centre one addition:
+//   |computed x - exact x| <= 8 eps |dx| + eps |x|   (and likewise for y).
+// A triangle with D == 0 (none in a valid mesh) gets NaN coordinates.
+#include "common.h"
+
+// Lengths of the exact expansions below (each at most the sum, or twice the
+// length for a product by a two-component factor, of its operands').
+#define CLM_VV_DIFFERENCE 2 // p - q
+#define CLM_VV_PRODUCT 8    // (p - q)(r - s)
+#define CLM_VV_QUADRATIC 16 // a sum of two products
+#define CLM_VV_CUBIC 64     // a difference times a quadratic
+#define CLM_VV_NUMERATOR 128
+
+// e = p - q exactly, two components, the smaller first.
+inline void exact_difference(double p, double q, double *e) { clm_two_sum(p, -q, &e[1], &e[0]); }
+
+// h = e * f for two exact differences: at most CLM_VV_PRODUCT components.
+inline int difference_product(const double *e, const double *f, double *h) {
+  double low[2 * CLM_VV_DIFFERENCE], high[2 * CLM_VV_DIFFERENCE];
+  const int low_n = clm_scale_expansion(CLM_VV_DIFFERENCE, e, f[0], low);
+  const int high_n = clm_scale_expansion(CLM_VV_DIFFERENCE, e, f[1], high);
+  return clm_expansion_sum(low_n, low, high_n, high, h);
+}
+
+// h = f * q for an exact difference f and a quadratic q: at most CLM_VV_CUBIC.
+inline int difference_times_quadratic(const double *f, int qn, const double *q, double *h) {
+  double low[2 * CLM_VV_QUADRATIC], high[2 * CLM_VV_QUADRATIC];
+  const int low_n = clm_scale_expansion(qn, q, f[0], low);
+  const int high_n = clm_scale_expansion(qn, q, f[1], high);
+  return clm_expansion_sum(low_n, low, high_n, high, h);
+}
+
+// h = e0 * f0 + sign * e1 * f1 (sign +1 or -1): at most CLM_VV_QUADRATIC.
+inline int product_sum(const double *e0, const double *f0, const double *e1, const double *f1,
+                       double sign, double *h) {
+  double first[CLM_VV_PRODUCT], second[CLM_VV_PRODUCT];
+  const int first_n = difference_product(e0, f0, first);
+  const int second_n = difference_product(e1, f1, second);
+  for (int i = 0; i < second_n; ++i)
+    second[i] *= sign;
+  return clm_expansion_sum(first_n, first, second_n, second, h);
+}
+
+// h = f0 * q0 - f1 * q1: a numerator, at most CLM_VV_NUMERATOR components.
+inline int numerator(const double *f0, int q0n, const double *q0, const double *f1, int q1n,
+                     const double *q1, double *h) {
+  double first[CLM_VV_CUBIC], second[CLM_VV_CUBIC];
+  const int first_n = difference_times_quadratic(f0, q0n, q0, first);
+  const int second_n = difference_times_quadratic(f1, q1n, q1, second);
+  for (int i = 0; i < second_n; ++i)
+    second[i] = -second[i];
+  return clm_expansion_sum(first_n, first, second_n, second, h);
+}
+
+// The double nearest an expansion, to a few eps: its components summed from
+// the smallest (they do not overlap, so the sum of all but the largest is
+// below an ulp of it).
+inline double approximate(int n, const double *e) {
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i)
+    sum += e[i];
+  return sum;
+}
+
+// points: x, y per point; triangles: three vertex indices each (CCW);
+// attributes: attribute_count per point. Writes centers (x, y per triangle)
+// and center_attributes (attribute_count per triangle).
+__kernel void voronoi_vertices(__global const double *points, __global const int *triangles,
+                               __global const double *attributes, const int attribute_count,
+                               __global double *centers, __global double *center_attributes,
+                               const int n) {
+  const int t = get_global_id(0);
+  if (t >= n)
+    return;
+  const int ia = triangles[3 * t], ib = triangles[3 * t + 1], ic = triangles[3 * t + 2];
+  const double ax = points[2 * ia], ay = points[2 * ia + 1];
+  double bx[CLM_VV_DIFFERENCE], by[CLM_VV_DIFFERENCE], cx[CLM_VV_DIFFERENCE], cy[CLM_VV_DIFFERENCE];
+  exact_difference(points[2 * ib], ax, bx);
+  exact_difference(points[2 * ib + 1], ay, by);
+  exact_difference(points[2 * ic], ax, cx);
+  exact_difference(points[2 * ic + 1], ay, cy);
+
+  double det[CLM_VV_QUADRATIC], b2[CLM_VV_QUADRATIC], c2[CLM_VV_QUADRATIC];
+  const int det_n = product_sum(bx, cy, by, cx, -1.0, det);
+  const int b2_n = product_sum(bx, bx, by, by, 1.0, b2);
+  const int c2_n = product_sum(cx, cx, cy, cy, 1.0, c2);
+  double nx[CLM_VV_NUMERATOR], ny[CLM_VV_NUMERATOR];
+  const int nx_n = numerator(cy, b2_n, b2, by, c2_n, c2, nx);
+  const int ny_n = numerator(bx, c2_n, c2, cx, b2_n, b2, ny);
+
+  const double d = approximate(det_n, det);
+  const double two_d = 2.0 * d;
+  const double dx = d != 0.0 ? approximate(nx_n, nx) / two_d : NAN;
+  const double dy = d != 0.0 ? approximate(ny_n, ny) / two_d : NAN;
+  centers[2 * t] = ax + dx;
+  centers[2 * t + 1] = ay + dy;
+
+  // Triangle's coordinates of the centre in the frame (b - a, c - a).
+  const double bxd = bx[1] + bx[0], byd = by[1] + by[0], cxd = cx[1] + cx[0], cyd = cy[1] + cy[0];
+  const double xi = (cyd * dx - cxd * dy) / d, eta = (bxd * dy - byd * dx) / d;
+  for (int k = 0; k < attribute_count; ++k) {
+    const double origin = attributes[ia * attribute_count + k];
+    center_attributes[t * attribute_count + k] =
+        origin + xi * (attributes[ib * attribute_count + k] - origin) +
+        eta * (attributes[ic * attribute_count + k] - origin);
+  }
+}

@@ -88,7 +88,6 @@ void print_help() {
       "  -S  At most the number after it of Steiner points (-S1000).\n"
       "      A refinement that stops early says why: -S, the device's memory (full\n"
       "      because of -a, or of -q above about 33 degrees) or the iteration limit.\n"
-      "\n"
       "  -X -i -F -l -s  Accepted without effect: Triangle's arithmetic and algorithm\n"
       "      choices (no exact arithmetic, incremental, sweepline, vertical cuts only,\n"
       "      segments by splitting). clmesh's predicates are always exact and its\n"

@@ -66,8 +66,7 @@ void check_exact_centers(const clmesh::Mesh &mesh) {
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Point &a = mesh.points[mesh.triangles[t][0]], &b = mesh.points[mesh.triangles[t][1]],
                 &c = mesh.points[mesh.triangles[t][2]];
-    const Q bx = Q(b.x) - Q(a.x), by = Q(b.y) - Q(a.y), cx = Q(c.x) - Q(a.x),
-            cy = Q(c.y) - Q(a.y);
+    const Q bx = Q(b.x) - Q(a.x), by = Q(b.y) - Q(a.y), cx = Q(c.x) - Q(a.x), cy = Q(c.y) - Q(a.y);
     const Q b2 = bx * bx + by * by, c2 = cx * cx + cy * cy, d2 = 2 * (bx * cy - by * cx);
     const Q x = Q(a.x) + (cy * b2 - by * c2) / d2, y = Q(a.y) + (bx * c2 - cx * b2) / d2;
     const Point &got = mesh.voronoi_points[t];
@@ -75,8 +74,8 @@ void check_exact_centers(const clmesh::Mesh &mesh) {
     const double computed[2] = {got.x, got.y}, origin[2] = {a.x, a.y};
     for (int k = 0; k < 2; ++k) {
       const Real ulp = std::nextafter(std::fabs(exact[k]), INFINITY) - std::fabs(exact[k]);
-      const Real bound = 8 * kEps * std::fabs(Real(exact[k]) - origin[k]) +
-                         kEps * std::fabs(Real(exact[k])) + ulp;
+      const Real bound =
+          8 * kEps * std::fabs(Real(exact[k]) - origin[k]) + kEps * std::fabs(Real(exact[k])) + ulp;
       if (std::fabs(Real(computed[k]) - exact[k]) > bound) {
         ++off;
         INFO("triangle " << t << " coordinate " << k << ": " << computed[k] << ", exact "

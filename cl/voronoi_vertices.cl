@@ -9,9 +9,9 @@
 // where the differences, D and both numerators are exact floating-point
 // expansions (cl/predicates.h) from the input coordinates: nothing cancels,
 // however flat the triangle. Each of D and the numerators is then rounded to
-// a double (relative error below 3 eps, eps = 2^-53), the offset is one
-// division (relative error below 8 eps in all) and the centre one addition:
-//   |computed x - exact x| <= 8 eps |dx| + eps |x|   (and likewise for y).
+// a double within (1 + 1e-9) eps of it, relative (eps = 2^-53), the offset is
+// one division (relative error below 4 eps in all) and the centre one addition:
+//   |computed x - exact x| <= 4 eps |dx| + eps |x|   (and likewise for y).
 // A triangle with D == 0 (none in a valid mesh) gets NaN coordinates.
 #include "common.h"
 
@@ -64,14 +64,24 @@ inline int numerator(const double *f0, int q0n, const double *q0, const double *
   return clm_expansion_sum(first_n, first, second_n, second, h);
 }
 
-// The double nearest an expansion, to a few eps: its components summed from
-// the smallest (they do not overlap, so the sum of all but the largest is
-// below an ulp of it).
-inline double approximate(int n, const double *e) {
+// The sum of an expansion's components, from the smallest.
+inline double component_sum(int n, const double *e) {
   double sum = 0.0;
   for (int i = 0; i < n; ++i)
     sum += e[i];
   return sum;
+}
+
+// An expansion of at most CLM_VV_NUMERATOR components as a double within
+// (1 + 1e-9) eps of its value, relative: the component sum s, corrected by
+// the sum of the exact residual e - s. A sum of n non-overlapping components
+// errs by a few n eps relative at most, so the residual is that small and its
+// own sum's error is of the order n^2 eps^2.
+inline double nearest_double(int n, const double *e) {
+  const double sum = component_sum(n, e), minus_sum = -sum;
+  double residual[CLM_VV_NUMERATOR + 1];
+  const int residual_n = clm_expansion_sum(n, e, 1, &minus_sum, residual);
+  return sum + component_sum(residual_n, residual);
 }
 
 // points: x, y per point; triangles: three vertex indices each (CCW);
@@ -100,10 +110,10 @@ __kernel void voronoi_vertices(__global const double *points, __global const int
   const int nx_n = numerator(cy, b2_n, b2, by, c2_n, c2, nx);
   const int ny_n = numerator(bx, c2_n, c2, cx, b2_n, b2, ny);
 
-  const double d = approximate(det_n, det);
+  const double d = nearest_double(det_n, det);
   const double two_d = 2.0 * d;
-  const double dx = d != 0.0 ? approximate(nx_n, nx) / two_d : NAN;
-  const double dy = d != 0.0 ? approximate(ny_n, ny) / two_d : NAN;
+  const double dx = d != 0.0 ? nearest_double(nx_n, nx) / two_d : NAN;
+  const double dy = d != 0.0 ? nearest_double(ny_n, ny) / two_d : NAN;
   centers[2 * t] = ax + dx;
   centers[2 * t + 1] = ay + dy;
 

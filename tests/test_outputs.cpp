@@ -44,11 +44,11 @@ std::size_t edge_count(const clmesh::Mesh &mesh) {
 }
 
 // The documented bound on the error of the circumcentre of triangle t, as a
-// length: per coordinate 8 eps |offset from the first corner| + eps |coordinate|.
+// length: per coordinate 4 eps |offset from the first corner| + eps |coordinate|.
 Real center_error_bound(const clmesh::Mesh &mesh, std::size_t t) {
   const Point &c = mesh.voronoi_points[t], &a = mesh.points[mesh.triangles[t][0]];
-  const Real bx = 8 * kEps * std::fabs(Real(c.x) - a.x) + kEps * std::fabs(Real(c.x));
-  const Real by = 8 * kEps * std::fabs(Real(c.y) - a.y) + kEps * std::fabs(Real(c.y));
+  const Real bx = 4 * kEps * std::fabs(Real(c.x) - a.x) + kEps * std::fabs(Real(c.x));
+  const Real by = 4 * kEps * std::fabs(Real(c.y) - a.y) + kEps * std::fabs(Real(c.y));
   return std::sqrt(bx * bx + by * by);
 }
 
@@ -75,7 +75,7 @@ void check_exact_centers(const clmesh::Mesh &mesh) {
     for (int k = 0; k < 2; ++k) {
       const Real ulp = std::nextafter(std::fabs(exact[k]), INFINITY) - std::fabs(exact[k]);
       const Real bound =
-          8 * kEps * std::fabs(Real(exact[k]) - origin[k]) + kEps * std::fabs(Real(exact[k])) + ulp;
+          4 * kEps * std::fabs(Real(exact[k]) - origin[k]) + kEps * std::fabs(Real(exact[k])) + ulp;
       if (std::fabs(Real(computed[k]) - exact[k]) > bound) {
         ++off;
         INFO("triangle " << t << " coordinate " << k << ": " << computed[k] << ", exact "
@@ -245,6 +245,18 @@ TEST_CASE("outputs: the Voronoi diagram (-v) of point sets, quality meshes and P
     for (const Point &c : mesh.voronoi_points)
       farthest = std::max(farthest, std::hypot(c.x, c.y));
     CHECK(farthest > 1e8);
+  }
+  SUBCASE("scaled from 1e-30 to 1e30, the bound holds") {
+    for (const double scale : {1e-30, 1e-9, 1e9, 1e30}) {
+      CAPTURE(scale);
+      std::vector<Point> points = fixtures::disk(300, 17);
+      points.push_back({0.1, 0.2});
+      points.push_back({0.7, 0.62});
+      points.push_back({0.4, 0.41 + 1e-11});
+      for (Point &p : points)
+        p = {p.x * scale, p.y * scale};
+      check_voronoi(mesh_of(points, "v"));
+    }
   }
   SUBCASE("attributes are interpolated: a linear field is reproduced") {
     clmesh::Input input;

@@ -62,9 +62,9 @@ struct Mesh {
   // -e: every edge once, in Triangle's order (by triangle, then edge).
   std::vector<Edge> edges;
   // -v: the Voronoi diagram of the mesh, as Triangle's .v.node and .v.edge.
-  // voronoi_points[t] is the circumcentre of triangles[t] (within
-  // 8 eps |offset from triangles[t][0]| + eps |coordinate|, eps = 2^-53, per
-  // coordinate), with attribute_count attributes each in
+  // voronoi_points[t] is the circumcentre of triangles[t], each coordinate
+  // within 4 eps |its offset from triangles[t][0]'s| + eps |itself| of the
+  // exact one (eps = 2^-53), with attribute_count attributes each in
   // voronoi_point_attributes, interpolated from the corners' as Triangle
   // does; voronoi_edges holds one edge per mesh edge, in mesh_edges()' order.
   std::vector<Point> voronoi_points;

@@ -75,6 +75,14 @@ run -jgQ --vtk dup.vtu dup.node
 check off dup.1
 check vtu dup.vtu dup.1
 
+# Deterministic: the same files whatever the work-group size or the grid.
+mkdir same1 same2 && cp dots.o2.node same1/ && cp dots.o2.node same2/
+(cd same1 && "$bin" -vo2gQ --work-group 1 --grid 16 --vtk d.vtu dots.o2.node)
+(cd same2 && "$bin" -vo2gQ --work-group 128 --vtk d.vtu dots.o2.node)
+for f in dots.o2.1.node dots.o2.1.ele dots.o2.1.v.node dots.o2.1.v.edge dots.o2.1.off d.vtu; do
+  cmp -s "same1/$f" "same2/$f" || fail "$f differs between work-group sizes and grids"
+done
+
 # -P: no .poly.
 mkdir noPoly && cp A.poly noPoly/ && cd noPoly
 run -pPQ A.poly

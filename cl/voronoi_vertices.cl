@@ -23,42 +23,53 @@
 #define CLM_VV_CUBIC 64     // a difference times a quadratic
 #define CLM_VV_NUMERATOR 128
 
-// e = p - q exactly, two components, the smaller first.
-inline void exact_difference(double p, double q, double *e) { clm_two_sum(p, -q, &e[1], &e[0]); }
+// p - q exactly: one component when the rounded difference is exact (as it
+// is for nearby points), else two, the smaller first.
+typedef struct {
+  double c[CLM_VV_DIFFERENCE];
+  int n;
+} Difference;
 
-// h = e * f for two exact differences: at most CLM_VV_PRODUCT components.
-inline int difference_product(const double *e, const double *f, double *h) {
-  double low[2 * CLM_VV_DIFFERENCE], high[2 * CLM_VV_DIFFERENCE];
-  const int low_n = clm_scale_expansion(CLM_VV_DIFFERENCE, e, f[0], low);
-  const int high_n = clm_scale_expansion(CLM_VV_DIFFERENCE, e, f[1], high);
-  return clm_expansion_sum(low_n, low, high_n, high, h);
+inline Difference exact_difference(double p, double q) {
+  Difference d;
+  double hi, lo;
+  clm_two_sum(p, -q, &hi, &lo);
+  d.n = lo != 0.0 ? 2 : 1;
+  d.c[0] = lo != 0.0 ? lo : hi;
+  d.c[1] = hi;
+  return d;
 }
 
-// h = f * q for an exact difference f and a quadratic q: at most CLM_VV_CUBIC.
-inline int difference_times_quadratic(const double *f, int qn, const double *q, double *h) {
+// h = e * f for an expansion e of en components (at most CLM_VV_QUADRATIC)
+// and an exact difference f: at most 4 en components (2 en when f has one).
+inline int times_difference(int en, const double *e, const Difference *f, double *h) {
+  if (f->n == 1)
+    return clm_scale_expansion(en, e, f->c[0], h);
   double low[2 * CLM_VV_QUADRATIC], high[2 * CLM_VV_QUADRATIC];
-  const int low_n = clm_scale_expansion(qn, q, f[0], low);
-  const int high_n = clm_scale_expansion(qn, q, f[1], high);
+  const int low_n = clm_scale_expansion(en, e, f->c[0], low);
+  const int high_n = clm_scale_expansion(en, e, f->c[1], high);
   return clm_expansion_sum(low_n, low, high_n, high, h);
 }
 
-// h = e0 * f0 + sign * e1 * f1 (sign +1 or -1): at most CLM_VV_QUADRATIC.
-inline int product_sum(const double *e0, const double *f0, const double *e1, const double *f1,
-                       double sign, double *h) {
+// h = e0 * f0 + sign * e1 * f1 (sign +1 or -1) for four exact differences:
+// at most CLM_VV_QUADRATIC components.
+inline int product_sum(const Difference *e0, const Difference *f0, const Difference *e1,
+                       const Difference *f1, double sign, double *h) {
   double first[CLM_VV_PRODUCT], second[CLM_VV_PRODUCT];
-  const int first_n = difference_product(e0, f0, first);
-  const int second_n = difference_product(e1, f1, second);
+  const int first_n = times_difference(e0->n, e0->c, f0, first);
+  const int second_n = times_difference(e1->n, e1->c, f1, second);
   for (int i = 0; i < second_n; ++i)
     second[i] *= sign;
   return clm_expansion_sum(first_n, first, second_n, second, h);
 }
 
-// h = f0 * q0 - f1 * q1: a numerator, at most CLM_VV_NUMERATOR components.
-inline int numerator(const double *f0, int q0n, const double *q0, const double *f1, int q1n,
+// h = f0 * q0 - f1 * q1 for exact differences and quadratics: a numerator,
+// at most CLM_VV_NUMERATOR components.
+inline int numerator(const Difference *f0, int q0n, const double *q0, const Difference *f1, int q1n,
                      const double *q1, double *h) {
   double first[CLM_VV_CUBIC], second[CLM_VV_CUBIC];
-  const int first_n = difference_times_quadratic(f0, q0n, q0, first);
-  const int second_n = difference_times_quadratic(f1, q1n, q1, second);
+  const int first_n = times_difference(q0n, q0, f0, first);
+  const int second_n = times_difference(q1n, q1, f1, second);
   for (int i = 0; i < second_n; ++i)
     second[i] = -second[i];
   return clm_expansion_sum(first_n, first, second_n, second, h);
@@ -96,19 +107,18 @@ __kernel void voronoi_vertices(__global const double *points, __global const int
     return;
   const int ia = triangles[3 * t], ib = triangles[3 * t + 1], ic = triangles[3 * t + 2];
   const double ax = points[2 * ia], ay = points[2 * ia + 1];
-  double bx[CLM_VV_DIFFERENCE], by[CLM_VV_DIFFERENCE], cx[CLM_VV_DIFFERENCE], cy[CLM_VV_DIFFERENCE];
-  exact_difference(points[2 * ib], ax, bx);
-  exact_difference(points[2 * ib + 1], ay, by);
-  exact_difference(points[2 * ic], ax, cx);
-  exact_difference(points[2 * ic + 1], ay, cy);
+  const Difference bx = exact_difference(points[2 * ib], ax),
+                   by = exact_difference(points[2 * ib + 1], ay),
+                   cx = exact_difference(points[2 * ic], ax),
+                   cy = exact_difference(points[2 * ic + 1], ay);
 
   double det[CLM_VV_QUADRATIC], b2[CLM_VV_QUADRATIC], c2[CLM_VV_QUADRATIC];
-  const int det_n = product_sum(bx, cy, by, cx, -1.0, det);
-  const int b2_n = product_sum(bx, bx, by, by, 1.0, b2);
-  const int c2_n = product_sum(cx, cx, cy, cy, 1.0, c2);
+  const int det_n = product_sum(&bx, &cy, &by, &cx, -1.0, det);
+  const int b2_n = product_sum(&bx, &bx, &by, &by, 1.0, b2);
+  const int c2_n = product_sum(&cx, &cx, &cy, &cy, 1.0, c2);
   double nx[CLM_VV_NUMERATOR], ny[CLM_VV_NUMERATOR];
-  const int nx_n = numerator(cy, b2_n, b2, by, c2_n, c2, nx);
-  const int ny_n = numerator(bx, c2_n, c2, cx, b2_n, b2, ny);
+  const int nx_n = numerator(&cy, b2_n, b2, &by, c2_n, c2, nx);
+  const int ny_n = numerator(&bx, c2_n, c2, &cx, b2_n, b2, ny);
 
   const double d = nearest_double(det_n, det);
   const double two_d = 2.0 * d;
@@ -118,7 +128,7 @@ __kernel void voronoi_vertices(__global const double *points, __global const int
   centers[2 * t + 1] = ay + dy;
 
   // Triangle's coordinates of the centre in the frame (b - a, c - a).
-  const double bxd = bx[1] + bx[0], byd = by[1] + by[0], cxd = cx[1] + cx[0], cyd = cy[1] + cy[0];
+  const double bxd = bx.c[1], byd = by.c[1], cxd = cx.c[1], cyd = cy.c[1];
   const double xi = (cyd * dx - cxd * dy) / d, eta = (bxd * dy - byd * dx) / d;
   for (int k = 0; k < attribute_count; ++k) {
     const double origin = attributes[ia * attribute_count + k];

@@ -56,7 +56,7 @@ void print_help() {
       "  -O  With -p: ignore the holes of the .poly file.\n"
       "  -A  With -p: give each triangle the attribute of its region (.ele attribute\n"
       "      column).\n"
-      "  -B  Write no boundary markers in the .node, .edge and .poly files.\n"
+      "  -B  Write no boundary markers in the .node, .edge, .poly and --vtk files.\n"
       "  -z  Number vertices, triangles and edges of the output from zero.\n"
       "  -e  Write an edge list (.edge), marker 1 on the convex hull, 0 inside (with -p:\n"
       "      the segment's marker, 1 on the boundary, 0 inside).\n"

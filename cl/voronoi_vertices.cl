@@ -12,6 +12,11 @@
 // a double within (1 + 1e-9) eps of it, relative (eps = 2^-53), the offset is
 // one division (relative error below 4 eps in all) and the centre one addition:
 //   |computed x - exact x| <= 4 eps |dx| + eps |x|   (and likewise for y).
+// Most triangles take a fast path with the same guarantee: when the four
+// differences are exact doubles (nearby points), D and the numerators are
+// evaluated in double-double arithmetic and kept when their error bound is
+// below 1e-9 eps of them; the others (far apart corners, flat triangles,
+// numerators near zero) take the expansions.
 // A triangle with D == 0 (none in a valid mesh) gets NaN coordinates.
 #include "common.h"
 
@@ -95,6 +100,81 @@ inline double nearest_double(int n, const double *e) {
   return sum + component_sum(residual_n, residual);
 }
 
+// D and the two numerators, each rounded within (1 + 1e-9) eps of its exact
+// value, relative: the values the centre is computed from.
+typedef struct {
+  double det, nx, ny;
+} CenterParts;
+
+// The exact path: every quantity an expansion, rounded once at the end.
+CLM_COLD CenterParts exact_parts(const Difference *bx, const Difference *by, const Difference *cx,
+                                 const Difference *cy) {
+  double det[CLM_VV_QUADRATIC], b2[CLM_VV_QUADRATIC], c2[CLM_VV_QUADRATIC];
+  const int det_n = product_sum(bx, cy, by, cx, -1.0, det);
+  const int b2_n = product_sum(bx, bx, by, by, 1.0, b2);
+  const int c2_n = product_sum(cx, cx, cy, cy, 1.0, c2);
+  double nx[CLM_VV_NUMERATOR], ny[CLM_VV_NUMERATOR];
+  const int nx_n = numerator(cy, b2_n, b2, by, c2_n, c2, nx);
+  const int ny_n = numerator(bx, c2_n, c2, cx, b2_n, b2, ny);
+  CenterParts parts;
+  parts.det = nearest_double(det_n, det);
+  parts.nx = nearest_double(nx_n, nx);
+  parts.ny = nearest_double(ny_n, ny);
+  return parts;
+}
+
+// The fast path's checks (see fast_parts): the error bound of the
+// double-double value, 4 eps^2 S for D and 30 eps^2 S for a numerator (S the
+// sum of the magnitudes of its two products), must stay below 1e-9 eps of the
+// value; the constants hold twice these bounds.
+#define CLM_VV_DET_CHECK (8.0 * CLM_EPSILON * 1e9)
+#define CLM_VV_NUMERATOR_CHECK (64.0 * CLM_EPSILON * 1e9)
+
+// q + ql = x^2 + y^2 within 4.01 eps^2 of it (all four exact parts are
+// positive, so nothing cancels).
+inline void square_sum(double x, double y, double *q, double *ql) {
+  double p1, e1, p2, e2, t;
+  clm_two_product(x, x, &p1, &e1);
+  clm_two_product(y, y, &p2, &e2);
+  clm_two_sum(p1, p2, q, &t);
+  *ql = t + (e1 + e2);
+}
+
+// f0 (q0 + q0l) - f1 (q1 + q1l) in double-double arithmetic; false when the
+// check cannot certify it within (1 + 1e-9) eps.
+inline bool fast_numerator(double f0, double q0, double q0l, double f1, double q1, double q1l,
+                           double *value) {
+  double x1, x2, y1, y2, s, t;
+  clm_two_product(f0, q0, &x1, &x2);
+  clm_two_product(f1, q1, &y1, &y2);
+  clm_two_sum(x1, -y1, &s, &t);
+  *value = s + (((t + x2) - y2) + (f0 * q0l - f1 * q1l));
+  return CLM_VV_NUMERATOR_CHECK * (clm_absd(x1) + clm_absd(y1)) <= clm_absd(*value);
+}
+
+// The fast path, for the common case: every difference exact as one double
+// and the triangle not too flat (D and the numerators are then known in
+// double-double arithmetic to far better than eps, and rounded like the
+// exact path's). False when it does not apply.
+inline bool fast_parts(const Difference *bx, const Difference *by, const Difference *cx,
+                       const Difference *cy, CenterParts *parts) {
+  if (bx->n != 1 || by->n != 1 || cx->n != 1 || cy->n != 1)
+    return false;
+  const double x = bx->c[0], y = by->c[0], u = cx->c[0], v = cy->c[0];
+  double d1, d2, d3, d4, s, t;
+  clm_two_product(x, v, &d1, &d2);
+  clm_two_product(y, u, &d3, &d4);
+  clm_two_sum(d1, -d3, &s, &t);
+  parts->det = s + ((t + d2) - d4);
+  if (!(CLM_VV_DET_CHECK * (clm_absd(d1) + clm_absd(d3)) <= clm_absd(parts->det)))
+    return false;
+  double b2, b2l, c2, c2l;
+  square_sum(x, y, &b2, &b2l);
+  square_sum(u, v, &c2, &c2l);
+  return fast_numerator(v, b2, b2l, y, c2, c2l, &parts->nx) &&
+         fast_numerator(x, c2, c2l, u, b2, b2l, &parts->ny);
+}
+
 // points: x, y per point; triangles: three vertex indices each (CCW);
 // attributes: attribute_count per point. Writes centers (x, y per triangle)
 // and center_attributes (attribute_count per triangle).
@@ -111,24 +191,19 @@ __kernel void voronoi_vertices(__global const double *points, __global const int
                    by = exact_difference(points[2 * ib + 1], ay),
                    cx = exact_difference(points[2 * ic], ax),
                    cy = exact_difference(points[2 * ic + 1], ay);
+  CenterParts parts;
+  if (!fast_parts(&bx, &by, &cx, &cy, &parts))
+    parts = exact_parts(&bx, &by, &cx, &cy);
 
-  double det[CLM_VV_QUADRATIC], b2[CLM_VV_QUADRATIC], c2[CLM_VV_QUADRATIC];
-  const int det_n = product_sum(&bx, &cy, &by, &cx, -1.0, det);
-  const int b2_n = product_sum(&bx, &bx, &by, &by, 1.0, b2);
-  const int c2_n = product_sum(&cx, &cx, &cy, &cy, 1.0, c2);
-  double nx[CLM_VV_NUMERATOR], ny[CLM_VV_NUMERATOR];
-  const int nx_n = numerator(&cy, b2_n, b2, &by, c2_n, c2, nx);
-  const int ny_n = numerator(&bx, c2_n, c2, &cx, b2_n, b2, ny);
-
-  const double d = nearest_double(det_n, det);
-  const double two_d = 2.0 * d;
-  const double dx = d != 0.0 ? nearest_double(nx_n, nx) / two_d : NAN;
-  const double dy = d != 0.0 ? nearest_double(ny_n, ny) / two_d : NAN;
+  const double d = parts.det, two_d = 2.0 * d;
+  const double dx = d != 0.0 ? parts.nx / two_d : NAN;
+  const double dy = d != 0.0 ? parts.ny / two_d : NAN;
   centers[2 * t] = ax + dx;
   centers[2 * t + 1] = ay + dy;
 
   // Triangle's coordinates of the centre in the frame (b - a, c - a).
-  const double bxd = bx.c[1], byd = by.c[1], cxd = cx.c[1], cyd = cy.c[1];
+  const double bxd = bx.c[bx.n - 1], byd = by.c[by.n - 1], cxd = cx.c[cx.n - 1],
+               cyd = cy.c[cy.n - 1];
   const double xi = (cyd * dx - cxd * dy) / d, eta = (bxd * dy - byd * dx) / d;
   for (int k = 0; k < attribute_count; ++k) {
     const double origin = attributes[ia * attribute_count + k];

@@ -74,6 +74,9 @@ const std::vector<std::pair<char, bool clmesh::Options::*>> kFlags = {
     {'j', &clmesh::Options::jettison},
     {'Q', &clmesh::Options::quiet},
     {'C', &clmesh::Options::check},
+    {'P', &clmesh::Options::no_poly_file},
+    {'g', &clmesh::Options::off_file},
+    {'v', &clmesh::Options::voronoi},
     {'h', &clmesh::Options::help},
     {'q', &clmesh::Options::quality}};
 
@@ -83,7 +86,8 @@ int fields_set(const clmesh::Options &options) {
   for (const auto &[letter, field] : kFlags)
     set += options.*field;
   return set + (options.verbose != 0) + options.max_area.has_value() +
-         options.max_steiner.has_value();
+         options.max_steiner.has_value() + options.second_order +
+         !options.no_effect_switches.empty();
 }
 
 using Edge = std::pair<int32_t, int32_t>; // (smaller, larger) vertex index
@@ -122,7 +126,7 @@ TEST_CASE("api: parse_switches sets the field of every supported letter") {
     CHECK(options.*field);
     CHECK(fields_set(options) == 1);
   }
-  const clmesh::Options all = clmesh::parse_switches("pcOABzenNEIjQVC");
+  const clmesh::Options all = clmesh::parse_switches("pcOABzenNEIjQVCPgv");
   for (const auto &[letter, field] : kFlags) {
     INFO("switch -" << letter);
     CHECK(all.*field == (letter != 'h' && letter != 'q'));
@@ -151,6 +155,26 @@ TEST_CASE("api: parse_switches sets the field of every supported letter") {
     REQUIRE(exponent.max_area);
     CHECK(*exponent.max_area == 1e-3);
     CHECK(fields_set(exponent) == 1);
+  }
+  SUBCASE("-o2, and -o without its order") {
+    const clmesh::Options o2 = clmesh::parse_switches("o2");
+    CHECK(o2.second_order);
+    CHECK(fields_set(o2) == 1);
+    const clmesh::Options with_edges = clmesh::parse_switches("po2e");
+    CHECK(with_edges.second_order);
+    CHECK(with_edges.pslg);
+    CHECK(with_edges.edges);
+    CHECK(fields_set(with_edges) == 3);
+    for (const std::string bad : {"o", "o3", "po1e"}) {
+      INFO(bad);
+      CHECK_THROWS_AS(clmesh::parse_switches(bad), clmesh::OptionError);
+    }
+  }
+  SUBCASE("-X -i -F -l -s: accepted, recorded, nothing else set") {
+    const clmesh::Options options = clmesh::parse_switches("XiFlsX");
+    CHECK(options.no_effect_switches == "XiFls");
+    CHECK(fields_set(options) == 1);
+    CHECK(clmesh::parse_switches("pX").no_effect_switches == "X");
   }
   SUBCASE("-S, with and without a number") {
     const clmesh::Options s = clmesh::parse_switches("S");
@@ -198,7 +222,7 @@ TEST_CASE("api: parse_switches sets the field of every supported letter") {
 
 TEST_CASE("api: parse_switches refuses Triangle's switches clmesh lacks, unknown letters and "
           "malformed numbers") {
-  for (const char letter : std::string("ruvgPXoYiFls")) {
+  for (const char letter : std::string("ruY")) {
     INFO("switch -" << letter);
     const std::string alone = option_error(std::string(1, letter));
     CHECK(contains(alone, std::string("switch -") + letter + " ("));
@@ -216,6 +240,8 @@ TEST_CASE("api: parse_switches refuses Triangle's switches clmesh lacks, unknown
   CHECK(contains(option_error("K"), "unknown switch -K"));
   // An unknown letter is named even after an unsupported one.
   CHECK(contains(option_error("rx"), "unknown switch -x"));
+  // -u says why: it needs a library callback.
+  CHECK(contains(option_error("u"), "callback"));
   for (const std::string malformed : {"q30.5.5", "a.", "a1e-", "q1e999", "a0", "S1e30", "q."}) {
     INFO(malformed);
     CHECK(option_error(malformed) != "");
@@ -224,6 +250,7 @@ TEST_CASE("api: parse_switches refuses Triangle's switches clmesh lacks, unknown
   CHECK(contains(option_error("a1..2"), "-a"));
   // Valid switches throw nothing.
   CHECK(option_error("pcOADBzenNEIjQVCh") == "");
+  CHECK(option_error("pvgo2PXiFlsh") == "");
   CHECK(option_error("-q30a1e-3S5") == "");
 }
 
@@ -481,7 +508,7 @@ TEST_CASE("api: the three triangulate() overloads give the same mesh") {
   const clmesh::Mesh by_options = clmesh::triangulate(device(), pslg, clmesh::parse_switches("pc"));
   check_same_mesh(by_options, clmesh::triangulate(device(), pslg, "pc"));
   check_same_mesh(by_options, clmesh::triangulate(pslg, clmesh::parse_switches("pc")));
-  CHECK_THROWS_AS(clmesh::triangulate(device(), pslg, "pv"), clmesh::OptionError);
+  CHECK_THROWS_AS(clmesh::triangulate(device(), pslg, "pY"), clmesh::OptionError);
 }
 
 TEST_CASE("api: check_mesh accepts good meshes and finds broken ones") {

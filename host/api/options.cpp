@@ -11,7 +11,8 @@ namespace clmesh {
 
 namespace {
 
-const char *const kSupported = "-p -c -O -A -D -B -q -a -S -z -e -n -N -E -I -j -Q -V -C -h";
+const char *const kSupported = "-p -c -O -A -D -B -q -a -S -z -e -n -v -g -o2 -N -E -P -I -j -Q "
+                               "-V -C -h (-X -i -F -l -s accepted without effect)";
 
 // Triangle's switches that clmesh does not implement yet, with what they do.
 const char *unsupported_switch(char letter) {
@@ -19,30 +20,20 @@ const char *unsupported_switch(char letter) {
   case 'r':
     return "refining a previous mesh";
   case 'u':
-    return "user-defined triangle constraints";
-  case 'v':
-    return "Voronoi diagram output";
-  case 'g':
-    return "OFF output for Geomview";
-  case 'P':
-    return "suppressing the .poly output";
-  case 'X':
-    return "disabling exact arithmetic";
-  case 'o':
-    return "higher-order elements";
+    return "a user-defined triangle sizing function: it needs a callback from the library "
+           "(Triangle's triunsuitable()), which clmesh does not offer yet";
   case 'Y':
     return "no Steiner points on the boundary";
-  case 'i':
-    return "the incremental algorithm";
-  case 'F':
-    return "Fortune's sweepline algorithm";
-  case 'l':
-    return "divide-and-conquer with vertical cuts only";
-  case 's':
-    return "splitting segments";
   default:
     return nullptr;
   }
+}
+
+// Triangle's choices of arithmetic and algorithm: clmesh's predicates are
+// always exact and its algorithms are GPU-DT, GPU-CDT and GPU-QM(-V), so
+// these letters are accepted and change nothing.
+bool without_effect(char letter) {
+  return letter == 'X' || letter == 'i' || letter == 'F' || letter == 'l' || letter == 's';
 }
 
 // The number that follows a switch letter at text[i + 1...] (Triangle's -q30,
@@ -159,7 +150,29 @@ void parse_switches(const std::string &switches, Options &options) {
     case 'h':
       options.help = true;
       break;
+    case 'P':
+      options.no_poly_file = true;
+      break;
+    case 'g':
+      options.off_file = true;
+      break;
+    case 'v':
+      options.voronoi = true;
+      break;
+    case 'o':
+      // Triangle's only order is 2: -o2.
+      if (i + 1 >= switches.size() || switches[i + 1] != '2')
+        throw OptionError("-o takes the order 2 (-o2: second-order, six-node triangles) in " +
+                          quote(switches));
+      options.second_order = true;
+      ++i;
+      break;
     default:
+      if (without_effect(letter)) {
+        if (options.no_effect_switches.find(letter) == std::string::npos)
+          options.no_effect_switches += letter;
+        break;
+      }
       if (unsupported_switch(letter)) {
         if (!unsupported)
           unsupported = letter;

@@ -7,6 +7,8 @@
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
 #include "dt/delaunay.hpp"
+#include "output/second_order.hpp"
+#include "output/voronoi_diagram.hpp"
 #include "refine/refine.hpp"
 
 #include <map>
@@ -108,6 +110,10 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
     mesh.edges = mesh.statistics.constrained
                      ? mesh_edges(mesh.triangles, mesh.neighbors, mesh.segments)
                      : mesh_edges(mesh.triangles, mesh.neighbors);
+  if (options.voronoi)
+    add_voronoi_diagram(device, mesh);
+  if (options.second_order)
+    add_second_order_nodes(mesh);
   return mesh;
 }
 

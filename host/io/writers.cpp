@@ -1,16 +1,18 @@
-// clmesh — writing Triangle's files: the edges and markers Triangle reports, and the
+// clmesh — writing Triangle's files (.node .ele .edge .neigh .poly, .v.node
+// .v.edge, .off): the edges and markers Triangle reports, and the
 // all-or-nothing batch of output files (see clmesh/io.hpp).
 #include "clmesh/io.hpp"
 
 #include "clmesh/errors.hpp"
+#include "io/edge_order.hpp"
 #include "io/system_error.hpp"
+#include "io/text_file.hpp"
+#include "io/view_access.hpp"
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <climits>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -73,16 +75,9 @@ std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
   check_neighbors(triangles, neighbors, "mesh_edges");
   std::vector<Edge> edges;
   edges.reserve(triangles.size() * 3 / 2 + 3);
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int i = 0; i < 3; ++i) {
-      // Edge i lies opposite vertex i, from vertex i+1 to vertex i+2 (Triangle's
-      // org/dest of orientation i); an interior edge is written by the triangle
-      // with the smaller index.
-      int32_t other = neighbors[t][i];
-      if (other == -1 || static_cast<int64_t>(t) < other)
-        edges.push_back(Edge{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], other == -1});
-    }
-  }
+  visit_edges(triangles, neighbors, [&](std::size_t t, int i, int32_t other) {
+    edges.push_back(Edge{triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], other == -1});
+  });
   return edges;
 }
 
@@ -122,6 +117,15 @@ MeshView view_of(const Mesh &mesh) {
     view.segments = &mesh.segments;
   if (mesh.triangle_attribute_count > 0)
     view.triangle_attributes = &mesh.triangle_attributes;
+  if (!mesh.triangle_midpoints.empty() || !mesh.edge_midpoints.empty()) {
+    view.edge_midpoints = &mesh.edge_midpoints;
+    view.edge_midpoint_attributes = &mesh.edge_midpoint_attributes;
+    view.edge_midpoint_markers = &mesh.edge_midpoint_markers;
+    view.triangle_midpoints = &mesh.triangle_midpoints;
+  }
+  view.voronoi_points = &mesh.voronoi_points;
+  view.voronoi_point_attributes = &mesh.voronoi_point_attributes;
+  view.voronoi_edges = &mesh.voronoi_edges;
   return view;
 }
 
@@ -181,128 +185,6 @@ std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOpti
 // ---------------------------------------------------------------------------
 // Writing
 // ---------------------------------------------------------------------------
-namespace {
-
-// Buffered text output to a temporary file; errors name the final file.
-class TextFile {
-public:
-  TextFile(const std::string &temporary, const std::string &final_path)
-      : temporary_(temporary), final_(final_path) {
-    file_ = std::fopen(temporary.c_str(), "wbx"); // exclusive: a new file or an error
-    if (!file_) {
-      int error = errno;
-      throw InputError(final_, 0, "cannot write: " + describe_errno(error));
-    }
-    buffer_.reserve(kFlushAt + 4096);
-  }
-  TextFile(const TextFile &) = delete;
-  TextFile &operator=(const TextFile &) = delete;
-  ~TextFile() {
-    if (file_)
-      std::fclose(file_);
-  }
-
-  [[gnu::format(printf, 2, 3)]] void format(const char *pattern, ...) {
-    char line[512];
-    va_list args;
-    va_start(args, pattern);
-    int length = std::vsnprintf(line, sizeof line, pattern, args);
-    va_end(args);
-    if (length < 0)
-      fail(EINVAL);
-    if (static_cast<std::size_t>(length) < sizeof line) {
-      buffer_.append(line, static_cast<std::size_t>(length));
-    } else {
-      std::string big(static_cast<std::size_t>(length) + 1, '\0');
-      va_start(args, pattern);
-      std::vsnprintf(&big[0], big.size(), pattern, args);
-      va_end(args);
-      buffer_.append(big.data(), static_cast<std::size_t>(length));
-    }
-    if (buffer_.size() >= kFlushAt)
-      flush();
-  }
-  // Appends `value` right-aligned in `width` characters, as printf's "%*ld"
-  // (the integer columns of .ele, .edge and .neigh are by far the bulk).
-  void integer(long value, int width = 0) {
-    char digits[24];
-    const auto result = std::to_chars(digits, digits + sizeof digits, value);
-    const auto count = static_cast<int>(result.ptr - digits);
-    if (width > count)
-      buffer_.append(static_cast<std::size_t>(width - count), ' ');
-    buffer_.append(digits, result.ptr);
-  }
-  // Appends `value` as printf's "%.17g" does (std::to_chars promises the
-  // same characters), without printf's cost: coordinates fill .node files.
-  void real(double value) {
-    char digits[32];
-    const auto result =
-        std::to_chars(digits, digits + sizeof digits, value, std::chars_format::general, 17);
-    buffer_.append(digits, result.ptr);
-  }
-  void text(const char *words) { buffer_ += words; }
-  void end_line() {
-    buffer_ += '\n';
-    if (buffer_.size() >= kFlushAt)
-      flush();
-  }
-  void append(const std::string &text) {
-    buffer_ += text;
-    if (buffer_.size() >= kFlushAt)
-      flush();
-  }
-  void footer(const WriteOptions &options) {
-    if (!options.command_line.empty())
-      append("# Generated by " + options.command_line + "\n");
-  }
-  void close() {
-    flush();
-    std::FILE *file = file_;
-    file_ = nullptr;
-    if (std::fclose(file) != 0)
-      fail(errno);
-  }
-
-private:
-  static constexpr std::size_t kFlushAt = 1 << 20;
-  void flush() {
-    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-      fail(errno);
-    buffer_.clear();
-  }
-  [[noreturn]] void fail(int error) {
-    throw InputError(final_, 0, "cannot write: " + describe_errno(error));
-  }
-  std::string temporary_, final_;
-  std::FILE *file_ = nullptr;
-  std::string buffer_;
-};
-
-const std::vector<Point> &points_of(const MeshView &mesh) {
-  if (!mesh.points)
-    throw InternalError("output writer called without points");
-  return *mesh.points;
-}
-const std::vector<Triangle> &triangles_of(const MeshView &mesh) {
-  if (!mesh.triangles)
-    throw InternalError("output writer called without triangles");
-  return *mesh.triangles;
-}
-const std::vector<std::array<int32_t, 3>> &neighbors_of(const MeshView &mesh) {
-  if (!mesh.neighbors || mesh.neighbors->size() != triangles_of(mesh).size())
-    throw InternalError("output writer called without neighbours for every triangle");
-  return *mesh.neighbors;
-}
-
-// Vertex number as written: renumbered for -j, then shifted to first_index.
-int32_t written_vertex(const std::vector<int32_t> &numbers, int32_t vertex, const WriteOptions &o) {
-  if (vertex < 0 || static_cast<std::size_t>(vertex) >= numbers.size() || numbers[vertex] < 0)
-    throw InternalError("mesh refers to vertex " + std::to_string(vertex) +
-                        ", which is not written");
-  return numbers[vertex] + o.first_index;
-}
-
-} // namespace
 
 OutputBatch::~OutputBatch() {
   for (const auto &file : files_)
@@ -352,41 +234,55 @@ std::string OutputBatch::temporary_for(const std::string &path) {
   return temporary;
 }
 
+namespace {
+
+// One line of a .node file: "%4ld    %.17g  %.17g", then "  %.17g" per
+// attribute, then "    %d" when there is a marker.
+void node_line(TextFile &file, long number, const Point &point, const double *attributes,
+               std::size_t attribute_count, const int *marker) {
+  file.integer(number, 4);
+  file.text("    ");
+  file.real(point.x);
+  file.text("  ");
+  file.real(point.y);
+  for (std::size_t a = 0; a < attribute_count; ++a) {
+    file.text("  ");
+    file.real(attributes[a]);
+  }
+  if (marker) {
+    file.text("    ");
+    file.integer(*marker);
+  }
+  file.end_line();
+}
+
+} // namespace
+
 void OutputBatch::write_node(const std::string &path, const MeshView &mesh,
                              const WriteOptions &options) {
   const std::vector<Point> &points = points_of(mesh);
   const std::size_t n = points.size();
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
-  std::size_t written = 0;
-  for (int32_t number : numbers)
-    written += number >= 0;
+  const std::size_t written = written_count(numbers);
+  const std::vector<Point> &midpoints = midpoints_of(mesh);
   const std::vector<int> markers =
       options.boundary_markers ? output_vertex_markers(mesh) : std::vector<int>();
 
-  const std::size_t attributes = static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
+  const std::size_t attributes = attributes_of(mesh);
   if (attributes > 0 && (!mesh.point_attributes || mesh.point_attributes->size() < n * attributes))
     throw InternalError("point set holds fewer attributes than its attribute count says");
   TextFile file(temporary_for(path), path);
-  file.format("%zu  2  %zu  %d\n", written, attributes, options.boundary_markers ? 1 : 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (numbers[i] < 0)
-      continue;
-    // "%4ld    %.17g  %.17g", then "  %.17g" per attribute, then "    %d"
-    file.integer(static_cast<long>(numbers[i]) + options.first_index, 4);
-    file.text("    ");
-    file.real(points[i].x);
-    file.text("  ");
-    file.real(points[i].y);
-    for (std::size_t a = 0; a < attributes; ++a) {
-      file.text("  ");
-      file.real((*mesh.point_attributes)[i * attributes + a]);
-    }
-    if (options.boundary_markers) {
-      file.text("    ");
-      file.integer(markers[i]);
-    }
-    file.end_line();
-  }
+  file.format("%zu  2  %zu  %d\n", written + midpoints.size(), attributes,
+              options.boundary_markers ? 1 : 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (numbers[i] >= 0)
+      node_line(file, static_cast<long>(numbers[i]) + options.first_index, points[i],
+                attributes ? &(*mesh.point_attributes)[i * attributes] : nullptr, attributes,
+                options.boundary_markers ? &markers[i] : nullptr);
+  for (std::size_t k = 0; k < midpoints.size(); ++k)
+    node_line(file, static_cast<long>(written + k) + options.first_index, midpoints[k],
+              attributes ? &(*mesh.edge_midpoint_attributes)[k * attributes] : nullptr, attributes,
+              options.boundary_markers ? &(*mesh.edge_midpoint_markers)[k] : nullptr);
   file.footer(options);
   file.close();
 }
@@ -400,14 +296,20 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
     throw InternalError("output writer called with " + std::to_string(attributes->size()) +
                         " triangle attributes for " + std::to_string(triangles.size()) +
                         " triangles");
+  const bool six_nodes = !midpoints_of(mesh).empty();
+  const long first_midpoint = static_cast<long>(written_count(numbers)) + options.first_index;
   TextFile file(temporary_for(path), path);
-  file.format("%zu  3  %d\n", triangles.size(), attributes ? 1 : 0);
+  file.format("%zu  %d  %d\n", triangles.size(), six_nodes ? 6 : 3, attributes ? 1 : 0);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    // "%4ld    %4d  %4d  %4d", then "  %.17g" per attribute
+    // "%4ld    %4d  %4d  %4d" (and "  %4d" per middle node), then "  %.17g" per attribute
     file.integer(static_cast<long>(t) + options.first_index, 4);
     for (int k = 0; k < 3; ++k) {
       file.text(k == 0 ? "    " : "  ");
       file.integer(written_vertex(numbers, triangles[t][k], options), 4);
+    }
+    for (int k = 0; six_nodes && k < 3; ++k) {
+      file.text("  ");
+      file.integer(first_midpoint + (*mesh.triangle_midpoints)[t][k], 4);
     }
     if (attributes) {
       file.text("  ");
@@ -504,6 +406,94 @@ void OutputBatch::write_neigh(const std::string &path, const MeshView &mesh,
     for (int k = 0; k < 3; ++k) {
       file.text(k == 0 ? "    " : "  ");
       file.integer(number(neighbors[t][k]));
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_voronoi_node(const std::string &path, const MeshView &mesh,
+                                     const WriteOptions &options) {
+  if (!mesh.voronoi_points || !mesh.voronoi_point_attributes)
+    throw InternalError("write_voronoi_node called without a Voronoi diagram");
+  const std::vector<Point> &centers = *mesh.voronoi_points;
+  const std::size_t attributes = attributes_of(mesh);
+  if (mesh.voronoi_point_attributes->size() != centers.size() * attributes)
+    throw InternalError("write_voronoi_node: attributes do not match the Voronoi vertices");
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  2  %zu  0\n", centers.size(), attributes);
+  for (std::size_t t = 0; t < centers.size(); ++t)
+    node_line(file, static_cast<long>(t) + options.first_index, centers[t],
+              attributes ? &(*mesh.voronoi_point_attributes)[t * attributes] : nullptr, attributes,
+              nullptr);
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_voronoi_edge(const std::string &path, const MeshView &mesh,
+                                     const WriteOptions &options) {
+  if (!mesh.voronoi_edges)
+    throw InternalError("write_voronoi_edge called without a Voronoi diagram");
+  const std::vector<VoronoiEdge> &edges = *mesh.voronoi_edges;
+  TextFile file(temporary_for(path), path);
+  file.format("%zu  0\n", edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    // "%4ld   %d  %d", or for a ray "%4ld   %d  -1   %.17g  %.17g"
+    file.integer(static_cast<long>(e) + options.first_index, 4);
+    file.text("   ");
+    file.integer(static_cast<long>(edges[e].a) + options.first_index);
+    file.text("  ");
+    if (edges[e].b >= 0) {
+      file.integer(static_cast<long>(edges[e].b) + options.first_index);
+    } else {
+      file.text("-1   ");
+      file.real(edges[e].direction.x);
+      file.text("  ");
+      file.real(edges[e].direction.y);
+    }
+    file.end_line();
+  }
+  file.footer(options);
+  file.close();
+}
+
+void OutputBatch::write_off(const std::string &path, const MeshView &mesh,
+                            const WriteOptions &options) {
+  const std::vector<Point> &points = points_of(mesh);
+  const std::vector<Triangle> &triangles = triangles_of(mesh);
+  const std::vector<std::array<int32_t, 3>> &neighbors = neighbors_of(mesh);
+  const std::vector<Point> &midpoints = midpoints_of(mesh);
+  const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
+  std::size_t hull = 0;
+  for (const auto &across : neighbors)
+    for (int32_t other : across)
+      hull += other == -1;
+  WriteOptions from_zero = options; // .off numbers its vertices from 0
+  from_zero.first_index = 0;
+  TextFile file(temporary_for(path), path);
+  file.format("OFF\n%zu  %zu  %zu\n", written_count(numbers) + midpoints.size(), triangles.size(),
+              (3 * triangles.size() + hull) / 2);
+  auto vertex_line = [&file](const Point &point) {
+    file.text(" ");
+    file.real(point.x);
+    file.text("  ");
+    file.real(point.y);
+    file.text("  0");
+    file.end_line();
+  };
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (numbers[i] >= 0)
+      vertex_line(points[i]);
+  for (const Point &midpoint : midpoints)
+    vertex_line(midpoint);
+  for (const Triangle &triangle : triangles) {
+    // " 3   %4d  %4d  %4d"
+    file.text(" 3   ");
+    for (int k = 0; k < 3; ++k) {
+      if (k > 0)
+        file.text("  ");
+      file.integer(written_vertex(numbers, triangle[k], from_zero), 4);
     }
     file.end_line();
   }

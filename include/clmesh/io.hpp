@@ -1,4 +1,5 @@
-// clmesh — Triangle's file formats (.node .poly .ele .edge .neigh), SVG and PGM pictures.
+// clmesh — Triangle's file formats (.node .poly .ele .edge .neigh, .v.node .v.edge,
+// .off), VTK's .vtu, SVG and PGM pictures.
 //
 // Readers accept '#' comments anywhere on a line, blank lines, and 0- or
 // 1-based numbering (decided by the first id). Every problem is reported as
@@ -69,12 +70,23 @@ struct MeshView {
   const std::vector<Segment> *segments = nullptr;
   // -A: one attribute per triangle, written as the .ele attribute column.
   const std::vector<double> *triangle_attributes = nullptr;
+  // -o2 (Mesh's fields of the same names): middle nodes, written after the
+  // vertices with their attributes and markers, and each triangle's three.
+  const std::vector<Point> *edge_midpoints = nullptr;
+  const std::vector<double> *edge_midpoint_attributes = nullptr;
+  const std::vector<int> *edge_midpoint_markers = nullptr;
+  const std::vector<std::array<int32_t, 3>> *triangle_midpoints = nullptr;
+  // -v (Mesh's fields of the same names).
+  const std::vector<Point> *voronoi_points = nullptr;
+  const std::vector<double> *voronoi_point_attributes = nullptr;
+  const std::vector<VoronoiEdge> *voronoi_edges = nullptr;
 
   // The points, attributes and markers of a point set.
   void set_points(const PointSet &set);
 };
 
-// The view of a whole mesh (segments and triangle attributes when it has them).
+// The view of a whole mesh (segments, triangle attributes, middle nodes and
+// the Voronoi diagram when it has them).
 MeshView view_of(const Mesh &mesh);
 
 struct WriteOptions {
@@ -122,6 +134,21 @@ public:
   void write_ele(const std::string &path, const MeshView &mesh, const WriteOptions &options);
   void write_edge(const std::string &path, const MeshView &mesh, const WriteOptions &options);
   void write_neigh(const std::string &path, const MeshView &mesh, const WriteOptions &options);
+  // Triangle's -v files: name.v.node (the circumcentres, numbered as the
+  // triangles, with their interpolated attributes, no markers) and
+  // name.v.edge (finite edges "a b", rays "a -1 dx dy", no markers).
+  void write_voronoi_node(const std::string &path, const MeshView &mesh,
+                          const WriteOptions &options);
+  void write_voronoi_edge(const std::string &path, const MeshView &mesh,
+                          const WriteOptions &options);
+  // Triangle's -g file: the mesh in Object File Format (vertices, middle
+  // nodes included, with z = 0; the triangles' corners, numbered from 0).
+  void write_off(const std::string &path, const MeshView &mesh, const WriteOptions &options);
+  // A VTK XML unstructured grid (.vtu, ASCII) for ParaView: the written
+  // vertices (and middle nodes) with z = 0, the triangles (six-node
+  // quadratic triangles with -o2), the point data "marker" (unless -B) and
+  // "attribute1".. and the cell data "attribute1" of -A.
+  void write_vtu(const std::string &path, const MeshView &mesh, const WriteOptions &options);
   // Triangle's output .poly: no vertices (they are in the .node), the segments
   // of mesh.segments that are edges of the mesh (segments eaten with a hole
   // are left out, as Triangle deletes them) with their -p markers, the holes,

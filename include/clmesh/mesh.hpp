@@ -19,6 +19,16 @@ struct Edge {
   int marker;
 };
 
+// -v: an edge of the Voronoi diagram, dual to one edge of the mesh: from the
+// circumcentre of triangle a to that of triangle b, or, with b == -1 (a hull
+// edge), a ray from a's circumcentre in `direction`: the hull edge turned a
+// quarter clockwise (so pointing out of the mesh, as long as the edge), as
+// Triangle writes it.
+struct VoronoiEdge {
+  int32_t a, b;
+  Point direction; // (0, 0) for a finite edge
+};
+
 struct Mesh {
   // Every point: the input's, then those the run added (where segments cross,
   // Steiner points), numbered on from the input's.
@@ -51,6 +61,26 @@ struct Mesh {
   std::vector<Segment> segments;
   // -e: every edge once, in Triangle's order (by triangle, then edge).
   std::vector<Edge> edges;
+  // -v: the Voronoi diagram of the mesh, as Triangle's .v.node and .v.edge.
+  // voronoi_points[t] is the circumcentre of triangles[t], each coordinate
+  // within 4 eps |its offset from triangles[t][0]'s| + eps |itself| of the
+  // exact one (eps = 2^-53), with attribute_count attributes each in
+  // voronoi_point_attributes, interpolated from the corners' as Triangle
+  // does; voronoi_edges holds one edge per mesh edge, in mesh_edges()' order.
+  std::vector<Point> voronoi_points;
+  std::vector<double> voronoi_point_attributes;
+  std::vector<VoronoiEdge> voronoi_edges;
+  // -o2: six-node triangles. edge_midpoints: one node at the middle of every
+  // edge, (a + b) / 2 rounded once, in mesh_edges()' order (that of `edges`
+  // with -e); the files number them after the vertices. Each has the mean of
+  // its edge's endpoints' attributes (attribute_count each) and its edge's
+  // boundary marker. triangle_midpoints[t][i] is the index in edge_midpoints
+  // of the middle of the edge opposite triangles[t][i] (Triangle's nodes 4,
+  // 5, 6). Empty without -o2.
+  std::vector<Point> edge_midpoints;
+  std::vector<double> edge_midpoint_attributes;
+  std::vector<int> edge_midpoint_markers;
+  std::vector<std::array<int32_t, 3>> triangle_midpoints;
   // With Options::voronoi_image: Phase 1's digital Voronoi diagram
   // (grid * grid site indices, -1: none; grid is statistics.delaunay.grid).
   std::vector<int32_t> voronoi_image;

@@ -26,10 +26,17 @@ struct Options {
   bool no_node_file = false;        // -N: no .node output
   bool no_ele_file = false;         // -E: no .ele output
   bool no_iteration_number = false; // -I: outputs named name.ele, not name.1.ele
+  bool no_poly_file = false;        // -P: no .poly output
+  bool off_file = false;            // -g: also write the mesh as an Object File Format .off
+  bool voronoi = false;             // -v: return (and write) the mesh's Voronoi diagram
+  bool second_order = false;        // -o2: six-node triangles (a node at every edge's middle)
   bool quiet = false;               // -Q: print nothing but errors
   int verbose = 0;                  // -V (repeatable): statistics, timings, quality
   bool check = false;               // -C: check the mesh with exact predicates
   bool help = false;                // -h
+  // -X -i -F -l -s: Triangle's choices of arithmetic and algorithm, accepted
+  // and without effect (the mesh is the same); the letters, in the order given.
+  std::string no_effect_switches;
 
   // Not Triangle's: return Phase 1's digital Voronoi diagram (Mesh::voronoi_image).
   bool voronoi_image = false;
@@ -41,7 +48,7 @@ struct Options {
 
 // Triangle's switch letters ("pq30a0.1", a leading '-' allowed) as Options.
 // Throws OptionError naming an unknown letter, a switch of Triangle's that
-// clmesh does not support, or a malformed number.
+// clmesh does not support (with why), or a malformed number.
 Options parse_switches(const std::string &switches);
 // The same, added to `options` (a command line with several switch words).
 void parse_switches(const std::string &switches, Options &options);

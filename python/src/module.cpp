@@ -11,7 +11,6 @@
 #include <nanobind/stl/unique_ptr.h>
 #include <nanobind/stl/vector.h>
 
-#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -56,7 +55,6 @@ struct Run {
   clmesh::Input input;
   clmesh::Options options;
   clmesh::Mesh mesh;
-  double seconds = 0; // wall time of triangulate(), device wait included
 
   clmesh::MeshView view() const { return clmesh::view_of(mesh); }
 };
@@ -97,9 +95,7 @@ std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &
   run->options.device = device;
   {
     nb::gil_scoped_release unlocked;
-    const auto start = std::chrono::steady_clock::now();
     run->mesh = clmesh::triangulate(run->input, run->options);
-    run->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return run;
 }
@@ -206,7 +202,6 @@ NB_MODULE(_clmesh, m) {
   nb::class_<Run>(m, "Run")
       .def_prop_ro("options", [](const Run &r) { return options_dict(r.options); })
       .def_prop_ro("input_points", [](const Run &r) { return r.mesh.input_points; })
-      .def_prop_ro("seconds", [](const Run &r) { return r.seconds; })
       .def("points",
            [](const Run &r) {
              std::vector<double> xy;

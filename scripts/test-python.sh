@@ -15,7 +15,7 @@ pip=("$venv/bin/python" -m pip --disable-pip-version-check -q)
 # without isolation so that its paths stay the same from run to run.
 "${pip[@]}" install scikit-build-core nanobind ninja numpy pytest triangle
 CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-$(nproc)}" \
-  "${pip[@]}" install --no-build-isolation -C build-dir=build/python .
+  "${pip[@]}" install --no-build-isolation --config-settings=build-dir=build/python .
 # From python/tests, so that the installed package is imported, not the
 # sources in python/clmesh (which lack the compiled module).
 cd python/tests

@@ -2,6 +2,7 @@
 check, -j, determinism, the version."""
 
 import importlib.metadata
+import json
 import os
 import re
 import subprocess
@@ -62,6 +63,29 @@ def test_statistics_have_the_stats_json_keys():
     assert stats["refinement"]["steiner_points"] == len(refined.mesh["vertices"]) - len(
         data["vertices"])
     assert stats["counts"]["triangles"] == len(refined.mesh["triangles"])
+
+
+def _key_tree(value):
+    """The keys of a JSON value, nested (list items by their first one)."""
+    if isinstance(value, dict):
+        return {key: _key_tree(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [_key_tree(value[0])] if value else []
+    return None
+
+
+@pytest.mark.parametrize("name, switches", [
+    ("dots.node", ""), ("dots.node", "-q"), ("face.poly", "-p"), ("face.poly", "-pq30a6.7")])
+def test_statistics_keys_equal_the_command_lines(name, switches, tmp_path):
+    cli = ROOT / "build" / "clmesh"
+    if not cli.exists():
+        pytest.skip("the command line is not built (build/clmesh)")
+    (tmp_path / name).write_bytes((DATASETS / name).read_bytes())
+    stats = tmp_path / "stats.json"
+    subprocess.run([str(cli), "-Q", *([switches] if switches else []), "--stats-json",
+                    str(stats), str(tmp_path / name)], check=True)
+    ours = clmesh.run(load(DATASETS, name.split(".")[0]), switches).statistics()
+    assert _key_tree(ours) == _key_tree(json.loads(stats.read_text()))
 
 
 def test_quality_statistics_equal_triangles_on_the_same_mesh():

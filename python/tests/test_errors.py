@@ -83,3 +83,36 @@ def test_unknown_device_raises_device_error():
 def test_quality_statistics_checks_indices():
     with pytest.raises(clmesh.InputError, match="out of range"):
         clmesh.quality_statistics({"vertices": SQUARE, "triangles": [[0, 1, 9]]})
+
+
+def _garbage(rng, n):
+    """A random array-like: any shape up to 3-D, any dtype, odd values."""
+    kind = rng.integers(6)
+    shape = tuple(int(rng.integers(0, 4 if d else n + 2)) for d in range(rng.integers(0, 4)))
+    if kind == 0:
+        return rng.normal(size=shape) * 10.0 ** rng.integers(-60, 60)
+    if kind == 1:
+        return rng.integers(-3, n + 3, size=shape)
+    if kind == 2:
+        return np.full(shape, rng.choice([np.nan, np.inf, -np.inf, 1e308, 0.0]))
+    if kind == 3:
+        return rng.integers(-2**62, 2**62, size=shape, dtype=np.int64)
+    if kind == 4:
+        return [["x"] * 2] * n
+    return None
+
+
+def test_random_garbage_raises_clmesh_errors_only():
+    rng = np.random.default_rng(29)
+    keys = ["vertex_markers", "vertex_attributes", "segments", "segment_markers", "holes",
+            "regions"]
+    for case in range(300):
+        n = int(rng.integers(0, 8))
+        tri = {"vertices": rng.random((n, 2)) if rng.random() < 0.7 else _garbage(rng, n)}
+        for key in rng.choice(keys, size=int(rng.integers(0, 4)), replace=False):
+            tri[str(key)] = _garbage(rng, n)
+        try:
+            mesh = clmesh.triangulate(tri, str(rng.choice(["", "p", "pc", "pA", "q", "en"])))
+        except clmesh.Error:
+            continue
+        assert mesh["vertices"].shape[1] == 2, case

@@ -71,17 +71,29 @@ def test_same_keys_shapes_and_dtypes(switches):
     assert list(ours) == list(theirs)  # the same key order too
 
 
-@pytest.mark.parametrize("switches", ["", "p", "pA", "pe"])
-def test_markers_and_attributes_match(switches):
-    data = load(DATASETS, "face")
+def _marked(pairs, markers):
+    """Edges or segments with their markers, as a set (order and direction ignored)."""
+    return {tuple(sorted(pair)) + (marker,)
+            for pair, marker in zip(pairs.tolist(), markers.ravel().tolist())}
+
+
+@pytest.mark.parametrize("name", ["face", "la", "A", "square_circle_hole"])
+@pytest.mark.parametrize("switches", ["", "e", "p", "pc", "pe", "pA"])
+def test_markers_segments_and_attributes_match(name, switches):
+    data = load(DATASETS, name)
     ours, theirs = clmesh.triangulate(data, switches), triangle.triangulate(data, switches)
     assert np.array_equal(ours["vertex_markers"], theirs["vertex_markers"])
+    if "p" in switches:
+        assert _marked(ours["segments"], ours["segment_markers"]) == _marked(
+            theirs["segments"], theirs["segment_markers"])
     if "e" in switches:
-        ours_edges = {tuple(sorted(e)) + (m,) for e, m in zip(ours["edges"].tolist(),
-                                                             ours["edge_markers"].ravel().tolist())}
-        theirs_edges = {tuple(sorted(e)) + (m,) for e, m in
-                        zip(theirs["edges"].tolist(), theirs["edge_markers"].ravel().tolist())}
-        assert ours_edges == theirs_edges
+        assert _marked(ours["edges"], ours["edge_markers"]) == _marked(
+            theirs["edges"], theirs["edge_markers"])
+    if "triangle_attributes" in theirs:
+        attribute = {tuple(sorted(t)): a for t, a in zip(theirs["triangles"].tolist(),
+                                                         theirs["triangle_attributes"].ravel())}
+        assert [attribute[tuple(sorted(t))] for t in ours["triangles"].tolist()] == \
+            ours["triangle_attributes"].ravel().tolist()
 
 
 @pytest.mark.parametrize("switches, area", [

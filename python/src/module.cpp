@@ -11,6 +11,7 @@
 #include <nanobind/stl/unique_ptr.h>
 #include <nanobind/stl/vector.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -28,6 +29,26 @@ template <class T> Out<T> array(std::vector<T> &&values, std::size_t rows, std::
   auto *owned = new std::vector<T>(std::move(values));
   nb::capsule owner(owned, [](void *p) noexcept { delete static_cast<std::vector<T> *>(p); });
   return Out<T>(owned->data(), {rows, columns}, owner);
+}
+
+// Rows of three indices (triangles, neighbours) as an int32 (N, 3) array.
+Out<int32_t> index_rows(const std::vector<std::array<int32_t, 3>> &rows) {
+  std::vector<int32_t> values;
+  values.reserve(rows.size() * 3);
+  for (const std::array<int32_t, 3> &row : rows)
+    values.insert(values.end(), row.begin(), row.end());
+  return array(std::move(values), rows.size(), 3);
+}
+
+// Edges or segments as their ends (int32 (N, 2)) and markers (int32 (N, 1)).
+template <class Link> nb::tuple ends_and_markers(const std::vector<Link> &links) {
+  std::vector<int32_t> ends, markers;
+  for (const Link &link : links) {
+    ends.insert(ends.end(), {link.a, link.b});
+    markers.push_back(link.marker);
+  }
+  return nb::make_tuple(array(std::move(ends), links.size(), 2),
+                        array(std::move(markers), links.size(), 1));
 }
 
 // An array given by Python must have `columns` columns (and, when rows >= 0,
@@ -201,7 +222,6 @@ NB_MODULE(_clmesh, m) {
 
   nb::class_<Run>(m, "Run")
       .def_prop_ro("options", [](const Run &r) { return options_dict(r.options); })
-      .def_prop_ro("input_points", [](const Run &r) { return r.mesh.input_points; })
       .def("points",
            [](const Run &r) {
              std::vector<double> xy;
@@ -220,50 +240,17 @@ NB_MODULE(_clmesh, m) {
              return array(std::vector<double>(r.mesh.point_attributes), r.mesh.points.size(),
                           static_cast<std::size_t>(r.mesh.attribute_count));
            })
-      .def("triangles",
-           [](const Run &r) {
-             std::vector<int32_t> v;
-             v.reserve(r.mesh.triangles.size() * 3);
-             for (const clmesh::Triangle &t : r.mesh.triangles)
-               v.insert(v.end(), t.begin(), t.end());
-             return array(std::move(v), r.mesh.triangles.size(), 3);
-           })
+      .def("triangles", [](const Run &r) { return index_rows(r.mesh.triangles); })
       .def("triangle_attributes",
            [](const Run &r) {
              return array(std::vector<double>(r.mesh.triangle_attributes), r.mesh.triangles.size(),
                           static_cast<std::size_t>(r.mesh.triangle_attribute_count));
            })
-      .def("neighbors",
-           [](const Run &r) {
-             std::vector<int32_t> v;
-             v.reserve(r.mesh.neighbors.size() * 3);
-             for (const auto &t : r.mesh.neighbors)
-               v.insert(v.end(), t.begin(), t.end());
-             return array(std::move(v), r.mesh.neighbors.size(), 3);
-           })
-      .def("edges",
-           [](const Run &r) {
-             std::vector<int32_t> ends, markers;
-             for (const clmesh::Edge &e : r.mesh.edges) {
-               ends.insert(ends.end(), {e.a, e.b});
-               markers.push_back(e.marker);
-             }
-             const std::size_t count = markers.size();
-             return nb::make_tuple(array(std::move(ends), count, 2),
-                                   array(std::move(markers), count, 1));
-           })
+      .def("neighbors", [](const Run &r) { return index_rows(r.mesh.neighbors); })
+      .def("edges", [](const Run &r) { return ends_and_markers(r.mesh.edges); })
       .def(
           "segments",
-          [](const Run &r) {
-            std::vector<int32_t> ends, markers;
-            for (const clmesh::Segment &s : clmesh::output_segments(r.view())) {
-              ends.insert(ends.end(), {s.a, s.b});
-              markers.push_back(s.marker);
-            }
-            const std::size_t count = markers.size();
-            return nb::make_tuple(array(std::move(ends), count, 2),
-                                  array(std::move(markers), count, 1));
-          },
+          [](const Run &r) { return ends_and_markers(clmesh::output_segments(r.view())); },
           "The segments that are edges of the mesh (-p), with their output markers.")
       .def(
           "vertex_numbers",

@@ -41,7 +41,8 @@ def _shaped(array, key, columns, rows=None):
         want = f"(N, {columns})" if columns is not None else "(N, K)"
         raise InputError(f"{key}: expected shape {want}, got {array.shape}")
     if rows is not None and array.shape[0] != rows:
-        raise InputError(f"{key}: {array.shape[0]} rows for {rows} vertices or segments")
+        raise InputError(f"{key}: {array.shape[0]} rows, expected {rows} "
+                         "(one per vertex or segment)")
     return array
 
 
@@ -68,7 +69,8 @@ def integers(tri, key, columns, rows=None, limit=None):
     low, high = (0, limit - 1) if limit is not None else (INT32.min, INT32.max)
     if array.size and (array.min() < low or array.max() > high):
         bad = int(np.argwhere((array < low) | (array > high))[0][0])
-        what = f"index out of range (0 to {limit - 1})" if limit is not None else "out of int32 range"
+        what = (f"index out of range (0 to {limit - 1})" if limit is not None
+                else "out of int32 range")
         raise InputError(f"{key}: row {bad} ({array[bad].tolist()}): {what}")
     return np.ascontiguousarray(array.astype(np.int32))
 

@@ -56,7 +56,8 @@ def mesh_dict(run, given):
     if options["pslg"]:
         for key in ("holes", "regions"):
             if given.get(key) is not None:
-                out[key] = np.asarray(given[key], dtype=np.float64).reshape(-1, 2 if key == "holes" else 4)
+                columns = 2 if key == "holes" else 4
+                out[key] = np.asarray(given[key], dtype=np.float64).reshape(-1, columns)
     if options["edges"]:
         edges, edge_markers = run.edges()
         out["edges"] = renumbered(edges)

@@ -38,8 +38,8 @@ def test_errors_in_threads_do_not_disturb_others():
     good = {"vertices": random_points(500, 13)}
     expected = clmesh.triangulate(good)
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
-        futures = [pool.submit(clmesh.triangulate, good if i % 2 else {"vertices": good["vertices"][:2]})
-                   for i in range(8)]
+        bad = {"vertices": good["vertices"][:2]}
+        futures = [pool.submit(clmesh.triangulate, good if i % 2 else bad) for i in range(8)]
         for i, future in enumerate(futures):
             if i % 2:
                 assert _same(future.result(), expected)

@@ -17,6 +17,8 @@ PACKAGES=(
   doctest-dev
   clinfo
   python3
+  python3-venv    # scripts/test-python.sh: a venv for the Python package and its tests
+  python3-dev     # the Python headers the module builds against
   time            # GNU time: bench.py measures each tool's own peak memory with it
 )
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Build clmesh (Release) and run the whole test suite; exits with ctest's status.
+# Build clmesh (Release) and run the whole test suite: ctest, then the Python
+# package's tests (scripts/test-python.sh); exits non-zero when either fails.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -13,4 +14,8 @@ cmake --build build -j"$(nproc)"
 # kernels with LLVM on all of them).  Running two such processes at once on a
 # 2-core machine only oversubscribes the cores and makes per-test timeouts
 # flaky, for little gain.  Set CLMESH_TEST_JOBS to override.
-exec ctest --test-dir build --output-on-failure -j"${CLMESH_TEST_JOBS:-1}"
+status=0
+ctest --test-dir build --output-on-failure -j"${CLMESH_TEST_JOBS:-1}" || status=1
+# The Python package, against the triangle package from PyPI.
+bash scripts/test-python.sh || status=1
+exit "$status"

@@ -511,6 +511,26 @@ TEST_CASE("api: the three triangulate() overloads give the same mesh") {
   CHECK_THROWS_AS(clmesh::triangulate(device(), pslg, "pY"), clmesh::OptionError);
 }
 
+TEST_CASE("api: find_device names the device open_device opens; every spec of it gives one mesh") {
+  const clmesh::DeviceDescription found = clmesh::find_device();
+  CHECK(found.has_fp64);
+  CHECK(clmesh::describe(*clmesh::open_device()) ==
+        found.device_name + " (" + found.platform_name + ")");
+  const std::string spec =
+      std::to_string(found.platform_index) + ":" + std::to_string(found.device_index);
+  const clmesh::DeviceDescription by_spec = clmesh::find_device(spec);
+  CHECK(by_spec.platform_index == found.platform_index);
+  CHECK(by_spec.device_index == found.device_index);
+  CHECK_THROWS_AS(clmesh::find_device("no such device anywhere"), clmesh::DeviceError);
+  // triangulate(input, options) opens the device once for both specs.
+  clmesh::Input points;
+  points.points = fixtures::uniform(300, 5);
+  clmesh::Options options;
+  const clmesh::Mesh by_default = clmesh::triangulate(points, options);
+  options.device = spec;
+  check_same_mesh(by_default, clmesh::triangulate(points, options));
+}
+
 TEST_CASE("api: check_mesh accepts good meshes and finds broken ones") {
   const auto points = fixtures::uniform(400, 4);
   clmesh::Input input;

@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <utility>
 
 namespace clmesh {
 
@@ -122,22 +123,29 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 }
 
 Mesh triangulate(const Input &input, const Options &options) {
-  // One device per process and name: its context and built programs serve
-  // every later call, one call at a time.
+  // One device per process: its context and built programs serve every later
+  // call, one call at a time, whichever spec names it.
   struct Shared {
     std::shared_ptr<Device> device;
     std::mutex busy;
   };
   static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<Shared>> devices;
+  static std::map<std::string, std::shared_ptr<Shared>> by_spec;
+  static std::map<std::pair<int, int>, std::shared_ptr<Shared>> by_device;
   std::shared_ptr<Shared> shared;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    std::shared_ptr<Shared> &slot = devices[options.device];
+    std::shared_ptr<Shared> &slot = by_spec[options.device];
     if (!slot) {
-      auto opened = std::make_shared<Shared>();
-      opened->device = open_device(options.device);
-      slot = opened;
+      const DeviceDescription found = find_device(options.device);
+      std::shared_ptr<Shared> &device = by_device[{found.platform_index, found.device_index}];
+      if (!device) {
+        auto opened = std::make_shared<Shared>();
+        opened->device = open_device(std::to_string(found.platform_index) + ":" +
+                                     std::to_string(found.device_index));
+        device = opened;
+      }
+      slot = device;
     }
     shared = slot;
   }

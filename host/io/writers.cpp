@@ -186,6 +186,21 @@ std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOpti
 // Writing
 // ---------------------------------------------------------------------------
 
+std::vector<Segment> output_segments(const MeshView &mesh) {
+  if (!mesh.segments)
+    throw InternalError("output_segments called without segments");
+  const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
+  std::vector<Segment> segments;
+  segments.reserve(mesh.segments->size());
+  for (const Segment &segment : *mesh.segments) {
+    auto edge = on_boundary.find(edge_key(segment.a, segment.b));
+    if (edge == on_boundary.end())
+      continue; // no edge of the mesh: eaten with a hole or the exterior
+    segments.push_back(Segment{segment.a, segment.b, segment_marker(segment, edge->second)});
+  }
+  return segments;
+}
+
 OutputBatch::~OutputBatch() {
   for (const auto &file : files_)
     std::remove(file.first.c_str());
@@ -351,21 +366,11 @@ void OutputBatch::write_poly(const std::string &path, const MeshView &mesh,
                              const WriteOptions &options) {
   if (!mesh.segments)
     throw InternalError("write_poly called without segments");
-  const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
-  struct Written {
-    int32_t a, b;
-    int marker;
-  };
-  std::vector<Written> segments;
-  segments.reserve(mesh.segments->size());
-  for (const Segment &segment : *mesh.segments) {
-    auto edge = on_boundary.find(edge_key(segment.a, segment.b));
-    if (edge == on_boundary.end())
-      continue; // no edge of the mesh: eaten with a hole or the exterior
-    segments.push_back(Written{written_vertex(numbers, segment.a, options),
-                               written_vertex(numbers, segment.b, options),
-                               segment_marker(segment, edge->second)});
+  std::vector<Segment> segments = output_segments(mesh);
+  for (Segment &segment : segments) {
+    segment.a = written_vertex(numbers, segment.a, options);
+    segment.b = written_vertex(numbers, segment.b, options);
   }
   const int flag = options.boundary_markers ? 1 : 0;
   TextFile file(temporary_for(path), path);

@@ -211,7 +211,10 @@ std::vector<DeviceDescription> list_devices() {
   return descriptions;
 }
 
-std::shared_ptr<Device> open_device(const std::string &requested) {
+namespace {
+
+// The device a spec names (see open_device()).
+FoundDevice select_device(const std::string &requested) {
   std::string spec = requested;
   if (spec.empty())
     if (const char *env = std::getenv("CLMESH_DEVICE"))
@@ -226,11 +229,20 @@ std::shared_ptr<Device> open_device(const std::string &requested) {
       throw DeviceError("device '" + found[i].description.device_name +
                         "' lacks double precision (cl_khr_fp64), which clmesh's exact "
                         "predicates require");
-    return std::make_shared<Device>(found[i].device, found[i].description);
+    return found[i];
   }
   if (spec.empty())
     throw DeviceError("no OpenCL device with double precision (cl_khr_fp64) found");
   throw DeviceError("no OpenCL device matches '" + spec + "' (see clmesh --list-devices)");
+}
+
+} // namespace
+
+DeviceDescription find_device(const std::string &spec) { return select_device(spec).description; }
+
+std::shared_ptr<Device> open_device(const std::string &spec) {
+  FoundDevice found = select_device(spec);
+  return std::make_shared<Device>(found.device, found.description);
 }
 
 std::string describe(const Device &device) {
@@ -254,7 +266,7 @@ DevicePaths device_paths_from_environment() {
   if (value == "cpu")
     return DevicePaths::cpu;
   throw OptionError("CLMESH_DEVICE_PATHS must be 'gpu', 'cpu' or 'auto', not '" + std::string(env) +
-                   "'");
+                    "'");
 }
 
 Device::Device(cl::Device device, DeviceDescription description, DevicePaths paths)

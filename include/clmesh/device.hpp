@@ -25,6 +25,9 @@ class Device;
 // device in list order) or a case-insensitive substring of "platform device".
 // Throws DeviceError when nothing matches or the device lacks cl_khr_fp64.
 std::shared_ptr<Device> open_device(const std::string &spec = "");
+// The device open_device(spec) opens, without opening it. Throws DeviceError
+// as open_device() does.
+DeviceDescription find_device(const std::string &spec = "");
 
 // Human-readable "device name (platform name)".
 std::string describe(const Device &device);

@@ -119,6 +119,12 @@ std::vector<int> output_vertex_markers(const MeshView &mesh);
 // are renumbered consecutively in input order, as Triangle's -j does.
 std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOptions &options);
 
+// -p: the segments of mesh.segments that are edges of the mesh (those eaten
+// with a hole or the exterior are left out, as Triangle deletes them), with
+// their output markers (a segment's own, else 1 on the mesh boundary, else
+// 0), in input numbering: what the output .poly lists.
+std::vector<Segment> output_segments(const MeshView &mesh);
+
 // Output files are first written beside their final name (under a name no
 // file has) and renamed into place only when every file of the batch was
 // written, so a failure never leaves a partial file behind. Writing to a name

@@ -19,8 +19,8 @@ namespace clmesh {
 Mesh triangulate(Device &device, const Input &input, const Options &options);
 // The same with Triangle's switch letters: triangulate(device, input, "pq30").
 Mesh triangulate(Device &device, const Input &input, const std::string &switches);
-// On the device options.device names, opened once per process and name;
-// calls from several threads take the device one at a time.
+// On the device options.device names, opened once per process (whichever
+// spec names it); calls from several threads take the device one at a time.
 Mesh triangulate(const Input &input, const Options &options);
 
 } // namespace clmesh

@@ -1,0 +1,126 @@
+"""clmesh: 2D Delaunay, constrained Delaunay and quality meshes on OpenCL.
+
+A drop-in for the triangle package (``import clmesh as triangle``)::
+
+    import clmesh
+    mesh = clmesh.triangulate(dict(vertices=points, segments=segments), "pq30")
+
+Dictionaries, keys, dtypes and zero-based indices are the triangle
+package's; the switches are Triangle's letters as the clmesh command line
+takes them (``z`` is implied, as there). Meshing runs with the GIL released, on one
+OpenCL context per process and device whose built kernels serve every call.
+"""
+
+import json
+
+from . import _clmesh
+from ._errors import (CheckError, DeviceError, Error, InputError, InternalError, OpenCLError,
+                      OptionError)
+from ._input import arrays as _arrays
+from ._output import mesh_dict as _mesh_dict
+
+__version__ = _clmesh.version
+
+__all__ = [
+    "triangulate", "delaunay", "convex_hull", "run", "Result", "devices", "statistics",
+    "quality_statistics", "check_mesh", "Error", "InputError", "OptionError", "DeviceError",
+    "OpenCLError", "InternalError", "CheckError",
+]
+
+
+def devices():
+    """The OpenCL devices: dicts with spec ("P:D", for device=), platform,
+    name, version and fp64 (clmesh needs double precision)."""
+    return _clmesh.devices()
+
+
+def _device_spec(device):
+    if device is None:
+        return ""  # $CLMESH_DEVICE, else the first device with fp64
+    if isinstance(device, dict):
+        return device["spec"]
+    if isinstance(device, bool) or not isinstance(device, (str, int)):
+        raise DeviceError(f"device: expected a spec string, an index or a devices() entry, "
+                          f"got {device!r}")
+    return str(device)
+
+
+def _switches(opts):
+    if not isinstance(opts, str):
+        raise OptionError(f"switches: expected a string such as 'pq30a0.1', got {opts!r}")
+    return opts
+
+
+class Result:
+    """One triangulation: ``mesh`` (the triangle package's output dict), and
+    the statistics, quality statistics and exact check of the run."""
+
+    def __init__(self, run, mesh):
+        self._run = run
+        self.mesh = mesh
+
+    def statistics(self):
+        """The run's timings and counts, as ``clmesh --stats-json`` writes them."""
+        return json.loads(self._run.statistics_json())
+
+    def quality_statistics(self):
+        """Triangle's -V mesh quality statistics (angles, areas, aspect ratios)."""
+        return self._run.quality_statistics()
+
+    def check(self):
+        """The problems the exact check (-C) finds; an empty list for a valid mesh."""
+        return list(self._run.check())
+
+
+def run(tri, opts="", device=None):
+    """triangulate() that also keeps what the run counted: a Result."""
+    switches = _switches(opts)
+    given = _arrays(tri)
+    core = _clmesh.triangulate(**given, switches=switches, device=_device_spec(device))
+    result = Result(core, _mesh_dict(core, tri))
+    if core.options["check"]:
+        problems = result.check()
+        if problems:
+            raise CheckError("the mesh fails the exact check: " + "; ".join(problems))
+    return result
+
+
+def triangulate(tri, opts="", device=None):
+    """The mesh of `tri` (a dict with vertices, and optionally vertex_markers,
+    vertex_attributes, segments, segment_markers, holes, regions) with
+    Triangle's switches `opts`, as a dict of NumPy arrays as the triangle
+    package returns it. Raises InputError, OptionError, DeviceError."""
+    return run(tri, opts, device).mesh
+
+
+def delaunay(pts, device=None):
+    """The Delaunay triangles of the points (int32, (M, 3))."""
+    return triangulate({"vertices": pts}, "", device)["triangles"]
+
+
+def convex_hull(pts, device=None):
+    """The convex hull's edges (int32, (H, 2)), clockwise as in the triangle package."""
+    return triangulate({"vertices": pts}, "c", device)["segments"]
+
+
+def statistics(result):
+    """The timings and counts of a Result from run(), as --stats-json writes them."""
+    return result.statistics()
+
+
+def quality_statistics(mesh):
+    """Triangle's -V quality statistics of a Result, or of any dict with
+    vertices and triangles (another mesher's too)."""
+    if isinstance(mesh, Result):
+        return mesh.quality_statistics()
+    from ._input import floats, integers
+    vertices = floats(mesh, "vertices", 2)
+    if vertices is None or mesh.get("triangles") is None:
+        raise InputError("quality_statistics: expected a dict with 'vertices' and 'triangles'")
+    return _clmesh.quality_statistics(vertices, integers(mesh, "triangles", 3,
+                                                         limit=vertices.shape[0]))
+
+
+def check_mesh(result):
+    """The problems the exact check (-C) finds in a Result's mesh; empty when valid."""
+    return result.check()

@@ -1,0 +1,296 @@
+// clmesh._clmesh — the library for Python. Arrays come in already shaped
+// and typed by clmesh/_input.py (this side checks the shapes again, so that no
+// call can read out of bounds); a Run keeps the input, options and mesh of
+// one triangulate() call, run with the GIL released on the process's shared
+// device, and hands its parts out as new NumPy arrays.
+#include <clmesh/clmesh.hpp>
+
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/unique_ptr.h>
+#include <nanobind/stl/vector.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace nb = nanobind;
+
+namespace {
+
+template <class T> using In = nb::ndarray<const T, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+template <class T> using Out = nb::ndarray<nb::numpy, T>;
+
+// `values` as a new NumPy array of `rows` rows that owns them.
+template <class T> Out<T> array(std::vector<T> &&values, std::size_t rows, std::size_t columns) {
+  auto *owned = new std::vector<T>(std::move(values));
+  nb::capsule owner(owned, [](void *p) noexcept { delete static_cast<std::vector<T> *>(p); });
+  return Out<T>(owned->data(), {rows, columns}, owner);
+}
+
+// Rows of three indices (triangles, neighbours) as an int32 (N, 3) array.
+Out<int32_t> index_rows(const std::vector<std::array<int32_t, 3>> &rows) {
+  std::vector<int32_t> values;
+  values.reserve(rows.size() * 3);
+  for (const std::array<int32_t, 3> &row : rows)
+    values.insert(values.end(), row.begin(), row.end());
+  return array(std::move(values), rows.size(), 3);
+}
+
+// Edges or segments as their ends (int32 (N, 2)) and markers (int32 (N, 1)).
+template <class Link> nb::tuple ends_and_markers(const std::vector<Link> &links) {
+  std::vector<int32_t> ends, markers;
+  for (const Link &link : links) {
+    ends.insert(ends.end(), {link.a, link.b});
+    markers.push_back(link.marker);
+  }
+  return nb::make_tuple(array(std::move(ends), links.size(), 2),
+                        array(std::move(markers), links.size(), 1));
+}
+
+// An array given by Python must have `columns` columns (and, when rows >= 0,
+// that many rows).
+template <class T>
+void require_shape(const In<T> &values, const char *name, std::size_t columns, long rows = -1) {
+  if (values.shape(1) != columns || (rows >= 0 && values.shape(0) != static_cast<size_t>(rows)))
+    throw clmesh::InputError("input", 0,
+                             std::string(name) + " has shape (" + std::to_string(values.shape(0)) +
+                                 ", " + std::to_string(values.shape(1)) + "), expected " +
+                                 (rows >= 0 ? "(" + std::to_string(rows) : std::string("(N")) +
+                                 ", " + std::to_string(columns) + ")");
+}
+
+std::vector<clmesh::Point> points_of(const In<double> &xy, const char *name) {
+  require_shape(xy, name, 2);
+  std::vector<clmesh::Point> points(xy.shape(0));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = {xy(i, 0), xy(i, 1)};
+  return points;
+}
+
+// One triangulate() call: what went in, and what came out.
+struct Run {
+  clmesh::Input input;
+  clmesh::Options options;
+  clmesh::Mesh mesh;
+
+  clmesh::MeshView view() const { return clmesh::view_of(mesh); }
+};
+
+std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &vertex_markers,
+                                 const In<double> &vertex_attributes, const In<int32_t> &segments,
+                                 const In<int32_t> &segment_markers, const In<double> &holes,
+                                 const In<double> &regions, const std::string &switches,
+                                 const std::string &device) {
+  auto run = std::make_unique<Run>();
+  clmesh::Input &input = run->input;
+  input.points = points_of(vertices, "vertices");
+  const long n = static_cast<long>(input.points.size());
+  if (vertex_markers.shape(0) != 0) {
+    require_shape(vertex_markers, "vertex_markers", 1, n);
+    input.point_markers.assign(vertex_markers.data(), vertex_markers.data() + n);
+  }
+  if (vertex_attributes.shape(1) != 0) {
+    require_shape(vertex_attributes, "vertex_attributes", vertex_attributes.shape(1), n);
+    input.attribute_count = static_cast<int>(vertex_attributes.shape(1));
+    input.point_attributes.assign(vertex_attributes.data(),
+                                  vertex_attributes.data() + vertex_attributes.size());
+  }
+  require_shape(segments, "segments", 2);
+  const long m = static_cast<long>(segments.shape(0));
+  if (segment_markers.shape(0) != 0)
+    require_shape(segment_markers, "segment_markers", 1, m);
+  input.segments.resize(segments.shape(0));
+  for (long s = 0; s < m; ++s)
+    input.segments[s] = {segments(s, 0), segments(s, 1),
+                         segment_markers.shape(0) != 0 ? segment_markers(s, 0) : 0};
+  input.holes = points_of(holes, "holes");
+  require_shape(regions, "regions", 4);
+  for (std::size_t r = 0; r < regions.shape(0); ++r)
+    input.regions.push_back({{regions(r, 0), regions(r, 1)}, regions(r, 2), regions(r, 3)});
+  run->options = clmesh::parse_switches(switches);
+  run->options.zero_based = true; // as the triangle package, which always adds -z
+  run->options.device = device;
+  {
+    nb::gil_scoped_release unlocked;
+    run->mesh = clmesh::triangulate(run->input, run->options);
+  }
+  return run;
+}
+
+nb::dict quality_dict(const clmesh::QualityStatistics &q) {
+  nb::dict d;
+  d["triangles"] = q.triangles;
+  d["smallest_area"] = q.smallest_area;
+  d["largest_area"] = q.largest_area;
+  d["shortest_edge"] = q.shortest_edge;
+  d["longest_edge"] = q.longest_edge;
+  d["shortest_altitude"] = q.shortest_altitude;
+  d["largest_aspect_ratio"] = q.largest_aspect_ratio;
+  d["smallest_angle"] = q.smallest_angle;
+  d["largest_angle"] = q.largest_angle;
+  d["aspect_ratio_histogram"] =
+      std::vector<long>(q.aspect_ratio_histogram.begin(), q.aspect_ratio_histogram.end());
+  d["angle_histogram"] = std::vector<long>(q.angle_histogram.begin(), q.angle_histogram.end());
+  return d;
+}
+
+// Triangle's quality statistics of any triangles over any vertices (a mesh
+// from another mesher too).
+nb::dict quality_of(const In<double> &vertices, const In<int32_t> &triangles) {
+  clmesh::Mesh mesh;
+  mesh.points = points_of(vertices, "vertices");
+  require_shape(triangles, "triangles", 3);
+  const auto n = static_cast<int32_t>(mesh.points.size());
+  mesh.triangles.resize(triangles.shape(0));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int32_t v = triangles(t, i);
+      if (v < 0 || v >= n)
+        throw clmesh::InputError("input", 0,
+                                 "triangle " + std::to_string(t) + ": vertex " + std::to_string(v) +
+                                     " out of range (" + std::to_string(n) + " vertices)");
+      mesh.triangles[t][i] = v;
+    }
+  return quality_dict(clmesh::quality_statistics(mesh));
+}
+
+// The switches that decide which arrays Python returns.
+nb::dict options_dict(const clmesh::Options &o) {
+  nb::dict d;
+  d["pslg"] = o.pslg;
+  d["convex_hull"] = o.convex_hull;
+  d["regional_attributes"] = o.regional_attributes;
+  d["quality"] = o.quality;
+  d["refined"] = o.quality || o.max_area.has_value();
+  d["edges"] = o.edges;
+  d["neighbors"] = o.neighbors;
+  d["jettison"] = o.jettison;
+  d["no_boundary_markers"] = o.no_boundary_markers;
+  d["no_node_file"] = o.no_node_file;
+  d["no_ele_file"] = o.no_ele_file;
+  d["check"] = o.check;
+  return d;
+}
+
+nb::list devices() {
+  nb::list list;
+  for (const clmesh::DeviceDescription &d : clmesh::list_devices()) {
+    nb::dict entry;
+    entry["spec"] = std::to_string(d.platform_index) + ":" + std::to_string(d.device_index);
+    entry["platform"] = d.platform_name;
+    entry["name"] = d.device_name;
+    entry["version"] = d.version;
+    entry["fp64"] = d.has_fp64;
+    list.append(entry);
+  }
+  return list;
+}
+
+// The library's errors as the Python classes of clmesh/_errors.py.
+void translate_error(const std::exception_ptr &error, void *) {
+  const auto raise = [](const char *name, const std::exception &e) {
+    nb::object type = nb::module_::import_("clmesh._errors").attr(name);
+    PyErr_SetString(type.ptr(), e.what());
+  };
+  try {
+    std::rethrow_exception(error);
+  } catch (const clmesh::InputError &e) {
+    raise("InputError", e);
+  } catch (const clmesh::OptionError &e) {
+    raise("OptionError", e);
+  } catch (const clmesh::DeviceError &e) {
+    raise("DeviceError", e);
+  } catch (const clmesh::OpenCLError &e) {
+    raise("OpenCLError", e);
+  } catch (const clmesh::InternalError &e) {
+    raise("InternalError", e);
+  } catch (const clmesh::Error &e) {
+    raise("Error", e);
+  }
+}
+
+} // namespace
+
+NB_MODULE(_clmesh, m) {
+  m.doc() = "clmesh's compiled core; use the clmesh package.";
+  nb::register_exception_translator(translate_error);
+  m.attr("version") = CLMESH_VERSION_STRING;
+
+  nb::class_<Run>(m, "Run")
+      .def_prop_ro("options", [](const Run &r) { return options_dict(r.options); })
+      .def("points",
+           [](const Run &r) {
+             std::vector<double> xy;
+             xy.reserve(r.mesh.points.size() * 2);
+             for (const clmesh::Point &p : r.mesh.points)
+               xy.insert(xy.end(), {p.x, p.y});
+             return array(std::move(xy), r.mesh.points.size(), 2);
+           })
+      .def("point_markers",
+           [](const Run &r) {
+             std::vector<int32_t> markers(r.mesh.point_markers.begin(), r.mesh.point_markers.end());
+             return array(std::move(markers), r.mesh.point_markers.size(), 1);
+           })
+      .def("point_attributes",
+           [](const Run &r) {
+             return array(std::vector<double>(r.mesh.point_attributes), r.mesh.points.size(),
+                          static_cast<std::size_t>(r.mesh.attribute_count));
+           })
+      .def("triangles", [](const Run &r) { return index_rows(r.mesh.triangles); })
+      .def("triangle_attributes",
+           [](const Run &r) {
+             return array(std::vector<double>(r.mesh.triangle_attributes), r.mesh.triangles.size(),
+                          static_cast<std::size_t>(r.mesh.triangle_attribute_count));
+           })
+      .def("neighbors", [](const Run &r) { return index_rows(r.mesh.neighbors); })
+      .def("edges", [](const Run &r) { return ends_and_markers(r.mesh.edges); })
+      .def(
+          "segments",
+          [](const Run &r) { return ends_and_markers(clmesh::output_segments(r.view())); },
+          "The segments that are edges of the mesh (-p), with their output markers.")
+      .def(
+          "vertex_numbers",
+          [](const Run &r) {
+            clmesh::WriteOptions jettison;
+            jettison.jettison_duplicates = true;
+            std::vector<int32_t> numbers = clmesh::output_vertex_numbers(r.view(), jettison);
+            const std::size_t count = numbers.size();
+            return array(std::move(numbers), count, 1);
+          },
+          "-j: each vertex's number in the output, -1 for one left out.")
+      .def(
+          "statistics_json",
+          [](const Run &r) {
+            clmesh::RunSeconds seconds;
+            seconds.compute = r.mesh.statistics.delaunay.compute_seconds;
+            return clmesh::statistics_json(r.mesh, seconds);
+          },
+          "The statistics as --stats-json writes them.")
+      .def("quality_statistics",
+           [](const Run &r) { return quality_dict(clmesh::quality_statistics(r.mesh)); })
+      .def(
+          "check",
+          [](const Run &r) {
+            nb::gil_scoped_release unlocked;
+            return clmesh::check_mesh(r.input, r.mesh, r.options).problems;
+          },
+          "The problems the exact check (-C) finds; empty for a valid mesh.");
+
+  m.def("triangulate", &triangulate, nb::arg("vertices"), nb::arg("vertex_markers"),
+        nb::arg("vertex_attributes"), nb::arg("segments"), nb::arg("segment_markers"),
+        nb::arg("holes"), nb::arg("regions"), nb::arg("switches"), nb::arg("device"));
+  m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
+  m.def("devices", &devices);
+  m.def(
+      "parse_switches",
+      [](const std::string &switches) {
+        const clmesh::Options options = clmesh::parse_switches(switches);
+        clmesh::validate(options);
+        return options_dict(options);
+      },
+      nb::arg("switches"));
+}

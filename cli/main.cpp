@@ -389,8 +389,8 @@ void warn_refinement(const clmesh::Options &options, const clmesh::RefineStats &
   case RefineStop::done:
     if (bad > 0)
       std::fprintf(stderr,
-                   "Warning:  %ld triangles keep angles below the bound at hull angles of the "
-                   "input sharper than it, which no Steiner point mends.\n",
+                   "Warning:  %ld triangles keep angles below the bound at small angles of the "
+                   "input (hull corners, segments meeting), which no Steiner point mends.\n",
                    bad);
     return;
   case RefineStop::steiner_limit:
@@ -407,9 +407,10 @@ void warn_refinement(const clmesh::Options &options, const clmesh::RefineStats &
     return;
   case RefineStop::angle_bound:
     std::fprintf(stderr,
-                 "%s: refinement to minimum angles above about 33 degrees (-q%g) need not "
-                 "terminate; %ld triangles still miss the bound.\n",
-                 full, options.min_angle, bad);
+                 "Warning:  refinement stopped after %ld Steiner points: refinement to minimum "
+                 "angles above about 33 degrees (-q%g) need not terminate (-S sets another "
+                 "limit); %ld triangles still miss the bound.\n",
+                 refinement.inserted, options.min_angle, bad);
     return;
   case RefineStop::device_memory:
     std::fprintf(stderr, "%s for this input; %ld triangles still miss the bounds.\n", full, bad);

@@ -252,3 +252,22 @@ TEST_CASE("quality pslg: -D makes every triangle Delaunay, subsegments included"
   CHECK_FALSE(clmesh::check_mesh(water, constrained, clmesh::parse_switches("pq25D")).ok);
   CHECK(conforming.points.size() > constrained.points.size());
 }
+
+TEST_CASE("quality pslg: above about 33 degrees refinement stops at its limit, or -S's") {
+  // la.poly at -q34.5: Triangle ends there, clmesh's refinement does not; it stops at 100
+  // Steiner points per input point, with a valid mesh, the same on every run.
+  const clmesh::Input la = load("triangle-examples/inputs", "la");
+  const clmesh::Options options = clmesh::parse_switches("pq34.5");
+  const clmesh::Mesh mesh = clmesh::triangulate(device(), la, options);
+  CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::angle_bound);
+  const long steiner = static_cast<long>(mesh.points.size()) - mesh.input_points;
+  CHECK(steiner <= 100 * mesh.input_points);
+  CHECK(steiner > 90 * mesh.input_points);
+  CHECK(mesh.statistics.refinement.remaining_bad > 0);
+  INFO(problems(clmesh::check_mesh(la, mesh, options)));
+  CHECK(clmesh::check_mesh(la, mesh, options).ok);
+  test_support::check_same_mesh(clmesh::triangulate(device(), la, options), mesh);
+  const clmesh::Mesh capped = clmesh::triangulate(device(), la, "pq34.5S500");
+  CHECK(capped.statistics.refinement.stop_reason == clmesh::RefineStop::steiner_limit);
+  CHECK(static_cast<long>(capped.points.size()) - capped.input_points == 500);
+}

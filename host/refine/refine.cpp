@@ -126,6 +126,23 @@ void check_area_bound(const Device &device, const std::vector<Point> &points,
            : std::string()));
 }
 
+// Refinement to minimum angles above about 33 degrees need not end (each
+// Steiner point may call for another, without end): without -S, it stops at
+// kAngleLimitFactor Steiner points per input point, beyond what the area
+// bound needs, so that such a run ends the same on every device, whatever
+// its memory. Triangle's own -q34 on coastlines and CAD outlines adds 5 to 25
+// points per input point where it ends.
+constexpr double kAngleLimitFactor = 100;
+
+std::size_t steiner_limit(std::size_t n, const RefineOptions &options, const RefineStats &stats) {
+  if (options.max_steiner)
+    return static_cast<std::size_t>(*options.max_steiner);
+  if (options.min_angle <= 33)
+    return std::numeric_limits<std::size_t>::max();
+  return static_cast<std::size_t>(kAngleLimitFactor * static_cast<double>(n) +
+                                  2 * stats.area_bound_points);
+}
+
 // First room for Steiner points (thesis §3.6.1: the arrays grow when it runs
 // out). A growth copies every array and builds the steps again, and the
 // search after it sweeps every slot, so the first room is what refinement to
@@ -193,8 +210,7 @@ public:
         // construction (and grid) built them.
         scheduler_(device, points, options.delaunay, result.mesh.stats,
                    first_room(device, points.size(), options) + (pslg ? crossing_room(*pslg) : 0)),
-        limit_(options.max_steiner ? static_cast<std::size_t>(*options.max_steiner)
-                                   : std::numeric_limits<std::size_t>::max()) {}
+        limit_(steiner_limit(points.size(), options, result.stats)) {}
 
   // GPU-DT, and for a PSLG GPU-CDT and its domain; false when all points
   // are collinear (the result then holds them without triangles).
@@ -236,8 +252,7 @@ public:
       if (bad == 0)
         break;
       if (iteration == kMaxIterations || steiner_ >= limit_) {
-        stats_.stop_reason =
-            steiner_ >= limit_ ? RefineStop::steiner_limit : RefineStop::iteration_limit;
+        stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
         break;
       }
       const Room room = make_room(candidates);
@@ -254,7 +269,7 @@ public:
         // The arrays did not grow past the -S limit, or every candidate fell
         // on a vertex.
         stats_.stop_reason =
-            steiner_ + candidates > limit_ ? RefineStop::steiner_limit : RefineStop::no_insertion;
+            steiner_ + candidates > limit_ ? limit_reason() : RefineStop::no_insertion;
         break;
       }
       const std::size_t inserted = insert_survivors(added);
@@ -285,6 +300,11 @@ public:
 
 private:
   enum class Room { enough, grown, exhausted };
+
+  // Why the Steiner point limit is what it is: -S, or the angle bound.
+  RefineStop limit_reason() const {
+    return options_.max_steiner ? RefineStop::steiner_limit : RefineStop::angle_bound;
+  }
 
   // GPU-CDT, the exterior and holes removed, and the domain closed by ghosts.
   // With -c the domain is the convex hull (less the holes), and its hull

@@ -52,7 +52,9 @@ enum class RefineStop {
   done,            // no triangle left to mend (those at hull angles below the bound stay)
   steiner_limit,   // the -S limit was reached
   area_bound,      // out of device memory: the area bound (-a) needs more points
-  angle_bound,     // out of device memory: angles above about 33 degrees need not terminate
+  angle_bound,     // angles above about 33 degrees need not terminate: without -S refinement
+                   // stops at 100 Steiner points per input point (beyond what -a needs),
+                   // or when the device's memory is full
   device_memory,   // out of device memory, with neither bound to blame (a large input)
   iteration_limit, // the bound on iterations was reached
   no_insertion,    // no candidate could be inserted

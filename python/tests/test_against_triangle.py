@@ -107,7 +107,7 @@ def test_quality_mesh_of_points(switches, area):
     ((DATASETS, "square_circle_hole"), "pq30a0.015", 0.015),
     ((DATASETS, "face"), "pq30a6.7", 6.7),
     ((DATASETS, "double_hex"), "pq30a0.0003", 0.0003),
-    ((DATASETS, "la"), "pa0.16", 0.16),
+    ((DATASETS, "la"), "pq30a0.16", 0.16),
     ((SHARED / "pslg", "water2"), "pa2553", 2553),
 ], ids=lambda value: ident(value) if isinstance(value, tuple) else str(value))
 def test_quality_mesh_of_pslg(case, switches, area):

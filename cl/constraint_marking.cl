@@ -201,12 +201,14 @@ inline int mark_constraint(__global const double2 *points, __global const int *t
   return max_steps;
 }
 
-__kernel void mark_constraint_triangles(
-    CLM_TRIANGULATION_PARAMS, __global const int *walk_order, __global const int *segment_a,
-    __global const int *segment_b, __global int *segment_state, __global int *split_vertex,
-    __global int *crossed_vertex, __global int *crossed_triangle,
-    volatile __global int *constraint_mark, volatile __global int *counters, const int max_steps,
-    const int m) {
+__kernel void mark_constraint_triangles(CLM_TRIANGULATION_PARAMS, __global const int *walk_order,
+                                        __global const int *segment_a,
+                                        __global const int *segment_b, __global int *segment_state,
+                                        __global int *split_vertex, __global int *crossed_vertex,
+                                        __global int *crossed_triangle,
+                                        volatile __global int *constraint_mark,
+                                        volatile __global int *counters, const int max_steps,
+                                        const int m) {
   // counters[0]: segments still pending, [1]: constraint-triangle intersections,
   // [2]: segments to split, crossing another, or lost (read back only then)
   const int gid = get_global_id(0), s = gid < m ? walk_order[gid] : -1;

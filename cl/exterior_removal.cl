@@ -58,8 +58,8 @@ __kernel void seed_from_points(CLM_TRIANGULATION_PARAMS, __global const double2 
 
 // Regional attributes (-A): region r's seed floods its area, bounded by
 // constraints; regions are run in order, so a later seed in the same area wins.
-__kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed,
-                         const double2 seed, const int start, const int max_steps, const int region,
+__kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed, const double2 seed,
+                         const int start, const int max_steps, const int region,
                          __global int *label, __global int *frontier,
                          volatile __global int *count) {
   if (get_global_id(0) != 0)

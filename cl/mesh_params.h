@@ -19,18 +19,24 @@
 // the constraints as rows per vertex, and whether there are any;
 // original_id: input number of a point; duplicate_of: -1 or the point a
 // duplicate stands for; location, location_edge: where a point waiting for
-// insertion lies. Every one of them exists from upload on.
+// insertion lies; tri_region, regional: with regions (a PSLG refined with
+// regional area bounds or attributes), the region of each triangle slot
+// (-1: none), kept by every step that rewrites triangles (a flip never
+// crosses a segment, so it leaves both slots in their region), and whether
+// it is in use (else tri_region has one entry). Every one of them exists
+// from upload on.
 #define CLM_TRIANGULATION_PARAMS                                                                   \
   __global double2 *points, __global int *tri_vertex, __global int *tri_neighbor,                  \
       volatile __global uint *tri_mark, __global int *modified_stamp, __global int *children,      \
       __global int *vertex_triangle, __global const int *constraint_start,                         \
       __global const int *constraint_adjacent, const int constrained, __global int *original_id,   \
-      __global int *duplicate_of, __global int *location, __global int *location_edge
+      __global int *duplicate_of, __global int *location, __global int *location_edge,             \
+      __global int *tri_region, const int regional
 
 #define CLM_TRIANGULATION_ARGS                                                                     \
   points, tri_vertex, tri_neighbor, tri_mark, modified_stamp, children, vertex_triangle,           \
       constraint_start, constraint_adjacent, constrained, original_id, duplicate_of, location,     \
-      location_edge
+      location_edge, tri_region, regional
 
 // Refinement adds per point: point_state (refinement.h), insertion_radius2,
 // point_priority, point_segment (refinement.h); and the segments:

@@ -169,6 +169,8 @@ __kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *rema
                    n1);
     record_children(modified_stamp, children, t, stamp, t, s1, s2);
     modified_stamp[s1] = modified_stamp[s2] = stamp; // new slots: changed too
+    if (regional)
+      tri_region[s1] = tri_region[s2] = tri_region[t];
     out[0] = t;
     out[1] = s1;
     out[2] = s2;
@@ -192,6 +194,10 @@ __kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *rema
     record_children(modified_stamp, children, t, stamp, t, s1, -1);
     record_children(modified_stamp, children, u, stamp, u, s2, -1);
     modified_stamp[s1] = modified_stamp[s2] = stamp; // new slots: changed too
+    if (regional) { // each side of the edge (a subsegment, perhaps) keeps its region
+      tri_region[s1] = tri_region[t];
+      tri_region[s2] = tri_region[u];
+    }
     out[0] = t;
     out[1] = s1;
     out[2] = u;

@@ -106,6 +106,17 @@ inline bool across_input_angle(__global const double2 *points, __global const in
   return false;
 }
 
+// The area bound of triangle slot t: -a's (max_area, <= 0: none) and, with
+// regions, its region's (region_area, <= 0: none), the smaller.
+inline double area_bound_of(__global const int *tri_region, int regional,
+                            __global const double *region_area, double max_area, int t) {
+  const int r = regional ? tri_region[t] : -1;
+  const double bound = r >= 0 ? region_area[r] : -1;
+  if (bound <= 0)
+    return max_area;
+  return max_area > 0 ? fmin(max_area, bound) : bound;
+}
+
 // Do all three corners of tri lie on one segment (at least one added on it)?
 // Rounded split points leave a segment a hair from straight, so flips may
 // make such a sliver; splitting it would only make more.
@@ -205,8 +216,9 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
 
 __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
                                  const double ratio_bound_squared, const double max_area,
-                                 const double offconstant, const int conforming,
-                                 __global int *is_bad, const int election, const int n) {
+                                 __global const double *region_area, const double offconstant,
+                                 const int conforming, __global int *is_bad, const int election,
+                                 const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -220,10 +232,10 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   uint priority;
   const bool bad =
       !is_ghost(tri) && !is_dead(tri) &&
-      bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
-                             ratio_bound_squared, max_area, offconstant,
-                             conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), &steiner,
-                             &priority);
+      bad_triangle_candidate(
+          points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+          area_bound_of(tri_region, regional, region_area, max_area, t), offconstant,
+          conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), &steiner, &priority);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -232,15 +244,16 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
 // counts[0]: the bad triangles whose smallest angle is at an acute hull
 // vertex (left as they are), counted at the end over every slot.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
-                                        const double max_area, volatile __global int *counts,
-                                        const int n) {
+                                        const double max_area, __global const double *region_area,
+                                        volatile __global int *counts, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
-  if (assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area)
+  if (assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+             area_bound_of(tri_region, regional, region_area, max_area, t))
           .unfixable)
     atomic_inc(counts);
 }
@@ -448,12 +461,14 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void
-locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
-                  const double ratio_bound_squared, const double max_area, const double offconstant,
-                  const int conforming, __global double2 *candidate, __global int *container,
-                  __global int *split_edge, __global const int *origin, __global uint *priority,
-                  __global double *radius2, const double lens, const int max_steps, const int n) {
+__kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
+                                const int located_stamp, const double ratio_bound_squared,
+                                const double max_area, __global const double *region_area,
+                                const double offconstant, const int conforming,
+                                __global double2 *candidate, __global int *container,
+                                __global int *split_edge, __global const int *origin,
+                                __global uint *priority, __global double *radius2,
+                                const double lens, const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -463,10 +478,11 @@ locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int locat
   double2 c;
   uint rank;
   const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
-  bad_triangle_candidate(points, point_state, point_segment, segment_end, bad_triangle,
-                         ratio_bound_squared, max_area, offconstant,
-                         conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle), &c,
-                         &rank); // bad: the search found it so
+  bad_triangle_candidate(
+      points, point_state, point_segment, segment_end, bad_triangle, ratio_bound_squared,
+      area_bound_of(tri_region, regional, region_area, max_area, bad), offconstant,
+      conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle), &c,
+      &rank); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;

@@ -41,7 +41,8 @@ __kernel void scan_add_offsets(__global int *out, __global const int *block_offs
 // CPU devices (PrefixScan::Method::runs): a work-group of one work-item per run
 // of `run` consecutive entries, each summed, then scanned, by a plain loop.
 // A CPU runs a work-group's work-items one after another, so the barriers
-// of scan_blocks cost more than the sums; the integer result is the same. run_sum[r] = the sum of run r.
+// of scan_blocks cost more than the sums; the integer result is the same. run_sum[r] = the sum of
+// run r.
 __kernel void sum_runs(__global const int *in, __global int *run_sum, const int run, const int n) {
   const int r = get_global_id(0);
   const int first = r * run;

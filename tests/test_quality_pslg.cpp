@@ -100,6 +100,7 @@ clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switch
   cdt_options.quality = false;
   cdt_options.max_area.reset();
   cdt_options.conforming_delaunay = false;
+  cdt_options.regional_areas = false;
   const clmesh::Mesh cdt = clmesh::triangulate(device(), pslg, cdt_options);
   const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
   const auto report = clmesh::check_mesh(pslg, mesh, options);
@@ -270,4 +271,61 @@ TEST_CASE("quality pslg: above about 33 degrees refinement stops at its limit, o
   const clmesh::Mesh capped = clmesh::triangulate(device(), la, "pq34.5S500");
   CHECK(capped.statistics.refinement.stop_reason == clmesh::RefineStop::steiner_limit);
   CHECK(static_cast<long>(capped.points.size()) - capped.input_points == 500);
+}
+
+namespace {
+
+// The index in `mesh` of a triangle that holds point p (inside or on its boundary), or -1.
+long containing_triangle(const clmesh::Mesh &mesh, Point p) {
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i) {
+      const Point a = mesh.points[mesh.triangles[t][i]],
+                  b = mesh.points[mesh.triangles[t][(i + 1) % 3]];
+      inside = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) >= 0;
+    }
+    if (inside)
+      return static_cast<long>(t);
+  }
+  return -1;
+}
+
+} // namespace
+
+TEST_CASE("quality pslg: regional area bounds (-a alone) and attributes (-A) on refined meshes") {
+  // la.poly: six regions whose lines give no maximum area, so each takes its attribute as its
+  // bound (as Triangle reads them). Each refined triangle's region is found independently:
+  // the -pA mesh's triangle (not refined) that holds its centroid.
+  const clmesh::Input la = load("triangle-examples/inputs", "la");
+  const clmesh::Mesh regions = clmesh::triangulate(device(), la, "pA");
+  REQUIRE(regions.triangle_attribute_count == 1);
+  for (const char *switches : {"pAa", "pAq30a", "pAq25a0.1a", "pAq30"}) {
+    INFO(switches);
+    const clmesh::Options options = clmesh::parse_switches(switches);
+    const clmesh::Mesh mesh = refine_checked(la, switches);
+    REQUIRE(mesh.triangle_attribute_count == 1);
+    REQUIRE(mesh.triangle_attributes.size() == mesh.triangles.size());
+    long wrong_region = 0, above_bound = 0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Point a = mesh.points[mesh.triangles[t][0]], b = mesh.points[mesh.triangles[t][1]],
+                  c = mesh.points[mesh.triangles[t][2]];
+      const long container =
+          containing_triangle(regions, {(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3});
+      REQUIRE(container >= 0);
+      const double attribute = regions.triangle_attributes[static_cast<std::size_t>(container)];
+      wrong_region += mesh.triangle_attributes[t] != attribute;
+      double bound = options.max_area.value_or(INFINITY);
+      if (options.regional_areas)
+        for (const clmesh::Region &region : la.regions)
+          if (region.attribute == attribute && region.max_area > 0)
+            bound = std::min(bound, region.max_area);
+      above_bound += area(mesh.points, mesh.triangles[t]) > bound * (1 + 1e-9);
+    }
+    CHECK(wrong_region == 0);
+    CHECK(above_bound == 0);
+  }
+  // A region's bound refines its region only: without -a alone the mesh is coarser.
+  CHECK(clmesh::triangulate(device(), la, "pq30").points.size() * 1.2 <
+        clmesh::triangulate(device(), la, "pq30a").points.size());
+  CHECK_THROWS_AS(clmesh::validate(clmesh::parse_switches("qa")), clmesh::OptionError);
 }

@@ -81,9 +81,8 @@ void parse_switches(const std::string &switches, Options &options) {
     }
     case 'a': {
       const std::string number = switch_number(switches, i);
-      if (number.empty()) { // Triangle: per-triangle or per-region areas
-        if (!unsupported)
-          unsupported = 'a';
+      if (number.empty()) { // Triangle: per-region (or, with -r, per-triangle) areas
+        options.regional_areas = true;
         break;
       }
       options.max_area = switch_value(number, 'a');
@@ -182,10 +181,6 @@ void parse_switches(const std::string &switches, Options &options) {
                         quote(switches) + "; valid switches: " + kSupported);
     }
   }
-  if (unsupported == 'a')
-    throw OptionError("switch -a without a number (area constraints read from an .area file "
-                      "or the regions) is not supported yet; clmesh supports " +
-                      std::string(kSupported));
   if (unsupported)
     throw OptionError(std::string("switch -") + unsupported + " (" +
                       unsupported_switch(unsupported) + ") is not supported yet; clmesh supports " +
@@ -199,15 +194,9 @@ Options parse_switches(const std::string &switches) {
 }
 
 void validate(const Options &options) {
-  if (options.pslg && (options.quality || options.max_area || options.conforming_delaunay) &&
-      options.regional_attributes)
-    throw OptionError(std::string("-A with -p and ") +
-                      (options.quality    ? "-q"
-                       : options.max_area ? "-a"
-                                          : "-D") +
-                      " (regional attributes of a refined PSLG) is not supported yet; clmesh "
-                      "supports " +
-                      kSupported);
+  if (options.regional_areas && !options.pslg)
+    throw OptionError("-a without a number applies the maximum areas of a .poly file's regions: "
+                      "it needs -p (the .area files of -r are not supported yet)");
   if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
     throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");
   if (options.max_area && !(*options.max_area > 0))

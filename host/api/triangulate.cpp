@@ -47,6 +47,17 @@ void take_triangulation(Mesh &mesh, DelaunayResult &&result) {
   mesh.duplicate_of.resize(mesh.points.size(), -1);
 }
 
+// -A: each triangle's regional attribute, one column.
+void take_attributes(Mesh &mesh, const Options &options, std::vector<double> attributes) {
+  if (!options.regional_attributes)
+    return;
+  if (attributes.size() != mesh.triangles.size())
+    throw InternalError("-A: " + std::to_string(attributes.size()) + " regional attributes for " +
+                        std::to_string(mesh.triangles.size()) + " triangles");
+  mesh.triangle_attribute_count = 1;
+  mesh.triangle_attributes = std::move(attributes);
+}
+
 } // namespace
 
 Mesh triangulate(Device &device, const Input &input, const Options &options) {
@@ -62,12 +73,15 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
   refine.max_area = options.max_area;
   refine.max_steiner = options.max_steiner;
   refine.conforming = options.conforming_delaunay;
+  refine.regional_areas = options.regional_areas;
+  refine.attributes = options.regional_attributes;
   ConstrainedOptions constrained;
   constrained.delaunay = delaunay_options;
   constrained.keep_convex_hull = options.convex_hull;
   constrained.ignore_holes = options.ignore_holes;
   constrained.regional_attributes = options.regional_attributes;
-  const bool refined = options.quality || options.max_area || options.conforming_delaunay;
+  const bool refined =
+      options.quality || options.max_area || options.regional_areas || options.conforming_delaunay;
   if (options.pslg && refined) {
     RefineResult result =
         refine_constrained(device, Pslg{input.points, input.segments, input.holes, input.regions},
@@ -75,6 +89,7 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
     take_points(mesh, input, result.added_points);
     take_triangulation(mesh, std::move(result.mesh));
     mesh.segments = std::move(result.segments);
+    take_attributes(mesh, options, std::move(result.triangle_attributes));
     mesh.statistics.constrained = true;
     mesh.statistics.constraints = result.constraints;
     mesh.statistics.refined = true;
@@ -85,14 +100,7 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
     take_points(mesh, input, result.added_points);
     take_triangulation(mesh, std::move(result.mesh));
     mesh.segments = std::move(result.segments);
-    if (options.regional_attributes) {
-      if (result.triangle_attributes.size() != mesh.triangles.size())
-        throw InternalError("-A: " + std::to_string(result.triangle_attributes.size()) +
-                            " regional attributes for " + std::to_string(mesh.triangles.size()) +
-                            " triangles");
-      mesh.triangle_attribute_count = 1;
-      mesh.triangle_attributes = std::move(result.triangle_attributes);
-    }
+    take_attributes(mesh, options, std::move(result.triangle_attributes));
     mesh.statistics.constrained = true;
     mesh.statistics.constraints = result.stats;
   } else if (refined) {

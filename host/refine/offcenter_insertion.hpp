@@ -24,10 +24,12 @@ public:
   // when none within that many rings has a better priority (0: every one, the
   // thesis's way; see elect_candidates); conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
-  // subsegment's diametral circle splits it.
+  // subsegment's diametral circle splits it; region_areas: the maximum area of
+  // each region of DeviceMesh::tri_region (<= 0: none; empty without regions).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
-                     bool parallel_midpoints, int election_rings, bool conforming);
+                     bool parallel_midpoints, int election_rings, bool conforming,
+                     const std::vector<double> &region_areas);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
@@ -91,9 +93,10 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
-  cl_int located_stamp_ = 0;       // the mesh's stamp when the last search located
-  std::size_t located_slots_ = 0;  // last_container_ is -1 from here on
+  DeviceArray<cl_double> radius2_;     // each candidate's insertion radius, squared
+  DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
+  cl_int located_stamp_ = 0;           // the mesh's stamp when the last search located
+  std::size_t located_slots_ = 0;      // last_container_ is -1 from here on
 };
 
 } // namespace clmesh

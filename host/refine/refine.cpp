@@ -168,12 +168,13 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 // The phase objects of the steps, sized by the mesh: built again when the
 // mesh grows.
 struct RefinementSteps {
-  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options)
+  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options,
+                  const std::vector<double> &region_areas)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
-                  options.delaunay.tuning.election_rings, options.conforming),
+                  options.delaunay.tuning.election_rings, options.conforming, region_areas),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -237,7 +238,7 @@ public:
     if (pslg_)
       set_segments();
     scheduler_.flipping().set_fixed_boundary(true);
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_);
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_);
     acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
     return true;
   }
@@ -314,6 +315,7 @@ private:
     constraints_ = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     ExteriorRemoval removal(device_, mesh());
     remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints);
+    label_regions(removal);
     DomainBoundary boundary(device_, mesh(), scheduler_.scan());
     const std::size_t ghosts = boundary.room_needed(removal.removed());
     if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
@@ -328,6 +330,22 @@ private:
     for (const Segment &edge : boundary.edges())
       if (segments.insert(std::minmax(edge.a, edge.b)).second)
         constraints_.push_back(edge);
+  }
+
+  // With -a alone or -A, and regions: each triangle slot's region, kept in
+  // the mesh from now on (DeviceMesh::tri_region), and each region's area
+  // bound (with -a alone).
+  void label_regions(ExteriorRemoval &removal) {
+    if ((!options_.regional_areas && !options_.attributes) || pslg_->regions.empty())
+      return;
+    std::vector<Point> seeds;
+    for (const Region &region : pslg_->regions) {
+      seeds.push_back(region.seed);
+      region_areas_.push_back(options_.regional_areas ? region.max_area : -1);
+    }
+    DeviceMesh &m = mesh();
+    m.tri_region = removal.label_regions(seeds);
+    m.has_regions = true;
   }
 
   // The segments as refinement's constraints; their vertices are boundary
@@ -351,7 +369,15 @@ private:
     std::vector<Point> steiner = steps_->renumbering.number(first_steiner_, &on_segment);
     stats_.inserted = static_cast<long>(steiner.size());
     steps_.reset();
-    scheduler_.download(result_.mesh);
+    std::vector<int32_t> labels;
+    const bool attributes = options_.attributes && mesh().has_regions;
+    scheduler_.download(result_.mesh, nullptr, attributes ? &mesh().tri_region : nullptr, &labels);
+    if (options_.attributes) {
+      result_.triangle_attributes.assign(result_.mesh.triangles.size(), 0.0);
+      for (std::size_t t = 0; t < labels.size(); ++t)
+        if (labels[t] >= 0)
+          result_.triangle_attributes[t] = pslg_->regions[labels[t]].attribute;
+    }
     stats_.inserted_more_than_once = deletion_log_.points_inserted_more_than_once(device_, steiner);
     result_.added_points = crossings_;
     result_.added_points.insert(result_.added_points.end(), steiner.begin(), steiner.end());
@@ -490,7 +516,7 @@ private:
     steps_.reset(); // before the mesh grows: a lower peak
     scheduler_.grow(extra);
     ++stats_.growths;
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_);
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_);
     return Room::grown;
   }
 
@@ -549,6 +575,7 @@ private:
   DelaunayScheduler scheduler_;
   std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
   std::vector<Point> crossings_;     // vertices added where segments cross
+  std::vector<double> region_areas_; // with regions: each one's area bound (<= 0: none)
   std::size_t first_steiner_ = 0;    // slot of the first Steiner point
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)

@@ -21,6 +21,11 @@ struct RefineOptions {
   // -D: a subsegment (or hull edge) whose diametral circle holds a vertex is
   // split, so that every triangle is Delaunay.
   bool conforming = false;
+  // A PSLG's regions: with regional_areas (-a alone) each region's maximum
+  // area bounds its triangles too; with attributes (-A) the result holds
+  // each triangle's region attribute.
+  bool regional_areas = false;
+  bool attributes = false;
 };
 
 struct RefineResult {
@@ -35,6 +40,7 @@ struct RefineResult {
   // too (marker 1); and the statistics of GPU-CDT.
   std::vector<Segment> segments;
   ConstrainedStats constraints;
+  std::vector<double> triangle_attributes; // -A: per triangle, its region's attribute (0: none)
 };
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,

@@ -66,12 +66,16 @@ void ZOrderCompaction::compact_triangles(Point low, double side) {
   }
   {
     DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity);
+    DeviceArray<cl_int> moved_region(device_, mesh_.has_regions ? mesh_.triangle_capacity : 1);
     set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
-             mesh_.tri_neighbor.buffer(), mesh_.children.buffer(), moved_neighbor.buffer(),
-             static_cast<cl_int>(live));
+             mesh_.tri_neighbor.buffer(), mesh_.tri_region.buffer(),
+             static_cast<cl_int>(mesh_.has_regions), mesh_.children.buffer(),
+             moved_neighbor.buffer(), moved_region.buffer(), static_cast<cl_int>(live));
     launch(device_, move_triangles_, live, kPhase);
     std::swap(mesh_.tri_vertex, mesh_.children);
     std::swap(mesh_.tri_neighbor, moved_neighbor);
+    if (mesh_.has_regions) // the slots past the live ones get theirs when filled
+      std::swap(mesh_.tri_region, moved_region);
   }
   // Past the old slots the marks and stamps were never written since filled.
   mesh_.tri_mark.fill(device_, -1, slots); // no mark

@@ -16,7 +16,7 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
       vertex_triangle(device, point_capacity), duplicate_of(device, point_capacity),
       location(device, point_capacity), location_edge(device, point_capacity),
       constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1),
-      constraint_segment(device, 1) {}
+      constraint_segment(device, 1), tri_region(device, 1) {}
 
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   const std::size_t points_now = point_capacity + extra_points;
@@ -34,6 +34,8 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   location = location.grown(device, points_now, 0);
   location_edge = location_edge.grown(device, points_now, -1);
   constraint_start = constraint_start.grown(device, points_now + 1, constraints_end);
+  if (has_regions)
+    tri_region = tri_region.grown(device, triangles_now, -1);
   if (point_state.size() > 0) {
     point_state = point_state.grown(device, points_now, 0);
     insertion_radius2 = insertion_radius2.grown(device, points_now, 0.0);
@@ -60,7 +62,8 @@ cl_uint DeviceMesh::bind_triangulation(cl::Kernel &kernel, cl_uint first) const 
       kernel, first, points.buffer(), tri_vertex.buffer(), tri_neighbor.buffer(), tri_mark.buffer(),
       modified_stamp.buffer(), children.buffer(), vertex_triangle.buffer(),
       constraint_start.buffer(), constraint_adjacent.buffer(), static_cast<cl_int>(has_constraints),
-      original_id.buffer(), duplicate_of.buffer(), location.buffer(), location_edge.buffer());
+      original_id.buffer(), duplicate_of.buffer(), location.buffer(), location_edge.buffer(),
+      tri_region.buffer(), static_cast<cl_int>(has_regions));
 }
 
 cl_uint DeviceMesh::bind(cl::Kernel &kernel, cl_uint first) const {

@@ -124,6 +124,10 @@ struct DeviceMesh {
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
   DeviceArray<cl_int> constraint_segment;  // per entry of constraint_adjacent: its constraint
   bool has_constraints = false;            // any row not empty
+  // The region of each triangle slot (-1: none; triangle_capacity entries)
+  // once has_regions, else one unused entry (cl/mesh_params.h).
+  DeviceArray<cl_int> tri_region;
+  bool has_regions = false;
 
   // Uploads `segments` (device point numbers, distinct, none of zero length)
   // as the constraint rows.

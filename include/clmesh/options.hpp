@@ -17,6 +17,7 @@ struct Options {
   bool quality = false;             // -q: quality mesh, no angle below min_angle
   double min_angle = 20;            // -q<angle>, degrees (0 to 45)
   std::optional<double> max_area;   // -a<area>: no triangle larger
+  bool regional_areas = false;      // -a alone, with -p: each region's maximum area (.poly)
   std::optional<long> max_steiner;  // -S<n>: at most n Steiner points (-S alone: 0)
   bool zero_based = false;          // -z: number the output from zero
   bool edges = false;               // -e: return (and write) the edges

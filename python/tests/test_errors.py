@@ -52,7 +52,7 @@ def test_bad_input_raises_input_error(tri, message):
     ("k", "unknown switch -k"),
     ("pq30x", "unknown switch -x"),
     ("r", "not supported yet"),
-    ("pa", "not supported yet"),
+    ("qa", "needs -p"),
     ("a-1", "unknown switch --"),
     ("q50", "between 0 and 45"),
     ("q3k", "unknown switch -k"),

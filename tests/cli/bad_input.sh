@@ -31,7 +31,7 @@ expect "coordinate beyond exact arithmetic" 1 "huge.node:5:" "exact arithmetic" 
 expect "unknown switch" 2 "-x" "-z" -- -zx good.node
 expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
 expect "unsupported Triangle switch" 2 "-r" "not supported" -- -r good.node
-expect "regional attributes of a refined PSLG" 2 "-A" "-q" "not supported" -- -pqA good.node
+expect "regional areas of a point set" 2 "-a" "needs -p" -- -qa good.node
 expect "bad minimum angle" 2 "-q" -- -qx good.node
 expect "unknown refinement algorithm" 2 "--refine" "qm" "qmv" -- -q --refine fast good.node
 expect "missing .poly input" 1 "good.poly" -- good.poly

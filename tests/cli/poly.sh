@@ -42,7 +42,6 @@ expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
 expect "vertex without the marker its header announces, in the .node beside" 1 \
   "nomarker2.node:3:" "boundary marker" -- nomarker2.poly
 expect "missing .poly" 1 "missing.poly" -- -p missing
-expect "-p with -q and -A" 2 "-A" "not supported" "-p" -- -pqA endpoint.poly
 expect "-r stays refused" 2 "-r" "not supported" -- -r endpoint.poly
 
 # ---------------------------------------------------------------------------

@@ -166,11 +166,37 @@ inline Quality assess(__global const double2 *points, __global const int *point_
 // off-center (Üngör's, as Triangle computes it, on the side of the shortest
 // edge) and its priority, the shortest edge's squared length as a float. The
 // search and the location both compute it, so that no per-slot copy is kept.
+// -Y (protect 1): does edge i of real triangle t lie on the domain's
+// boundary? -YY (protect 2): or on a segment? No point may split it.
+inline bool is_protected(CLM_MESH_PARAMS, int t, int i, int protect) {
+  return protect && (is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
+                     (protect > 1 && subsegment_at(CLM_MESH_ARGS, t, i)));
+}
+
+// The protected edges of real triangle t, bit i for edge i.
+inline int protected_edges(CLM_MESH_PARAMS, int t, int protect) {
+  int mask = 0;
+  for (int i = 0; i < 3 && protect; ++i)
+    mask |= is_protected(CLM_MESH_ARGS, t, i, protect) << i;
+  return mask;
+}
+
+// Does c lie on or beyond (right of) an edge of triangle p[] in mask?
+inline bool beyond_edges(const double2 *p, int mask, double2 c) {
+  for (int i = 0; i < 3; ++i) {
+    const double2 a = p[next3(i)], e = p[prev3(i)] - a, f = c - a;
+    if ((mask >> i & 1) && e.x * f.y - e.y * f.x <= 0)
+      return true;
+  }
+  return false;
+}
+
 inline bool bad_triangle_candidate(__global const double2 *points, __global const int *point_state,
                                    __global const int *point_segment,
                                    __global const int *segment_end, VertexTriple tri,
                                    double ratio_bound_squared, double max_area, double offconstant,
-                                   bool encroaching, double2 *steiner, uint *priority) {
+                                   bool encroaching, int protected_mask, double2 *steiner,
+                                   uint *priority) {
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
@@ -189,8 +215,10 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
       !encroaching && distance > reach ? middle + away * (reach / distance) : center;
   *steiner = a + offset;
   *priority = as_uint((float)q.length_squared[shortest]);
-  // A degenerate computation leaves the triangle alone.
-  return isfinite(steiner->x) && isfinite(steiner->y);
+  // A degenerate computation leaves the triangle alone, and so does a
+  // candidate beyond an edge of its own that no point may split (-Y).
+  return isfinite(steiner->x) && isfinite(steiner->y) &&
+         !beyond_edges(q.p, protected_mask, *steiner);
 }
 
 // Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
@@ -217,8 +245,8 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
 __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
                                  const double ratio_bound_squared, const double max_area,
                                  __global const double *region_area, const double offconstant,
-                                 const int conforming, __global int *is_bad, const int election,
-                                 const int n) {
+                                 const int conforming, const int protect, __global int *is_bad,
+                                 const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -230,31 +258,41 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   const VertexTriple tri = load_vertices(tri_vertex, t);
   double2 steiner;
   uint priority;
-  const bool bad =
-      !is_ghost(tri) && !is_dead(tri) &&
-      bad_triangle_candidate(
-          points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
-          area_bound_of(tri_region, regional, region_area, max_area, t), offconstant,
-          conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), &steiner, &priority);
+  const bool bad = !is_ghost(tri) && !is_dead(tri) &&
+                   bad_triangle_candidate(
+                       points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+                       area_bound_of(tri_region, regional, region_area, max_area, t), offconstant,
+                       conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
+                       protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
 }
 
-// counts[0]: the bad triangles whose smallest angle is at an acute hull
-// vertex (left as they are), counted at the end over every slot.
+// counts[0]: the bad triangles left as they are, counted at the end over
+// every slot: those whose smallest angle is the input's (assess), and with -Y
+// those whose candidate lies beyond an edge of their own no point may split.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
                                         const double max_area, __global const double *region_area,
-                                        volatile __global int *counts, const int n) {
+                                        const int protect, volatile __global int *counts,
+                                        const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
-  if (assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
-             area_bound_of(tri_region, regional, region_area, max_area, t))
-          .unfixable)
+  const double bound = area_bound_of(tri_region, regional, region_area, max_area, t);
+  const Quality q =
+      assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, bound);
+  double2 steiner;
+  uint priority;
+  const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
+  if (q.unfixable ||
+      (mask &&
+       bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
+                              ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
+       beyond_edges(q.p, mask, steiner)))
     atomic_inc(counts);
 }
 
@@ -464,7 +502,7 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
 __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
                                 const int located_stamp, const double ratio_bound_squared,
                                 const double max_area, __global const double *region_area,
-                                const double offconstant, const int conforming,
+                                const double offconstant, const int conforming, const int protect,
                                 __global double2 *candidate, __global int *container,
                                 __global int *split_edge, __global const int *origin,
                                 __global uint *priority, __global double *radius2,
@@ -481,8 +519,8 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   bad_triangle_candidate(
       points, point_state, point_segment, segment_end, bad_triangle, ratio_bound_squared,
       area_bound_of(tri_region, regional, region_area, max_area, bad), offconstant,
-      conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle), &c,
-      &rank); // bad: the search found it so
+      conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
+      protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;
@@ -490,7 +528,9 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   int t = walk.outcome == CLM_WALK_LOST ? bad : walk.triangle;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   int hull_edge = walk.outcome == CLM_WALK_BLOCKED ? walk.edge : -1;
-  if (hull_edge < 0 && touches_hull(point_state, tri)) {
+  if (hull_edge >= 0 && is_protected(CLM_MESH_ARGS, t, hull_edge, protect))
+    hull_edge = -1; // beyond an edge no point may split (-Y): dropped, not located
+  else if (hull_edge < 0 && touches_hull(point_state, tri)) {
     // A hull edge or subsegment of the container, or of a neighbour that
     // c's cavity takes (its circumcircle holds c), whose diametral lens
     // holds c is encroached: it is split instead (Triangle tests the
@@ -506,8 +546,9 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
         if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
           continue;
         const int u = link_triangle(tri_neighbor[3 * s + i]);
-        if (!is_ghost(load_vertices(tri_vertex, u)) && !subsegment_at(CLM_MESH_ARGS, s, i))
-          continue;
+        if ((!is_ghost(load_vertices(tri_vertex, u)) && !subsegment_at(CLM_MESH_ARGS, s, i)) ||
+            is_protected(CLM_MESH_ARGS, s, i, protect))
+          continue; // not a boundary edge or subsegment; or one c may encroach (-Y)
         if (in_lens(points[a], points[b], c, lens) &&
             (r < 0 || circumcircle_holds(points, near, c))) {
           hull_edge = i;

@@ -57,6 +57,8 @@ void print_help() {
       "  -A  With -p: give each triangle the attribute of its region (.ele attribute\n"
       "      column), refined triangles included.\n"
       "  -D  Conforming Delaunay: split segments until every triangle is Delaunay.\n"
+      "  -Y  With -q or -a: no Steiner point on the boundary (-YY: on no segment);\n"
+      "      triangles whose candidate lies beyond such an edge are left as they are.\n"
       "  -B  Write no boundary markers in the .node, .edge, .poly and --vtk files.\n"
       "  -z  Number vertices, triangles and edges of the output from zero.\n"
       "  -e  Write an edge list (.edge), marker 1 on the convex hull, 0 inside (with -p:\n"
@@ -100,9 +102,8 @@ void print_help() {
       "      (with -s Triangle would split segments; clmesh recovers them by flips).\n"
       "\n"
       "Triangle switches refused with an error: -r (refining a mesh, .area files),\n"
-      "-Y (no boundary Steiner points), not yet implemented; -u (a user-defined\n"
-      "sizing function: it needs a library callback, which clmesh does not offer\n"
-      "yet).\n"
+      "not yet implemented; -u (a user-defined sizing function: it needs a library\n"
+      "callback, which clmesh does not offer yet).\n"
       "\n"
       "Long options (each a separate argument, value after it or after '='):\n"
       "  --device SPEC         OpenCL device: \"P:D\" (platform:device), \"N\" (N-th in\n"
@@ -392,8 +393,8 @@ void warn_refinement(const clmesh::Options &options, const clmesh::RefineStats &
     if (bad > 0)
       std::fprintf(stderr,
                    "Warning:  %ld triangles keep angles below the bound at small angles of the "
-                   "input (hull corners, segments meeting), which no Steiner point mends.\n",
-                   bad);
+                   "input (hull corners, segments meeting)%s, which no Steiner point mends.\n",
+                   bad, options.no_steiner_on_segments ? " or beside segments -Y keeps whole" : "");
     return;
   case RefineStop::steiner_limit:
     std::fprintf(stderr,

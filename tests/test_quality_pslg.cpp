@@ -329,3 +329,37 @@ TEST_CASE("quality pslg: regional area bounds (-a alone) and attributes (-A) on 
         clmesh::triangulate(device(), la, "pq30a").points.size());
   CHECK_THROWS_AS(clmesh::validate(clmesh::parse_switches("qa")), clmesh::OptionError);
 }
+
+TEST_CASE("quality pslg: -Y puts no Steiner point on the boundary, -YY none on any segment") {
+  for (const char *name : {"A", "face", "la"}) {
+    INFO(std::string(name));
+    const clmesh::Input pslg = load("triangle-examples/inputs", name);
+    const clmesh::Mesh cdt = clmesh::triangulate(device(), pslg, "p");
+    const auto first_steiner = static_cast<int32_t>(cdt.points.size());
+    for (const char *switches : {"pq30Y", "pq30a1YY", "pYa0.5"}) {
+      INFO(switches);
+      const clmesh::Options options = clmesh::parse_switches(switches);
+      const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
+      INFO(problems(clmesh::check_mesh(pslg, mesh, options)));
+      CHECK(clmesh::check_mesh(pslg, mesh, options).ok);
+      REQUIRE(test_support::starts_with(mesh.points, cdt.points));
+      CHECK(std::fabs(static_cast<double>(total_area(mesh) - total_area(cdt))) <=
+            1e-9 * static_cast<double>(total_area(cdt)));
+      long on_boundary = 0, on_segment = 0;
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int i = 0; i < 3; ++i)
+          if (mesh.neighbors[t][i] < 0)
+            on_boundary += mesh.triangles[t][(i + 1) % 3] >= first_steiner;
+      for (const Segment &s : mesh.segments)
+        on_segment += s.a >= first_steiner || s.b >= first_steiner;
+      CHECK(on_boundary == 0);
+      if (options.no_steiner_on_segments == 2) {
+        CHECK(on_segment == 0);
+        CHECK(mesh.segments.size() == cdt.segments.size());
+      }
+      if (options.quality)
+        CHECK(mesh.points.size() > cdt.points.size());
+      CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::done);
+    }
+  }
+}

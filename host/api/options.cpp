@@ -11,7 +11,7 @@ namespace clmesh {
 
 namespace {
 
-const char *const kSupported = "-p -c -O -A -D -B -q -a -S -z -e -n -v -g -o2 -N -E -P -I -j -Q "
+const char *const kSupported = "-p -c -O -A -D -Y -B -q -a -S -z -e -n -v -g -o2 -N -E -P -I -j -Q "
                                "-V -C -h (-X -i -F -l -s accepted without effect)";
 
 // Triangle's switches that clmesh does not implement yet, with what they do.
@@ -22,8 +22,6 @@ const char *unsupported_switch(char letter) {
   case 'u':
     return "a user-defined triangle sizing function: it needs a callback from the library "
            "(Triangle's triunsuitable()), which clmesh does not offer yet";
-  case 'Y':
-    return "no Steiner points on the boundary";
   default:
     return nullptr;
   }
@@ -112,6 +110,9 @@ void parse_switches(const std::string &switches, Options &options) {
       break;
     case 'D':
       options.conforming_delaunay = true;
+      break;
+    case 'Y':
+      options.no_steiner_on_segments = std::min(options.no_steiner_on_segments + 1, 2);
       break;
     case 'B':
       options.no_boundary_markers = true;

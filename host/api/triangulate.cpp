@@ -75,6 +75,7 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
   refine.conforming = options.conforming_delaunay;
   refine.regional_areas = options.regional_areas;
   refine.attributes = options.regional_attributes;
+  refine.protected_segments = options.no_steiner_on_segments;
   ConstrainedOptions constrained;
   constrained.delaunay = delaunay_options;
   constrained.keep_convex_hull = options.convex_hull;

@@ -13,13 +13,14 @@ constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area, int filter_rings, int filter_distance_rings,
                                        double filter_near, bool parallel_midpoints,
-                                       int election_rings, bool conforming,
+                                       int election_rings, bool conforming, int protected_segments,
                                        const std::vector<double> &region_areas)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
       parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
-      conforming_(conforming), flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
+      conforming_(conforming), protected_segments_(protected_segments),
+      flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
@@ -72,7 +73,8 @@ std::size_t OffcenterInsertion::count_unfixable() {
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
   set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), count.buffer(), static_cast<cl_int>(slots));
+                region_area_.buffer(), static_cast<cl_int>(protected_segments_), count.buffer(),
+                static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -100,7 +102,8 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
                 static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
                 region_area_.buffer(), offconstant_, static_cast<cl_int>(conforming_),
-                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
+                static_cast<cl_int>(protected_segments_), keep_.buffer(),
+                static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -132,8 +135,9 @@ void OffcenterInsertion::locate_candidates(int stamp) {
   const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
   set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
                 ratio_bound_squared_, max_area_, region_area_.buffer(), offconstant_,
-                static_cast<cl_int>(conforming_), candidate_.buffer(), container_.buffer(),
-                split_edge_.buffer(), origin.buffer(), priority_.buffer(), radius2_.buffer(), lens_,
+                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
+                priority_.buffer(), radius2_.buffer(), lens_,
                 static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;

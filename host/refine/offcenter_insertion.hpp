@@ -24,12 +24,16 @@ public:
   // when none within that many rings has a better priority (0: every one, the
   // thesis's way; see elect_candidates); conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
-  // subsegment's diametral circle splits it; region_areas: the maximum area of
+  // subsegment's diametral circle splits it; protected_segments (-Y 1, -YY 2):
+  // boundary edges (and subsegments) no point may split: a candidate that
+  // encroaches on one goes in all the same, one beyond it is dropped, and a
+  // bad triangle whose candidate lies beyond such an edge of its own is left;
+  // region_areas: the maximum area of
   // each region of DeviceMesh::tri_region (<= 0: none; empty without regions).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
                      bool parallel_midpoints, int election_rings, bool conforming,
-                     const std::vector<double> &region_areas);
+                     int protected_segments, const std::vector<double> &region_areas);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
@@ -75,7 +79,8 @@ private:
   double filter_near2_; // squared; infinite for any distance
   bool parallel_midpoints_;
   int election_rings_;
-  bool conforming_; // -D: triangles whose apex encroaches a subsegment are bad
+  bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
+  int protected_segments_; // -Y
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
       mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;

@@ -174,7 +174,8 @@ struct RefinementSteps {
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
-                  options.delaunay.tuning.election_rings, options.conforming, region_areas),
+                  options.delaunay.tuning.election_rings, options.conforming,
+                  options.protected_segments, region_areas),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -269,8 +270,10 @@ public:
       if (added == 0) {
         // The arrays did not grow past the -S limit, or every candidate fell
         // on a vertex.
-        stats_.stop_reason =
-            steiner_ + candidates > limit_ ? limit_reason() : RefineStop::no_insertion;
+        // With -Y the candidates left lie beyond edges no point may split.
+        stats_.stop_reason = steiner_ + candidates > limit_ ? limit_reason()
+                             : options_.protected_segments  ? RefineStop::done
+                                                            : RefineStop::no_insertion;
         break;
       }
       const std::size_t inserted = insert_survivors(added);
@@ -416,7 +419,7 @@ private:
 
   // The statistics of the iterations' steps.
   void collect_statistics() {
-    if (acute_hull_vertices_ > 0 || pslg_)
+    if (acute_hull_vertices_ > 0 || pslg_ || options_.protected_segments)
       stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
     stats_.deleted = flips_.deleted;
     stats_.kept_redundant = flips_.kept_redundant;

@@ -26,6 +26,8 @@ struct RefineOptions {
   // each triangle's region attribute.
   bool regional_areas = false;
   bool attributes = false;
+  // -Y (1): no Steiner point on the domain's boundary; -YY (2): on no segment.
+  int protected_segments = 0;
 };
 
 struct RefineResult {

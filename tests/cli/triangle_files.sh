@@ -101,10 +101,10 @@ run -XiV spiral.node
 [[ "$(grep -c -- '-X -i: accepted, no effect' stdout.txt)" == 1 ]] ||
   fail "-V does not say that -X -i have no effect: $(cat stdout.txt)"
 
-# Refused: -u (with why), -o without 2; -Y -r stay refused.
+# Refused: -u (with why), -o without 2; -r stays refused.
 expect "-u" 2 "-u" "callback" "not supported" -- -u spiral.node
 expect "-o3" 2 "-o" "-o2" -- -o3 spiral.node
-for letter in Y r; do
+for letter in r; do
   expect "-$letter" 2 "-$letter" "not supported" -- "-$letter" spiral.node
 done
 

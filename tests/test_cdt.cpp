@@ -966,3 +966,57 @@ TEST_CASE("cdt: a grid of crossing segments among random points") {
   CHECK(result.segments.size() >=
         pslg.segments.size() + 2 * static_cast<std::size_t>(lines * lines));
 }
+
+// Issue 32: crossings beyond the first room made for them (1024 and one per
+// segment) grow the mesh's arrays, as refinement's do, instead of being
+// refused. Each mesh is checked exactly (every input segment a chain of mesh
+// edges through its crossings) and is the same at two work-group sizes.
+TEST_CASE("cdt: thousands of crossings grow the mesh (issue 32)") {
+  auto checked = [](const clmesh::Input &pslg) {
+    auto options = whole_hull_options();
+    options.tuning.work_group = 16;
+    const clmesh::Mesh small_groups = clmesh::triangulate(device(), pslg, options);
+    options.tuning.work_group = 64;
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
+    test_support::check_same_mesh(small_groups, mesh);
+    CHECK(test_support::starts_with(mesh.points, pslg.points));
+    CHECK(added_points(mesh) == static_cast<std::size_t>(mesh.statistics.constraints.crossings));
+    const auto report = clmesh::check_mesh(pslg, mesh, options);
+    INFO(problems(report));
+    CHECK(report.ok);
+    return mesh;
+  };
+  SUBCASE("400 random segments among 200 points") {
+    clmesh::Input pslg;
+    pslg.points = fixtures::uniform(200, 71);
+    std::mt19937_64 rng(72);
+    std::uniform_int_distribution<int32_t> pick(0, 199);
+    while (pslg.segments.size() < 400) {
+      const int32_t a = pick(rng), b = pick(rng);
+      if (a != b)
+        pslg.segments.push_back({a, b, 2});
+    }
+    const auto mesh = checked(pslg);
+    CHECK(mesh.statistics.constraints.crossings > 1024 + 400);
+  }
+  SUBCASE("a star of 1000 spokes through one point, and its ring") {
+    // Spoke k from p_k to -p_k: all pass exactly through the origin.
+    const int spokes = 1000;
+    clmesh::Input pslg;
+    for (int k = 0; k < spokes; ++k)
+      pslg.points.push_back({std::cos(M_PI * k / spokes), std::sin(M_PI * k / spokes)});
+    for (int k = 0; k < spokes; ++k)
+      pslg.points.push_back({-pslg.points[k].x, -pslg.points[k].y});
+    for (int32_t k = 0; k < spokes; ++k)
+      pslg.segments.push_back({k, k + spokes, 3});
+    for (int32_t k = 0; k < 2 * spokes; ++k)
+      pslg.segments.push_back({k, (k + 1) % (2 * spokes), 1});
+    const auto mesh = checked(pslg);
+    // One vertex at the centre, every spoke split there.
+    REQUIRE(added_points(mesh) == 1);
+    CHECK(mesh.points.back().x == 0.0);
+    CHECK(mesh.points.back().y == 0.0);
+    CHECK(mesh.segments.size() == 4 * static_cast<std::size_t>(spokes));
+    CHECK(mesh.triangles.size() == 2 * static_cast<std::size_t>(spokes)); // a sector each
+  }
+}

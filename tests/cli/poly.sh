@@ -37,6 +37,12 @@ expect "count 0 without .node" 1 "nonode.poly:2:" "nonode.node" -- -p nonode.pol
 expect "premature end of file" 1 "short.poly:8:" "after 2 of 3 segments" -- -p short
 expect "region without attribute" 1 "region.poly:11:" "region 1" -- -pA region.poly
 expect "error in the .node beside the .poly" 1 "badnode.node:4:" "'zero'" -- -p badnode.poly
+# Issue 32: segments crossing where the crossing rounds below 1e-50 (beyond
+# what exact arithmetic carries): the message names the file.
+printf '4 2 0 0\n1 -1 0\n2 1 0\n3 1e-35 -1\n4 -2.9999999999999994e-35 3\n2 0\n1 1 2\n2 3 4\n0\n' \
+  > tiny.poly
+expect "crossing beyond exact arithmetic" 1 "clmesh: tiny.poly: point 4: coordinate" \
+  "where segments cross" -- -p tiny.poly
 expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
   "segment 2 has no boundary marker" -- nomarker.poly
 expect "vertex without the marker its header announces, in the .node beside" 1 \

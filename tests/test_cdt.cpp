@@ -1020,3 +1020,61 @@ TEST_CASE("cdt: thousands of crossings grow the mesh (issue 32)") {
     CHECK(mesh.triangles.size() == 2 * static_cast<std::size_t>(spokes)); // a sector each
   }
 }
+
+// Issue 32: a hole or region seed lying exactly on a segment or at one of
+// its vertices starts on neither side of it; it is ignored (and counted), not
+// flooded from whichever triangle the walk stopped in. Exact: a seed one ulp
+// off the segment is on a side.
+TEST_CASE("cdt: hole and region seeds on a segment are ignored (issue 32)") {
+  // A square in a square: the ring between them and the inner square.
+  clmesh::Input pslg = pslg_of(
+      {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}},
+      {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}, {4, 5, 2}, {5, 6, 2}, {6, 7, 2}, {7, 4, 2}});
+  const clmesh::Mesh whole = clmesh::triangulate(device(), pslg, cdt_options());
+  const clmesh::Mesh inner_removed = [&] {
+    clmesh::Input with_hole = pslg;
+    with_hole.holes = {{2, 2}};
+    return clmesh::triangulate(device(), with_hole, cdt_options());
+  }();
+  REQUIRE(whole.triangles.size() == 10);
+  REQUIRE(inner_removed.triangles.size() == 8);
+  auto with_holes = [&](std::vector<Point> holes, const char *switches = "p") {
+    clmesh::Input input = pslg;
+    input.holes = std::move(holes);
+    return clmesh::triangulate(device(), input, switches);
+  };
+  SUBCASE("on a segment, at a segment's vertex, on the outer boundary: the domain is kept") {
+    for (const Point hole : {Point{2, 1}, Point{1, 1}, Point{2, 0}, Point{0, 4}, Point{4, 2.5}}) {
+      CAPTURE(hole.x);
+      CAPTURE(hole.y);
+      const clmesh::Mesh mesh = with_holes({hole});
+      CHECK(mesh.triangles == whole.triangles);
+      CHECK(mesh.statistics.constraints.ignored_holes == 1);
+      CHECK(mesh.statistics.constraints.eaten_triangles == 0);
+    }
+  }
+  SUBCASE("beside holes that are not on a segment") {
+    const clmesh::Mesh mesh = with_holes({{3, 2}, {2, 2}});
+    CHECK(mesh.triangles == inner_removed.triangles);
+    CHECK(mesh.statistics.constraints.ignored_holes == 1);
+  }
+  SUBCASE("one ulp off the segment: on a side") {
+    CHECK(with_holes({{2, std::nextafter(1.0, 2.0)}}).triangles == inner_removed.triangles);
+    const clmesh::Mesh below = with_holes({{2, std::nextafter(1.0, 0.0)}});
+    CHECK(below.triangles.size() == 2); // the ring eaten
+    CHECK(below.statistics.constraints.ignored_holes == 0);
+  }
+  SUBCASE("-O: the holes are not looked at") {
+    CHECK(with_holes({{2, 1}}, "pO").statistics.constraints.ignored_holes == 0);
+  }
+  SUBCASE("a region seed on a segment labels nothing") {
+    clmesh::Input input = pslg;
+    input.regions = {{{3, 2}, 5, -1}, {{2, 2}, 7, -1}};
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), input, "pA");
+    REQUIRE(mesh.triangle_attributes.size() == whole.triangles.size());
+    CHECK(std::count(mesh.triangle_attributes.begin(), mesh.triangle_attributes.end(), 7.0) == 2);
+    CHECK(std::count(mesh.triangle_attributes.begin(), mesh.triangle_attributes.end(), 0.0) == 8);
+    CHECK(mesh.statistics.constraints.ignored_regions == 1);
+    CHECK(mesh.statistics.constraints.ignored_holes == 0);
+  }
+}

@@ -970,7 +970,8 @@ TEST_CASE("cdt: a grid of crossing segments among random points") {
 // Issue 32: crossings beyond the first room made for them (1024 and one per
 // segment) grow the mesh's arrays, as refinement's do, instead of being
 // refused. Each mesh is checked exactly (every input segment a chain of mesh
-// edges through its crossings) and is the same at two work-group sizes.
+// edges through its crossings), equals CGAL's CDT of its own points and
+// segments, and is the same at two work-group sizes.
 TEST_CASE("cdt: thousands of crossings grow the mesh (issue 32)") {
   auto checked = [](const clmesh::Input &pslg) {
     auto options = whole_hull_options();
@@ -984,6 +985,10 @@ TEST_CASE("cdt: thousands of crossings grow the mesh (issue 32)") {
     const auto report = clmesh::check_mesh(pslg, mesh, options);
     INFO(problems(report));
     CHECK(report.ok);
+#ifdef CLMESH_HAVE_CGAL
+    // CGAL's CDT of clmesh's own rounded crossings and pieces: the same mesh.
+    compare_with_cgal(pslg_of(mesh.points, mesh.segments), options, mesh);
+#endif
     return mesh;
   };
   SUBCASE("400 random segments among 200 points") {

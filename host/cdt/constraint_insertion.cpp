@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <map>
 #include <numeric>
 #include <utility>
 
@@ -240,9 +239,13 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   const std::size_t m = segments_.size();
   const auto other = download_by_segment(crossed_vertex_);
   const auto triangle = download_by_segment(crossed_triangle_);
-  std::map<std::pair<int32_t, int32_t>, std::size_t> piece_of;
+  // (ends, index) of every piece, sorted: the piece a walk met, by binary
+  // search.
+  using Ends = std::pair<int32_t, int32_t>;
+  std::vector<std::pair<Ends, std::size_t>> piece_of(m);
   for (std::size_t i = 0; i < m; ++i)
-    piece_of[std::minmax(segments_[i].a, segments_[i].b)] = i;
+    piece_of[i] = {std::minmax(segments_[i].a, segments_[i].b), i};
+  std::sort(piece_of.begin(), piece_of.end());
   // One download, not a read per endpoint: a round may split thousands.
   const std::vector<cl_double2> points = mesh_.points.download(device_, mesh_.point_count);
   auto coordinates = [&](int32_t v) {
@@ -257,8 +260,10 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   for (std::size_t s = 0; s < m; ++s) {
     if (state[s] != kCrossing)
       continue;
-    const auto found = piece_of.find(std::minmax(vertex[s], other[s]));
-    if (found == piece_of.end())
+    const Ends ends = std::minmax(vertex[s], other[s]);
+    const auto found =
+        std::lower_bound(piece_of.begin(), piece_of.end(), std::make_pair(ends, std::size_t{0}));
+    if (found == piece_of.end() || found->first != ends)
       throw InternalError("constraint marking: a crossed constraint edge is no constraint");
     const std::size_t piece = found->second;
     if (busy[s] || busy[piece])

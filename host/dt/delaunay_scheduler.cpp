@@ -3,9 +3,9 @@
 // download of the triangles; between kernels only small counters come back.
 #include "dt/delaunay_scheduler.hpp"
 
+#include "predicates.h"
 #include "dt/shifting.hpp"
 #include "dt/triangulation_construction.hpp"
-#include "predicates.h"
 
 #include <algorithm>
 #include <array>
@@ -451,8 +451,7 @@ bool DelaunayScheduler::triangulate() {
 }
 
 int DelaunayScheduler::texture_side(Point low, double span) const {
-  return options_.tuning.grid ? *options_.tuning.grid
-                              : VoronoiBanding::choose_grid(points_, low, span);
+  return options_.tuning.grid ? *options_.tuning.grid : VoronoiBanding::choose_grid(points_, low, span);
 }
 
 bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {

@@ -3,7 +3,9 @@
 // hull inwards and from each hole seed outwards, never across a constraint.
 // Each wave appends the triangles it claims (atomic exchange on removed[]) to
 // the next frontier; the order of a frontier never reaches the output, only
-// the set of removed triangles does.
+// the set of removed triangles does. A hole or region seed that lies exactly
+// on a segment or at one of its vertices (exact orientation tests) starts on
+// neither side of it: it is ignored, and reported.
 #include "common.h"
 #include "mesh_params.h"
 
@@ -42,31 +44,57 @@ __kernel void seed_from_hull(CLM_TRIANGULATION_PARAMS, __global int *removed,
     }
 }
 
-// Hole seeds: the real triangle holding each seed (seeds outside the hull are ignored).
+#define CLM_SEED_OUTSIDE -1
+#define CLM_SEED_ON_SEGMENT -2
+
+// The real triangle holding seed p; CLM_SEED_OUTSIDE outside the hull,
+// CLM_SEED_ON_SEGMENT on a segment or at one of its vertices. A seed on an
+// edge that is no segment may start on either side: the flood crosses it.
+inline int seed_triangle(CLM_TRIANGULATION_PARAMS, double2 p, int start, int max_steps) {
+  const WalkResult walk = walk_to_point(points, tri_vertex, tri_neighbor, start, p, max_steps);
+  const int t = walk.triangle;
+  if (walk.outcome == CLM_WALK_LOST)
+    return CLM_SEED_OUTSIDE;
+  if (walk.outcome == CLM_WALK_AT_VERTEX) // t is a real triangle around the vertex
+    return constraint_start[walk.vertex] < constraint_start[walk.vertex + 1] ? CLM_SEED_ON_SEGMENT
+                                                                             : t;
+  if (walk.edge >= 0) { // on edge a-b of t (of a ghost: its hull edge)
+    const int a = tri_vertex[3 * t + next3(walk.edge)], b = tri_vertex[3 * t + prev3(walk.edge)];
+    if (is_constraint(constraint_start, constraint_adjacent, a, b))
+      return CLM_SEED_ON_SEGMENT;
+    if (is_ghost(load_vertices(tri_vertex, t)))
+      return link_triangle(tri_neighbor[3 * t + walk.edge]);
+  }
+  return is_ghost(load_vertices(tri_vertex, t)) ? CLM_SEED_OUTSIDE : t;
+}
+
+// Hole seeds: the real triangle holding each seed (seeds outside the hull are
+// ignored); on_segment[i] = 1 for a seed ignored as on a segment.
 __kernel void seed_from_points(CLM_TRIANGULATION_PARAMS, __global const double2 *seeds,
                                const int start, const int max_steps, __global int *removed,
-                               __global int *frontier, volatile __global int *count, const int n) {
+                               __global int *frontier, volatile __global int *count,
+                               __global int *on_segment, const int n) {
   const int i = get_global_id(0);
   if (i >= n)
     return;
-  const WalkResult walk =
-      walk_to_point(points, tri_vertex, tri_neighbor, start, seeds[i], max_steps);
-  if (walk.outcome == CLM_WALK_LOST || is_ghost(load_vertices(tri_vertex, walk.triangle)))
-    return;
-  claim(removed, frontier, count, walk.triangle);
+  const int t = seed_triangle(CLM_TRIANGULATION_ARGS, seeds[i], start, max_steps);
+  on_segment[i] = t == CLM_SEED_ON_SEGMENT;
+  if (t >= 0)
+    claim(removed, frontier, count, t);
 }
 
 // Regional attributes (-A): region r's seed floods its area, bounded by
-// constraints; regions are run in order, so a later seed in the same area wins.
+// constraints; regions are run in order, so a later seed in the same area
+// wins. on_segment[region] = 1 for a seed ignored as on a segment.
 __kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed, const double2 seed,
                          const int start, const int max_steps, const int region,
-                         __global int *label, __global int *frontier,
-                         volatile __global int *count) {
+                         __global int *label, __global int *frontier, volatile __global int *count,
+                         __global int *on_segment) {
   if (get_global_id(0) != 0)
     return;
-  const WalkResult walk = walk_to_point(points, tri_vertex, tri_neighbor, start, seed, max_steps);
-  const int t = walk.triangle;
-  if (walk.outcome == CLM_WALK_LOST || is_ghost(load_vertices(tri_vertex, t)) || removed[t])
+  const int t = seed_triangle(CLM_TRIANGULATION_ARGS, seed, start, max_steps);
+  on_segment[region] = t == CLM_SEED_ON_SEGMENT;
+  if (t < 0 || removed[t])
     return;
   label[t] = region;
   frontier[atomic_inc(count)] = t;

@@ -433,6 +433,16 @@ void warn_refinement(const clmesh::Options &options, const clmesh::RefineStats &
   }
 }
 
+// Hole and region seeds on a segment start on neither side of it: ignored.
+void warn_seeds_on_segments(const clmesh::ConstrainedStats &constraints) {
+  if (constraints.ignored_holes > 0)
+    std::fprintf(stderr, "Warning:  %ld hole(s) lying exactly on a segment were ignored.\n",
+                 constraints.ignored_holes);
+  if (constraints.ignored_regions > 0)
+    std::fprintf(stderr, "Warning:  %ld region seed(s) lying exactly on a segment were ignored.\n",
+                 constraints.ignored_regions);
+}
+
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -472,6 +482,8 @@ int run(const CommandLine &command) {
   const clmesh::Mesh mesh = clmesh::triangulate(*device, input, options);
   const clmesh::RefineStats &refinement = mesh.statistics.refinement;
   warn_refinement(options, refinement);
+  if (talk && mesh.statistics.constrained)
+    warn_seeds_on_segments(mesh.statistics.constraints);
   const double compute_wall = seconds_since(phase);
   const double device_compute = mesh.statistics.delaunay.compute_seconds;
   seconds.compute = device_compute > 0 ? device_compute : compute_wall;

@@ -966,3 +966,120 @@ TEST_CASE("cdt: a grid of crossing segments among random points") {
   CHECK(result.segments.size() >=
         pslg.segments.size() + 2 * static_cast<std::size_t>(lines * lines));
 }
+
+// Issue 32: crossings beyond the first room made for them (1024 and one per
+// segment) grow the mesh's arrays, as refinement's do, instead of being
+// refused. Each mesh is checked exactly (every input segment a chain of mesh
+// edges through its crossings), equals CGAL's CDT of its own points and
+// segments, and is the same at two work-group sizes.
+TEST_CASE("cdt: thousands of crossings grow the mesh (issue 32)") {
+  auto checked = [](const clmesh::Input &pslg) {
+    auto options = whole_hull_options();
+    options.tuning.work_group = 16;
+    const clmesh::Mesh small_groups = clmesh::triangulate(device(), pslg, options);
+    options.tuning.work_group = 64;
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), pslg, options);
+    test_support::check_same_mesh(small_groups, mesh);
+    CHECK(test_support::starts_with(mesh.points, pslg.points));
+    CHECK(added_points(mesh) == static_cast<std::size_t>(mesh.statistics.constraints.crossings));
+    const auto report = clmesh::check_mesh(pslg, mesh, options);
+    INFO(problems(report));
+    CHECK(report.ok);
+#ifdef CLMESH_HAVE_CGAL
+    // CGAL's CDT of clmesh's own rounded crossings and pieces: the same mesh.
+    compare_with_cgal(pslg_of(mesh.points, mesh.segments), options, mesh);
+#endif
+    return mesh;
+  };
+  SUBCASE("400 random segments among 200 points") {
+    clmesh::Input pslg;
+    pslg.points = fixtures::uniform(200, 71);
+    std::mt19937_64 rng(72);
+    std::uniform_int_distribution<int32_t> pick(0, 199);
+    while (pslg.segments.size() < 400) {
+      const int32_t a = pick(rng), b = pick(rng);
+      if (a != b)
+        pslg.segments.push_back({a, b, 2});
+    }
+    const auto mesh = checked(pslg);
+    CHECK(mesh.statistics.constraints.crossings > 1024 + 400);
+  }
+  SUBCASE("a star of 1000 spokes through one point, and its ring") {
+    // Spoke k from p_k to -p_k: all pass exactly through the origin.
+    const int spokes = 1000;
+    clmesh::Input pslg;
+    for (int k = 0; k < spokes; ++k)
+      pslg.points.push_back({std::cos(M_PI * k / spokes), std::sin(M_PI * k / spokes)});
+    for (int k = 0; k < spokes; ++k)
+      pslg.points.push_back({-pslg.points[k].x, -pslg.points[k].y});
+    for (int32_t k = 0; k < spokes; ++k)
+      pslg.segments.push_back({k, k + spokes, 3});
+    for (int32_t k = 0; k < 2 * spokes; ++k)
+      pslg.segments.push_back({k, (k + 1) % (2 * spokes), 1});
+    const auto mesh = checked(pslg);
+    // One vertex at the centre, every spoke split there.
+    REQUIRE(added_points(mesh) == 1);
+    CHECK(mesh.points.back().x == 0.0);
+    CHECK(mesh.points.back().y == 0.0);
+    CHECK(mesh.segments.size() == 4 * static_cast<std::size_t>(spokes));
+    CHECK(mesh.triangles.size() == 2 * static_cast<std::size_t>(spokes)); // a sector each
+  }
+}
+
+// Issue 32: a hole or region seed lying exactly on a segment or at one of
+// its vertices starts on neither side of it; it is ignored (and counted), not
+// flooded from whichever triangle the walk stopped in. Exact: a seed one ulp
+// off the segment is on a side.
+TEST_CASE("cdt: hole and region seeds on a segment are ignored (issue 32)") {
+  // A square in a square: the ring between them and the inner square.
+  clmesh::Input pslg = pslg_of(
+      {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}},
+      {{0, 1, 1}, {1, 2, 1}, {2, 3, 1}, {3, 0, 1}, {4, 5, 2}, {5, 6, 2}, {6, 7, 2}, {7, 4, 2}});
+  const clmesh::Mesh whole = clmesh::triangulate(device(), pslg, cdt_options());
+  const clmesh::Mesh inner_removed = [&] {
+    clmesh::Input with_hole = pslg;
+    with_hole.holes = {{2, 2}};
+    return clmesh::triangulate(device(), with_hole, cdt_options());
+  }();
+  REQUIRE(whole.triangles.size() == 10);
+  REQUIRE(inner_removed.triangles.size() == 8);
+  auto with_holes = [&](std::vector<Point> holes, const char *switches = "p") {
+    clmesh::Input input = pslg;
+    input.holes = std::move(holes);
+    return clmesh::triangulate(device(), input, switches);
+  };
+  SUBCASE("on a segment, at a segment's vertex, on the outer boundary: the domain is kept") {
+    for (const Point hole : {Point{2, 1}, Point{1, 1}, Point{2, 0}, Point{0, 4}, Point{4, 2.5}}) {
+      CAPTURE(hole.x);
+      CAPTURE(hole.y);
+      const clmesh::Mesh mesh = with_holes({hole});
+      CHECK(mesh.triangles == whole.triangles);
+      CHECK(mesh.statistics.constraints.ignored_holes == 1);
+      CHECK(mesh.statistics.constraints.eaten_triangles == 0);
+    }
+  }
+  SUBCASE("beside holes that are not on a segment") {
+    const clmesh::Mesh mesh = with_holes({{3, 2}, {2, 2}});
+    CHECK(mesh.triangles == inner_removed.triangles);
+    CHECK(mesh.statistics.constraints.ignored_holes == 1);
+  }
+  SUBCASE("one ulp off the segment: on a side") {
+    CHECK(with_holes({{2, std::nextafter(1.0, 2.0)}}).triangles == inner_removed.triangles);
+    const clmesh::Mesh below = with_holes({{2, std::nextafter(1.0, 0.0)}});
+    CHECK(below.triangles.size() == 2); // the ring eaten
+    CHECK(below.statistics.constraints.ignored_holes == 0);
+  }
+  SUBCASE("-O: the holes are not looked at") {
+    CHECK(with_holes({{2, 1}}, "pO").statistics.constraints.ignored_holes == 0);
+  }
+  SUBCASE("a region seed on a segment labels nothing") {
+    clmesh::Input input = pslg;
+    input.regions = {{{3, 2}, 5, -1}, {{2, 2}, 7, -1}};
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), input, "pA");
+    REQUIRE(mesh.triangle_attributes.size() == whole.triangles.size());
+    CHECK(std::count(mesh.triangle_attributes.begin(), mesh.triangle_attributes.end(), 7.0) == 2);
+    CHECK(std::count(mesh.triangle_attributes.begin(), mesh.triangle_attributes.end(), 0.0) == 8);
+    CHECK(mesh.statistics.constraints.ignored_regions == 1);
+    CHECK(mesh.statistics.constraints.ignored_holes == 0);
+  }
+}

@@ -99,7 +99,9 @@ std::string format_statistics(const Mesh &mesh) {
     add("    Outer iterations / runs flipped along: %ld / %ld\n", c.outer_iterations,
         c.inner_iterations);
     add("    Constrained Delaunay flips: %ld\n", c.delaunay_flips);
-    add("    Triangles eaten (exterior and holes): %ld\n\n", c.eaten_triangles);
+    add("    Triangles eaten (exterior and holes): %ld\n", c.eaten_triangles);
+    add("    Hole and region seeds on segments (ignored): %ld and %ld\n\n", c.ignored_holes,
+        c.ignored_regions);
   }
   if (mesh.statistics.refined) {
     const RefineStats &r = mesh.statistics.refinement;
@@ -155,7 +157,9 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
     json += count("outer_iterations", c.outer_iterations);
     json += count("inner_iterations", c.inner_iterations);
     json += count("delaunay_flips", c.delaunay_flips);
-    json += count("eaten_triangles", c.eaten_triangles, true);
+    json += count("eaten_triangles", c.eaten_triangles);
+    json += count("ignored_holes", c.ignored_holes);
+    json += count("ignored_regions", c.ignored_regions, true);
     json += "  },\n";
   }
   if (mesh.statistics.refined) {

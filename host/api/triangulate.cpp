@@ -58,11 +58,30 @@ void take_attributes(Mesh &mesh, const Options &options, std::vector<double> att
   mesh.triangle_attributes = std::move(attributes);
 }
 
+// Meshes a validated input with validated options.
+Mesh mesh_of(Device &device, const Input &input, const Options &options);
+
 } // namespace
 
 Mesh triangulate(Device &device, const Input &input, const Options &options) {
   validate(options);
   validate(input);
+  try {
+    return mesh_of(device, input, options);
+  } catch (const InputError &error) {
+    // The phases name an item of the input ("point 7") or "input": in the
+    // input's file when it came from one, as validate() does.
+    if (input.source.empty())
+      throw;
+    const std::string &item = error.file();
+    throw InputError(item == "input" ? input.source : input.source + ": " + item, error.line(),
+                     error.problem());
+  }
+}
+
+namespace {
+
+Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   DelaunayOptions delaunay_options;
   delaunay_options.tuning = options.tuning;
   delaunay_options.want_voronoi_image = options.voronoi_image;
@@ -126,6 +145,8 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
     add_second_order_nodes(mesh);
   return mesh;
 }
+
+} // namespace
 
 Mesh triangulate(Device &device, const Input &input, const std::string &switches) {
   return triangulate(device, input, parse_switches(switches));

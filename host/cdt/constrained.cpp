@@ -67,6 +67,7 @@ bool remove_exterior(DelaunayScheduler &scheduler, ExteriorRemoval &removal, con
   if (!from_hull && holes.empty())
     return false;
   stats.eaten_triangles = removal.run(from_hull, holes);
+  stats.ignored_holes = removal.seeds_on_segments();
   scheduler.timer().charge(ExteriorRemoval::kPhase);
   return true;
 }
@@ -110,6 +111,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     for (const Region &region : pslg.regions)
       seeds.push_back(region.seed);
     label = &removal.label_regions(seeds);
+    stats.ignored_regions = removal.seeds_on_segments();
     scheduler.timer().charge(ExteriorRemoval::kPhase);
   }
   std::vector<int32_t> labels;

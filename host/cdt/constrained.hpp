@@ -42,9 +42,9 @@ struct ConstrainedResult {
 };
 
 // Segments that cross are split at a new vertex at their intersection,
-// rounded to the nearest double, as Triangle does (at most 1024 + the number
-// of segments such vertices). Segment endpoints are checked beforehand by
-// validate(Input); throws the errors of delaunay().
+// rounded to the nearest double, as Triangle does (the mesh grows as they
+// come). Segment endpoints are checked beforehand by validate(Input); throws
+// the errors of delaunay().
 ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
                                        const ConstrainedOptions &options = {});
 
@@ -52,7 +52,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
 class DelaunayScheduler;
 class ExteriorRemoval;
 
-// Room for the vertices added where segments cross.
+// First room for the vertices added where segments cross (more is made as needed).
 std::size_t crossing_room(const Pslg &pslg);
 
 // Drops zero-length and repeated segments (first occurrence kept, its marker too).

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
-#include <map>
 #include <numeric>
 #include <utility>
 
@@ -240,11 +239,17 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   const std::size_t m = segments_.size();
   const auto other = download_by_segment(crossed_vertex_);
   const auto triangle = download_by_segment(crossed_triangle_);
-  std::map<std::pair<int32_t, int32_t>, std::size_t> piece_of;
+  // (ends, index) of every piece, sorted: the piece a walk met, by binary
+  // search.
+  using Ends = std::pair<int32_t, int32_t>;
+  std::vector<std::pair<Ends, std::size_t>> piece_of(m);
   for (std::size_t i = 0; i < m; ++i)
-    piece_of[std::minmax(segments_[i].a, segments_[i].b)] = i;
+    piece_of[i] = {std::minmax(segments_[i].a, segments_[i].b), i};
+  std::sort(piece_of.begin(), piece_of.end());
+  // One download, not a read per endpoint: a round may split thousands.
+  const std::vector<cl_double2> points = mesh_.points.download(device_, mesh_.point_count);
   auto coordinates = [&](int32_t v) {
-    const cl_double2 p = mesh_.points.read(device_, static_cast<std::size_t>(v));
+    const cl_double2 &p = points[static_cast<std::size_t>(v)];
     return Point{p.s[0], p.s[1]};
   };
   // Each crossing splits two segments: s (walking) and the piece p-q it met.
@@ -255,8 +260,10 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   for (std::size_t s = 0; s < m; ++s) {
     if (state[s] != kCrossing)
       continue;
-    const auto found = piece_of.find(std::minmax(vertex[s], other[s]));
-    if (found == piece_of.end())
+    const Ends ends = std::minmax(vertex[s], other[s]);
+    const auto found =
+        std::lower_bound(piece_of.begin(), piece_of.end(), std::make_pair(ends, std::size_t{0}));
+    if (found == piece_of.end() || found->first != ends)
       throw InternalError("constraint marking: a crossed constraint edge is no constraint");
     const std::size_t piece = found->second;
     if (busy[s] || busy[piece])
@@ -270,6 +277,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   }
   const std::vector<int32_t> added = insert_points(where, near);
   vertex_triangles_recorded_ = false;
+  fit_to_mesh();
   added_points_.insert(added_points_.end(), where.begin(), where.end());
   stats.crossings += static_cast<long>(crossings.size());
   std::vector<Segment> pieces;
@@ -297,6 +305,18 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   }
   origin_ = origin;
   set_constraints(pieces);
+}
+
+void ConstraintInsertion::fit_to_mesh() {
+  const std::size_t slots = mesh_.triangle_capacity;
+  if (touched_.size() >= slots)
+    return;
+  touched_ = touched_.grown(device_, slots, 0);
+  // The others are rewritten before each use.
+  constraint_mark_ = DeviceArray<cl_int>(device_, slots);
+  run_start_ = DeviceArray<cl_int>(device_, slots);
+  run_of_ = DeviceArray<cl_int>(device_, slots);
+  boundary_log_ = DeviceArray<cl_int>(device_, kLogPerTriangle * slots);
 }
 
 ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
@@ -340,9 +360,12 @@ void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &inse
   touched_.fill(device_, 0, touched_.size());
   bool first = true;
   // Each outer iteration either inserts a segment, splits one, or flips; the
-  // bound only turns a bug into an error instead of a hang.
-  const long max_outer = 64 + 4 * static_cast<long>(segments_.size() + mesh_.triangle_count);
-  for (long outer = 0; outer < max_outer; ++outer) {
+  // bound (of the pieces and triangles so far: crossings add both) only
+  // turns a bug into an error instead of a hang.
+  auto max_outer = [&] {
+    return 64 + 4 * static_cast<long>(segments_.size() + mesh_.triangle_count);
+  };
+  for (long outer = 0; outer < max_outer(); ++outer) {
     const long pending = mark(stats, first, insert_points);
     first = false;
     if (pending < 0)

@@ -58,6 +58,8 @@ private:
   // Splits crossing segments at new vertices (one split per segment and call).
   void split_crossings(const std::vector<cl_int> &state, const std::vector<cl_int> &vertex,
                        ConstrainedStats &stats, const PointInserter &insert_points);
+  // The per-slot arrays resized after the mesh grew (insert_points).
+  void fit_to_mesh();
   // A per-constraint device array, in the order of segments_.
   std::vector<cl_int> download_by_segment(const DeviceArray<cl_int> &array);
   // The inner loop: splits the marked triangles into runs along their

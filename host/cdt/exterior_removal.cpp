@@ -1,5 +1,6 @@
 #include "cdt/exterior_removal.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace clmesh {
@@ -22,6 +23,7 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
 long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
   const std::size_t slots = mesh_.triangle_count;
   count_.fill(device_, 0, 1);
+  seeds_on_segments_ = 0;
   if (from_hull) {
     set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0), removed_.buffer(),
                   frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
@@ -33,13 +35,21 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
       seeds.push_back({{p.x, p.y}});
     DeviceArray<cl_double2> seed_buffer(device_, seeds.size());
     seed_buffer.upload(device_, seeds);
+    DeviceArray<cl_int> on_segment(device_, seeds.size());
     set_args_from(seed_from_points_, mesh_.bind_triangulation(seed_from_points_, 0),
                   seed_buffer.buffer(), static_cast<cl_int>(0), static_cast<cl_int>(slots + 8),
-                  removed_.buffer(), frontier_.buffer(), count_.buffer(),
+                  removed_.buffer(), frontier_.buffer(), count_.buffer(), on_segment.buffer(),
                   static_cast<cl_int>(seeds.size()));
     launch(device_, seed_from_points_, seeds.size(), kPhase);
+    count_seeds_on_segments(on_segment, seeds.size());
   }
   return flood(-1);
+}
+
+void ExteriorRemoval::count_seeds_on_segments(const DeviceArray<cl_int> &on_segment,
+                                              std::size_t count) {
+  const std::vector<cl_int> flags = on_segment.download(device_, count);
+  seeds_on_segments_ = static_cast<long>(std::count(flags.begin(), flags.end(), 1));
 }
 
 long ExteriorRemoval::flood(int region) {
@@ -61,15 +71,17 @@ const DeviceArray<cl_int> &ExteriorRemoval::label_regions(const std::vector<Poin
   const std::size_t slots = mesh_.triangle_count;
   label_ = DeviceArray<cl_int>(device_, mesh_.triangle_capacity);
   label_.fill(device_, -1, mesh_.triangle_capacity);
+  DeviceArray<cl_int> on_segment(device_, seeds.size());
   for (std::size_t r = 0; r < seeds.size(); ++r) {
     count_.fill(device_, 0, 1);
     set_args_from(seed_label_, mesh_.bind_triangulation(seed_label_, 0), removed_.buffer(),
                   cl_double2{{seeds[r].x, seeds[r].y}}, static_cast<cl_int>(0),
                   static_cast<cl_int>(slots + 8), static_cast<cl_int>(r), label_.buffer(),
-                  frontier_.buffer(), count_.buffer());
+                  frontier_.buffer(), count_.buffer(), on_segment.buffer());
     launch(device_, seed_label_, 1, kPhase);
     flood(static_cast<int>(r));
   }
+  count_seeds_on_segments(on_segment, seeds.size());
   return label_;
 }
 

@@ -25,12 +25,20 @@ public:
   // without crossing a constraint (-1: none); later regions win.
   const DeviceArray<cl_int> &label_regions(const std::vector<Point> &seeds);
 
+  // Seeds of the last run() or label_regions() ignored because they lie
+  // exactly on a segment or at one of its vertices (on neither side of it).
+  long seeds_on_segments() const { return seeds_on_segments_; }
+
 private:
   Device &device_;
   DeviceMesh &mesh_;
   // Runs waves from the current frontier until it is empty: removal when
   // region < 0, else labelling with `region`. Returns the triangles reached.
   long flood(int region);
+  // Counts the seeds flagged in on_segment[0 .. count).
+  void count_seeds_on_segments(const DeviceArray<cl_int> &on_segment, std::size_t count);
+
+  long seeds_on_segments_ = 0;
 
   cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;

@@ -17,7 +17,9 @@ namespace clmesh {
 
 namespace {
 
-void check_coordinates(const std::vector<Point> &points) {
+// first: the number of points[0]; added: they were computed (where segments cross).
+void check_coordinates(const std::vector<Point> &points, std::size_t first = 0,
+                       bool added = false) {
   for (std::size_t i = 0; i < points.size(); ++i)
     for (const double value : {points[i].x, points[i].y}) {
       const double magnitude = std::fabs(value);
@@ -25,8 +27,9 @@ void check_coordinates(const std::vector<Point> &points) {
           (value != 0 && magnitude < kMinCoordinate)) {
         char text[64];
         std::snprintf(text, sizeof text, "%.17g", value);
-        throw InputError("point " + std::to_string(i), 0,
+        throw InputError("point " + std::to_string(first + i), 0,
                          std::string("coordinate ") + text +
+                             (added ? " (where segments cross)" : "") +
                              " is outside what exact arithmetic carries (non-zero magnitudes "
                              "from 1e-50 to 1e50)");
       }
@@ -521,11 +524,10 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
 std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &added,
                                                       const std::vector<int32_t> &start_triangles) {
   DeviceMesh &mesh = *mesh_;
-  check_coordinates(added);
+  check_coordinates(added, mesh.point_count, true);
+  // Short of room: the arrays grow by half at least, as refinement's do.
   if (mesh.point_count + added.size() > mesh.point_capacity)
-    throw InputError("input", 0,
-                     "more than " + std::to_string(extra_points_) +
-                         " points to add where segments cross (not supported yet)");
+    grow(std::max(added.size(), mesh.point_capacity / 2));
   const auto first = static_cast<int32_t>(mesh.point_count);
   std::vector<cl_double2> coordinates;
   std::vector<cl_int> ids;

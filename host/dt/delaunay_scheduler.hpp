@@ -51,8 +51,9 @@ public:
   bool triangulate();
   // Inserts new points (numbered after every earlier one, in the device and
   // in the output), each walking from the given triangle, and restores the
-  // (constrained) Delaunay property. Returns their device numbers, or the
-  // number of the point already there for one that coincides with it.
+  // (constrained) Delaunay property; the mesh grows when its room runs short.
+  // Returns their device numbers, or the number of the point already there
+  // for one that coincides with it.
   std::vector<int32_t> insert_points(const std::vector<Point> &added,
                                      const std::vector<int32_t> &start_triangles);
 

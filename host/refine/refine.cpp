@@ -349,6 +349,7 @@ private:
     DeviceMesh &m = mesh();
     m.tri_region = removal.label_regions(seeds);
     m.has_regions = true;
+    result_.constraints.ignored_regions = removal.seeds_on_segments();
   }
 
   // The segments as refinement's constraints; their vertices are boundary

@@ -28,9 +28,11 @@ public:
 class InputError : public Error {
 public:
   InputError(std::string file, long line, const std::string &problem)
-      : Error(format(file, line, problem)), file_(std::move(file)), line_(line) {}
+      : Error(format(file, line, problem)), file_(std::move(file)), line_(line), problem_(problem) {
+  }
   const std::string &file() const { return file_; }
   long line() const { return line_; } // 0 when the problem is not on one line
+  const std::string &problem() const { return problem_; }
 
 private:
   static std::string format(const std::string &file, long line, const std::string &problem) {
@@ -39,6 +41,7 @@ private:
   }
   std::string file_;
   long line_;
+  std::string problem_;
 };
 
 // Switches or option values that are unknown, malformed, out of range or do

@@ -45,6 +45,10 @@ struct ConstrainedStats {
   long inner_iterations = 0; // runs flipped along (the inner loop's work-items), all iterations
   long delaunay_flips = 0;   // flips of the final constrained Delaunay flipping
   long eaten_triangles = 0;  // triangles removed as exterior or hole
+  // Hole seeds (unless -O) and region seeds (with -A) lying exactly on a
+  // segment or at one of its vertices: on neither side, ignored.
+  long ignored_holes = 0;
+  long ignored_regions = 0;
 };
 
 // Why the refinement stopped.

@@ -37,6 +37,12 @@ expect "count 0 without .node" 1 "nonode.poly:2:" "nonode.node" -- -p nonode.pol
 expect "premature end of file" 1 "short.poly:8:" "after 2 of 3 segments" -- -p short
 expect "region without attribute" 1 "region.poly:11:" "region 1" -- -pA region.poly
 expect "error in the .node beside the .poly" 1 "badnode.node:4:" "'zero'" -- -p badnode.poly
+# Issue 32: segments crossing where the crossing rounds below 1e-50 (beyond
+# what exact arithmetic carries): the message names the file.
+printf '4 2 0 0\n1 -1 0\n2 1 0\n3 1e-35 -1\n4 -2.9999999999999994e-35 3\n2 0\n1 1 2\n2 3 4\n0\n' \
+  > tiny.poly
+expect "crossing beyond exact arithmetic" 1 "clmesh: tiny.poly: point 4: coordinate" \
+  "where segments cross" -- -p tiny.poly
 expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
   "segment 2 has no boundary marker" -- nomarker.poly
 expect "vertex without the marker its header announces, in the .node beside" 1 \
@@ -153,7 +159,8 @@ if [[ -f stats.json ]]; then
 import json, sys
 stats = json.load(open(sys.argv[1]))
 keys = ["segments", "dropped_segments", "split_segments", "crossings", "intersections", "constraint_flips",
-        "outer_iterations", "inner_iterations", "delaunay_flips", "eaten_triangles"]
+        "outer_iterations", "inner_iterations", "delaunay_flips", "eaten_triangles", "ignored_holes",
+        "ignored_regions"]
 c = stats["constraints"]
 assert sorted(c) == sorted(keys), c
 assert all(isinstance(c[k], int) and c[k] >= 0 for k in keys), c
@@ -236,6 +243,32 @@ grep -q '^ *49  *0.6502  *1 ' farther.1.node ||
   fail "crossing far from the segment's start: not at (0.6502, 1): $(grep '^ *49 ' farther.1.node)"
 grep -q '^ *50  *0.6502  *1 ' farther.1.node ||
   fail "crossing near the segment's end: not at (0.6502, 1): $(grep '^ *50 ' farther.1.node)"
+
+# Issue 32: a hole exactly on a segment (or at a segment's vertex) starts on
+# neither side: ignored with a warning (none with -Q), the domain kept; the
+# stats count it. A region seed likewise.
+mkdir -p "$work/seeds"
+cd "$work/seeds"
+squares='8 2 0 0\n1 0 0\n2 4 0\n3 4 4\n4 0 4\n5 1 1\n6 3 1\n7 3 3\n8 1 3\n'
+squares+='8 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 5 6\n6 6 7\n7 7 8\n8 8 5\n'
+printf "$squares"'0\n' > whole.poly
+printf "$squares"'2\n1 2 1\n2 1 1\n' > onsegment.poly
+printf "$squares"'0\n2\n1 2 1 5 0\n2 2 2 7 0\n' > region.poly
+run -pQ whole.poly
+run -p --stats-json stats.json onsegment.poly
+grep -q 'Warning:  2 hole(s) lying exactly on a segment were ignored' stderr.txt ||
+  fail "hole on a segment: no warning on stderr: $(cat stderr.txt)"
+cmp -s <(body whole.1.ele) <(body onsegment.1.ele) || fail "hole on a segment: the domain was not kept"
+python3 -c 'import json, sys; c = json.load(open(sys.argv[1]))["constraints"]
+assert (c["ignored_holes"], c["ignored_regions"]) == (2, 0), c' stats.json ||
+  fail "hole on a segment: ignored_holes in --stats-json: $(cat stats.json)"
+run -pQ onsegment.poly
+[[ ! -s stderr.txt ]] || fail "hole on a segment with -Q: stderr not empty: $(cat stderr.txt)"
+run -pA region.poly
+grep -q 'Warning:  1 region seed(s) lying exactly on a segment were ignored' stderr.txt ||
+  fail "region seed on a segment: no warning on stderr: $(cat stderr.txt)"
+[[ "$(awk 'NR > 1 && $5 == 5' region.1.ele | wc -l)" -eq 0 ]] ||
+  fail "region seed on a segment: triangles labelled with its attribute"
 
 finish poly.sh
 echo "poly.sh: all checks passed"

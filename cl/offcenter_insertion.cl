@@ -404,22 +404,42 @@ inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
   return subsegment_at(CLM_MESH_ARGS, container[k], split_edge[k]);
 }
 
-// Does subsegment a-b have exactly one end where segments meet? Then it is
-// split on a shell around that end.
-inline bool splits_on_shell(__global const int *point_segment, int a, int b) {
-  return (point_segment[a] == CLM_SEGMENT_JOINT) != (point_segment[b] == CLM_SEGMENT_JOINT);
+// Is edge i of real triangle t a subsegment or on the domain's boundary?
+inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
+  return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
+         subsegment_at(CLM_MESH_ARGS, t, i);
+}
+
+// The end of subsegment (or boundary edge) e of real triangle t around which
+// it is split on a shell, or -1 (at its midpoint): of its two ends, the one
+// alone where segments meet at a small angle, that is, where another
+// subsegment or boundary edge is an edge of t or of the triangle across e (as
+// Triangle decides).
+inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
+  const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
+  const bool joint_a = point_segment[a] == CLM_SEGMENT_JOINT,
+             joint_b = point_segment[b] == CLM_SEGMENT_JOINT;
+  if (!joint_a && !joint_b)
+    return -1;
+  // Across e, u = (d, b, a): its edge next3(j) ends at a, prev3(j) at b.
+  const int link = tri_neighbor[3 * t + e], u = link_triangle(link), j = link_edge(link);
+  const bool real_u = !is_ghost(load_vertices(tri_vertex, u));
+  const bool at_a = joint_a && (bounds_domain(CLM_MESH_ARGS, t, prev3(e)) ||
+                                (real_u && bounds_domain(CLM_MESH_ARGS, u, next3(j))));
+  const bool at_b = joint_b && (bounds_domain(CLM_MESH_ARGS, t, next3(e)) ||
+                                (real_u && bounds_domain(CLM_MESH_ARGS, u, prev3(j))));
+  return at_a == at_b ? -1 : at_a ? a : b;
 }
 
 // The point that splits subsegment (or hull edge) a-b: its midpoint; or, with
-// one end where segments meet, the point at a power of two from that end
-// between a third and two thirds of the way (concentric shells: segments that
-// meet at a small angle are split at the same distances from their common
-// vertex, so that they stop encroaching on each other).
-inline double2 subsegment_split(__global const double2 *points, __global const int *point_segment,
-                                int a, int b) {
-  if (!splits_on_shell(point_segment, a, b))
+// a shell centre (a or b, see shell_centre), the point at a power of two from
+// it between a third and two thirds of the way (concentric shells: segments
+// that meet at a small angle are split at the same distances from their
+// common vertex, so that they stop encroaching on each other).
+inline double2 subsegment_split(__global const double2 *points, int centre, int a, int b) {
+  if (centre < 0)
     return 0.5 * (points[a] + points[b]);
-  const bool from_a = point_segment[a] == CLM_SEGMENT_JOINT;
+  const bool from_a = centre == a;
   const double2 from = from_a ? points[a] : points[b], to = from_a ? points[b] : points[a];
   const double length = sqrt(squared_length(to - from));
   int exponent;
@@ -438,7 +458,8 @@ inline double insertion_radius2_of(CLM_MESH_PARAMS, __global const int *containe
     const int t = container[k], e = split_edge[k];
     const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
     const double to_a = squared_length(points[a] - c);
-    return splits_on_shell(point_segment, a, b) ? fmin(to_a, squared_length(points[b] - c)) : to_a;
+    return shell_centre(CLM_MESH_ARGS, t, e) >= 0 ? fmin(to_a, squared_length(points[b] - c))
+                                                  : to_a;
   }
   double radius2 = INFINITY;
   for (int i = 0; i < 3; ++i)
@@ -561,7 +582,7 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   if (hull_edge >= 0) {
     const int a = tri_vertex[3 * t + next3(hull_edge)], b = tri_vertex[3 * t + prev3(hull_edge)],
               apex = tri_vertex[3 * t + hull_edge];
-    const double2 split = subsegment_split(points, point_segment, a, b);
+    const double2 split = subsegment_split(points, shell_centre(CLM_MESH_ARGS, t, hull_edge), a, b);
     candidate[k] = split;
     // The rounded split point must leave every half counter-clockwise (on a
     // nearly straight run of boundary points it may not): else no split.

@@ -1,4 +1,5 @@
-// clmesh — one call, one input, one mesh (Triangle's triangulate()).
+// clmesh — one call, one input, one mesh (Triangle's triangulate()); and
+// triangulate_many(), one call, many inputs on one device.
 #pragma once
 
 #include "clmesh/device.hpp"
@@ -6,7 +7,11 @@
 #include "clmesh/mesh.hpp"
 #include "clmesh/options.hpp"
 
+#include <cstddef>
+#include <exception>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace clmesh {
 
@@ -22,5 +27,32 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 // On the device options.device names, opened once per process (whichever
 // spec names it); calls from several threads take the device one at a time.
 Mesh triangulate(const Input &input, const Options &options);
+
+// One input's outcome in triangulate_many(): its mesh, or the error that
+// stopped it.
+struct BatchResult {
+  Mesh mesh;                // empty when the input failed
+  std::exception_ptr error; // null when the input was meshed; rethrow it for its type
+  std::string message;      // the error's message ("" when meshed)
+  bool ok() const { return !error; }
+};
+
+// Every input meshed with the same options on one device, whose context and
+// built programs serve them all; results[i] is the mesh triangulate(device,
+// inputs[i], options) gives, or the error it throws (InputError,
+// DeviceError, OpenCLError...), and the other inputs go on. Throws only
+// OptionError, before meshing anything, when the options are invalid.
+std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Input> &inputs,
+                                          const Options &options);
+// The same with Triangle's switch letters.
+std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Input> &inputs,
+                                          const std::string &switches);
+// The streaming form, for batches too large to hold at once: meshes inputs 0
+// to count - 1 in order, input(i) giving the i-th (an error it throws, say a
+// file that cannot be read, becomes that input's) and done(i, result) taking
+// each result as soon as it is ready. Errors done() throws end the batch.
+void triangulate_many(Device &device, std::size_t count,
+                      const std::function<Input(std::size_t)> &input, const Options &options,
+                      const std::function<void(std::size_t, BatchResult &&)> &done);
 
 } // namespace clmesh

@@ -37,7 +37,7 @@ expect "unknown refinement algorithm" 2 "--refine" "qm" "qmv" -- -q --refine fas
 expect "missing .poly input" 1 "good.poly" -- good.poly
 expect "missing option value" 2 "--grid" -- good.node --grid
 expect "bad option value" 2 "--work-group" -- --work-group zero good.node
-expect "two input files" 2 "good.node" -- good.node header.node
+expect "standard input as an input file" 2 "'-'" "not an input file" -- -z -
 expect "no input file" 2 "input" -- -z
 
 # Input text in messages is quoted with its control bytes escaped: no escape

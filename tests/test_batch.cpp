@@ -1,0 +1,164 @@
+// triangulate_many(): many inputs on one device give, input by input, the
+// meshes of separate triangulate() calls, and a bad input its own error while
+// the others are meshed.
+#include <doctest/doctest.h>
+
+#include "clmesh/clmesh.hpp"
+#include "mesh_fixtures.hpp"
+#include "test_support.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using test_support::check_same_mesh;
+using test_support::device;
+
+namespace {
+
+clmesh::Input points_input(std::vector<clmesh::Point> points) {
+  clmesh::Input input;
+  input.points = std::move(points);
+  return input;
+}
+
+// A unit square with a square hole, as a PSLG.
+clmesh::Input square_with_hole() {
+  clmesh::Input input;
+  input.points = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 1}, {3, 1}, {3, 3}, {1, 3}, {0.5, 2.5}};
+  for (int32_t i = 0; i < 4; ++i) {
+    input.segments.push_back({i, (i + 1) % 4, 1});
+    input.segments.push_back({4 + i, 4 + (i + 1) % 4, 2});
+  }
+  input.holes = {{2, 2}};
+  return input;
+}
+
+bool same_edges(const std::vector<clmesh::Edge> &a, const std::vector<clmesh::Edge> &b) {
+  if (a.size() != b.size())
+    return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].a != b[i].a || a[i].b != b[i].b || a[i].marker != b[i].marker)
+      return false;
+  return true;
+}
+
+// The message of the InputError `result` carries ("" when it carries none).
+std::string input_error(const clmesh::BatchResult &result) {
+  try {
+    if (result.error)
+      std::rethrow_exception(result.error);
+  } catch (const clmesh::InputError &error) {
+    return error.what();
+  }
+  return "";
+}
+
+} // namespace
+
+TEST_CASE("batch: each input's mesh is that of its own triangulate() call") {
+  const std::vector<clmesh::Input> inputs = {
+      points_input(fixtures::uniform(500, 1)), points_input(fixtures::lattice(12)),
+      points_input(fixtures::gaussian(300, 7)), points_input(fixtures::uniform(40, 3))};
+  for (const std::string switches : {"zen", "q30", "q25a0.01"}) {
+    CAPTURE(switches);
+    const std::vector<clmesh::BatchResult> results =
+        clmesh::triangulate_many(device(), inputs, switches);
+    REQUIRE(results.size() == inputs.size());
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      CAPTURE(i);
+      REQUIRE(results[i].ok());
+      CHECK(results[i].message.empty());
+      CHECK(!results[i].mesh.triangles.empty());
+      const clmesh::Mesh alone = clmesh::triangulate(device(), inputs[i], switches);
+      check_same_mesh(results[i].mesh, alone);
+      CHECK(same_edges(results[i].mesh.edges, alone.edges));
+    }
+  }
+  const std::vector<clmesh::Input> pslgs = {square_with_hole(), square_with_hole()};
+  const std::vector<clmesh::BatchResult> refined =
+      clmesh::triangulate_many(device(), pslgs, "pq30");
+  REQUIRE(refined.size() == 2);
+  REQUIRE(refined[0].ok());
+  REQUIRE(refined[1].ok());
+  check_same_mesh(refined[0].mesh, clmesh::triangulate(device(), pslgs[0], "pq30"));
+  check_same_mesh(refined[1].mesh, refined[0].mesh);
+}
+
+TEST_CASE("batch: a bad input gets its error, the others their meshes") {
+  clmesh::Input two_points = points_input({{0, 0}, {1, 0}});
+  two_points.source = "two.node";
+  clmesh::Input not_finite = points_input(fixtures::uniform(20, 5));
+  not_finite.points[7].x = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<clmesh::Input> inputs = {points_input(fixtures::uniform(200, 2)), two_points,
+                                             points_input(fixtures::lattice(6)), not_finite};
+  const std::vector<clmesh::BatchResult> results = clmesh::triangulate_many(device(), inputs, "e");
+  REQUIRE(results.size() == 4);
+  for (std::size_t i : {0, 2}) {
+    REQUIRE(results[i].ok());
+    check_same_mesh(results[i].mesh, clmesh::triangulate(device(), inputs[i], "e"));
+  }
+  for (std::size_t i : {1, 3}) {
+    CAPTURE(i);
+    CHECK(!results[i].ok());
+    CHECK(results[i].mesh.triangles.empty());
+    CHECK(results[i].mesh.points.empty());
+    // The error is the one triangulate() throws for that input alone.
+    std::string alone;
+    try {
+      clmesh::triangulate(device(), inputs[i], "e");
+    } catch (const clmesh::InputError &error) {
+      alone = error.what();
+    }
+    CHECK(!alone.empty());
+    CHECK(input_error(results[i]) == alone);
+    CHECK(results[i].message == alone);
+  }
+  CHECK(results[1].message.find("two.node") != std::string::npos);
+}
+
+TEST_CASE("batch: the streaming form takes inputs and hands results in order") {
+  std::vector<std::size_t> asked, handed;
+  std::vector<clmesh::BatchResult> results(3);
+  const clmesh::Options options = clmesh::parse_switches("z");
+  clmesh::triangulate_many(
+      device(), 3,
+      [&](std::size_t i) -> clmesh::Input {
+        asked.push_back(i);
+        if (i == 1)
+          throw clmesh::InputError("unreadable.node", 0, "cannot open");
+        return points_input(fixtures::uniform(100, static_cast<unsigned>(10 + i)));
+      },
+      options,
+      [&](std::size_t i, clmesh::BatchResult &&result) {
+        handed.push_back(i);
+        results[i] = std::move(result);
+      });
+  CHECK(asked == std::vector<std::size_t>{0, 1, 2});
+  CHECK(handed == std::vector<std::size_t>{0, 1, 2});
+  CHECK(results[0].ok());
+  CHECK(results[2].ok());
+  check_same_mesh(results[2].mesh,
+                  clmesh::triangulate(device(), points_input(fixtures::uniform(100, 12)), options));
+  CHECK(input_error(results[1]) == "unreadable.node: cannot open");
+}
+
+TEST_CASE("batch: invalid options are the whole batch's error, thrown before meshing") {
+  clmesh::Options options;
+  options.regional_areas = true; // -a alone needs -p
+  std::size_t asked = 0;
+  CHECK_THROWS_AS(clmesh::triangulate_many(
+                      device(), 2,
+                      [&](std::size_t) {
+                        ++asked;
+                        return points_input(fixtures::uniform(10, 1));
+                      },
+                      options, [](std::size_t, clmesh::BatchResult &&) {}),
+                  clmesh::OptionError);
+  CHECK(asked == 0);
+  CHECK_THROWS_AS(
+      clmesh::triangulate_many(device(), {points_input(fixtures::uniform(10, 1))}, "qx"),
+      clmesh::OptionError);
+}

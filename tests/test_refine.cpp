@@ -10,26 +10,12 @@
 #include <cmath>
 
 using clmesh::Point;
+using test_support::area;
 using test_support::device;
 using test_support::problems;
+using test_support::smallest_angle_degrees;
 
 namespace {
-
-double smallest_angle_degrees(const std::vector<Point> &p, const clmesh::Triangle &t) {
-  double smallest = 180;
-  for (int i = 0; i < 3; ++i) {
-    const Point &a = p[t[i]], &b = p[t[(i + 1) % 3]], &c = p[t[(i + 2) % 3]];
-    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
-    smallest = std::min(smallest,
-                        std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
-  }
-  return smallest;
-}
-
-double area(const std::vector<Point> &p, const clmesh::Triangle &t) {
-  const Point &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
-  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-}
 
 // Refines, then checks: a valid triangulation whose boundary edges (hull
 // edges, split at rounded midpoints) bound it and whose other edges are all

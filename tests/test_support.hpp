@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -59,6 +61,25 @@ inline std::string problems(const clmesh::CheckReport &report) {
   for (const auto &p : report.problems)
     text += p + "\n";
   return text;
+}
+
+// The smallest angle of triangle t, in degrees (floating point).
+inline double smallest_angle_degrees(const std::vector<clmesh::Point> &p,
+                                     const clmesh::Triangle &t) {
+  double smallest = 180;
+  for (int i = 0; i < 3; ++i) {
+    const clmesh::Point &a = p[t[i]], &b = p[t[(i + 1) % 3]], &c = p[t[(i + 2) % 3]];
+    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
+    smallest = std::min(smallest,
+                        std::atan2(std::fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+  }
+  return smallest;
+}
+
+// The area of triangle t, positive when counter-clockwise (floating point).
+inline double area(const std::vector<clmesh::Point> &p, const clmesh::Triangle &t) {
+  const clmesh::Point &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
+  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
 }
 
 } // namespace test_support

@@ -96,3 +96,16 @@ def test_voronoi_is_the_dual_of_the_delaunay_triangulation():
 def test_triangulate_ignores_v_as_the_triangle_package_does():
     data = load(DATASETS, "la")
     assert clmesh.triangulate(data, "pv").keys() == clmesh.triangulate(data, "p").keys()
+
+
+def test_voronoi_of_collinear_points_is_empty():
+    # No triangle, so no Voronoi point (triangle.voronoi raises KeyError here).
+    points, edges, origins, directions = clmesh.voronoi([[0, 0], [1, 0], [2, 0]])
+    assert [(a.dtype.name, a.shape) for a in (points, edges, origins, directions)] == [
+        ("float64", (0, 2)), ("int32", (0, 2)), ("int32", (0,)), ("float64", (0, 2))]
+
+
+@pytest.mark.parametrize("points", [[[0, 0], [1, 0]], [[0, 0], [1, 0], [np.nan, 1]]])
+def test_voronoi_checks_its_input(points):
+    with pytest.raises(clmesh.InputError):
+        clmesh.voronoi(points)

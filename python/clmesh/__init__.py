@@ -22,9 +22,9 @@ from ._output import mesh_dict as _mesh_dict
 __version__ = _clmesh.version
 
 __all__ = [
-    "triangulate", "delaunay", "convex_hull", "run", "Result", "devices", "statistics",
-    "quality_statistics", "check_mesh", "Error", "InputError", "OptionError", "DeviceError",
-    "OpenCLError", "InternalError", "CheckError",
+    "triangulate", "delaunay", "convex_hull", "voronoi", "run", "Result", "devices",
+    "statistics", "quality_statistics", "check_mesh", "Error", "InputError", "OptionError",
+    "DeviceError", "OpenCLError", "InternalError", "CheckError",
 ]
 
 
@@ -101,6 +101,21 @@ def delaunay(pts, device=None):
 def convex_hull(pts, device=None):
     """The convex hull's edges (int32, (H, 2)), clockwise as in the triangle package."""
     return triangulate({"vertices": pts}, "c", device)["segments"]
+
+
+def voronoi(pts, device=None):
+    """The Voronoi diagram of the points, as the triangle package returns it:
+    ``points, edges, ray_origin, ray_direct``. points (float64, (V, 2)) are
+    the circumcentres of the Delaunay triangles, numbered as delaunay()'s
+    triangles; edges (int32, (E, 2)) join two of them; each ray starts at
+    points[ray_origin[i]] (int32, (R,)) and runs along ray_direct[i]
+    (float64, (R, 2)): the hull edge it crosses turned a quarter clockwise,
+    outwards, as long as that edge."""
+    core = _clmesh.triangulate(**_arrays({"vertices": pts}), switches="v",
+                               device=_device_spec(device))
+    ends, directions = core.voronoi_edges()
+    ray = ends[:, 1] < 0
+    return core.voronoi_points(), ends[~ray], ends[ray, 0], directions[ray]
 
 
 def statistics(result):

@@ -3,8 +3,10 @@
 The keys, dtypes and shapes follow the triangle package: vertices (float64,
 (N, 2)), vertex_markers and the other markers (int32, (N, 1)), index arrays
 int32 and zero-based; which keys appear depends on the switches as there
-(-N, -E, -B, -n, -e, -p, -c, -A), in its order, and empty arrays are left
-out.
+(-N, -E, -B, -n, -e, -p, -c, -A, -o2), in its order, and empty arrays are
+left out. With -o2 the triangles have six columns (corners, then the middles
+of the edges opposite them), and the middle nodes are numbered after the
+vertices, their coordinates, attributes and markers appended to those arrays.
 """
 
 import numpy as np
@@ -28,18 +30,30 @@ def mesh_dict(run, given):
     def renumbered(indices):
         return indices if numbers is None else numbers[indices]
 
+    # -o2: the middle nodes follow the vertices (those written, with -j).
+    second_order = options["second_order"]
+    written = len(run.points()) if numbers is None else int((numbers >= 0).sum())
+
+    def with_midpoints(values, midpoints):
+        return np.concatenate([values, midpoints()]) if second_order else values
+
     out = {}
     if not options["no_node_file"]:
         keep = slice(None) if numbers is None else numbers >= 0
-        out["vertices"] = run.points()[keep]
+        out["vertices"] = with_midpoints(run.points()[keep], run.edge_midpoints)
         attributes = run.point_attributes()
         if attributes.shape[1]:
-            out["vertex_attributes"] = attributes[keep]
+            out["vertex_attributes"] = with_midpoints(attributes[keep],
+                                                      run.edge_midpoint_attributes)
         if markers:
-            out["vertex_markers"] = run.point_markers()[keep]
+            out["vertex_markers"] = with_midpoints(run.point_markers()[keep],
+                                                   run.edge_midpoint_markers)
     triangles = run.triangles()
     if not options["no_ele_file"]:
         out["triangles"] = renumbered(triangles)
+        if second_order:
+            middles = (written + run.triangle_midpoints()).astype(np.int32)
+            out["triangles"] = np.concatenate([out["triangles"], middles], axis=1)
         attributes = run.triangle_attributes()
         if attributes.shape[1]:
             out["triangle_attributes"] = attributes

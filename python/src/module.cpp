@@ -63,6 +63,30 @@ void require_shape(const In<T> &values, const char *name, std::size_t columns, l
                                  ", " + std::to_string(columns) + ")");
 }
 
+// Points as a float64 (N, 2) array.
+Out<double> xy_rows(const std::vector<clmesh::Point> &points) {
+  std::vector<double> xy;
+  xy.reserve(points.size() * 2);
+  for (const clmesh::Point &p : points)
+    xy.insert(xy.end(), {p.x, p.y});
+  return array(std::move(xy), points.size(), 2);
+}
+
+// -v: the Voronoi edges as their ends (int32 (E, 2), -1 second end for a ray)
+// and directions (float64 (E, 2), (0, 0) for a finite edge).
+nb::tuple voronoi_edges(const std::vector<clmesh::VoronoiEdge> &links) {
+  std::vector<int32_t> ends;
+  std::vector<double> directions;
+  ends.reserve(links.size() * 2);
+  directions.reserve(links.size() * 2);
+  for (const clmesh::VoronoiEdge &link : links) {
+    ends.insert(ends.end(), {link.a, link.b});
+    directions.insert(directions.end(), {link.direction.x, link.direction.y});
+  }
+  return nb::make_tuple(array(std::move(ends), links.size(), 2),
+                        array(std::move(directions), links.size(), 2));
+}
+
 std::vector<clmesh::Point> points_of(const In<double> &xy, const char *name) {
   require_shape(xy, name, 2);
   std::vector<clmesh::Point> points(xy.shape(0));
@@ -173,6 +197,8 @@ nb::dict options_dict(const clmesh::Options &o) {
   d["no_node_file"] = o.no_node_file;
   d["no_ele_file"] = o.no_ele_file;
   d["check"] = o.check;
+  d["voronoi"] = o.voronoi;
+  d["second_order"] = o.second_order;
   return d;
 }
 
@@ -222,14 +248,7 @@ NB_MODULE(_clmesh, m) {
 
   nb::class_<Run>(m, "Run")
       .def_prop_ro("options", [](const Run &r) { return options_dict(r.options); })
-      .def("points",
-           [](const Run &r) {
-             std::vector<double> xy;
-             xy.reserve(r.mesh.points.size() * 2);
-             for (const clmesh::Point &p : r.mesh.points)
-               xy.insert(xy.end(), {p.x, p.y});
-             return array(std::move(xy), r.mesh.points.size(), 2);
-           })
+      .def("points", [](const Run &r) { return xy_rows(r.mesh.points); })
       .def("point_markers",
            [](const Run &r) {
              std::vector<int32_t> markers(r.mesh.point_markers.begin(), r.mesh.point_markers.end());
@@ -252,6 +271,32 @@ NB_MODULE(_clmesh, m) {
           "segments",
           [](const Run &r) { return ends_and_markers(clmesh::output_segments(r.view())); },
           "The segments that are edges of the mesh (-p), with their output markers.")
+      .def(
+          "edge_midpoints", [](const Run &r) { return xy_rows(r.mesh.edge_midpoints); },
+          "-o2: the node at the middle of every edge, numbered after the vertices.")
+      .def("edge_midpoint_markers",
+           [](const Run &r) {
+             std::vector<int32_t> markers(r.mesh.edge_midpoint_markers.begin(),
+                                          r.mesh.edge_midpoint_markers.end());
+             const std::size_t count = markers.size();
+             return array(std::move(markers), count, 1);
+           })
+      .def("edge_midpoint_attributes",
+           [](const Run &r) {
+             return array(std::vector<double>(r.mesh.edge_midpoint_attributes),
+                          r.mesh.edge_midpoints.size(),
+                          static_cast<std::size_t>(r.mesh.attribute_count));
+           })
+      .def(
+          "triangle_midpoints", [](const Run &r) { return index_rows(r.mesh.triangle_midpoints); },
+          "-o2: per triangle, the edge_midpoints index of the middle of the edge opposite each "
+          "corner.")
+      .def(
+          "voronoi_points", [](const Run &r) { return xy_rows(r.mesh.voronoi_points); },
+          "-v: the circumcentre of every triangle, numbered as the triangles.")
+      .def(
+          "voronoi_edges", [](const Run &r) { return voronoi_edges(r.mesh.voronoi_edges); },
+          "-v: (ends, directions): one edge per mesh edge; a ray has second end -1.")
       .def(
           "vertex_numbers",
           [](const Run &r) {

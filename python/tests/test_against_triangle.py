@@ -62,7 +62,7 @@ def _describe(mesh):
 
 @pytest.mark.parametrize("switches", [
     "", "e", "n", "en", "B", "eB", "N", "E", "j", "c", "p", "pc", "pe", "pn", "pB", "pcB", "pA",
-    "pO", "pAen", "pj"])
+    "pO", "pAen", "pj", "v", "pv", "o2", "po2", "pAeno2", "o2B", "o2N", "o2E"])
 def test_same_keys_shapes_and_dtypes(switches):
     data = load(DATASETS, "la")  # markers, regions, segments; no Steiner points for these
     data["vertex_attributes"] = np.arange(len(data["vertices"]), dtype=float)

@@ -214,7 +214,11 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
   const double2 offset =
       !encroaching && distance > reach ? middle + away * (reach / distance) : center;
   *steiner = a + offset;
-  *priority = as_uint((float)q.length_squared[shortest]);
+  // Skinny triangles: the shorter the shortest edge, the worse. Triangles
+  // only too large: the larger the better, so that an area bound refines the
+  // whole domain at once rather than as a front from where it began.
+  *priority = as_uint(q.skinny || encroaching ? (float)q.length_squared[shortest]
+                                              : (float)(1.0 / q.length_squared[shortest]));
   // A degenerate computation leaves the triangle alone, and so does a
   // candidate beyond an edge of its own that no point may split (-Y).
   return isfinite(steiner->x) && isfinite(steiner->y) &&

@@ -91,11 +91,46 @@ seconds (mostly the kernel zeroing fresh pages: on a virtual machine its cost
 per GB drifts from run to run, and it grows with the footprint).  --repeat
 works as above.
 
+With --pslg the inputs are large PSLGs made by scripts/gen_pslg.py (cached in
+build/bench/), meshed to quality with minimum angle ANGLE (--angles, default 30)
+by three tools:
+
+  coast     a fractal closed outline around small closed islands (50 vertices
+            each), every island a hole with a seed at its centre; n = all
+            vertices (default 100000), about half on the outline; -pqANGLE.
+  segments  n points on a jittered grid (default 1000000), n/10 of the cells
+            holding a short segment (two points) instead of one point: n/10
+            non-crossing segments, well apart; -pcqANGLE (the convex hull).
+  (--kinds picks them; --sizes N,... runs each kind at each N instead of its
+  default, --quick at 10000.)
+
+  clmesh    build/clmesh -pqANGLE -Q --stats-json F.json INPUT.poly (or -pcqANGLE),
+            time = seconds.compute; first an untimed run with -C (the exact
+            check of the output mesh): a failed check fails the tool
+  Triangle  triangle-native -PpqANGLE INPUT.poly (or -PpcqANGLE), timed by its
+            report; it writes INPUT.1.node/.ele (outside its timing), read back
+            for the counts below; the native binary only
+  CGAL      build/cgal_bench pslgmesh ANGLE [hull] INPUT.poly
+            (refine_Delaunay_mesh_2 with the holes as seeds and
+            Delaunay_mesh_criteria_2(b = sin^2 ANGLE): CGAL's b is 1 / (4 B^2) for
+            its radius-edge bound B, and sin ANGLE = 1 / (2 B); 'hull' constrains
+            the convex hull edges too, for -c)
+
+The table gives each tool's seconds, the ratios clmesh/Triangle and
+clmesh/CGAL, each tool's vertices (clmesh's and Triangle's output .node, CGAL's
+vertices of faces in the domain) and clmesh's vertex ratio to Triangle, the
+triangles with an angle below ANGLE in each output with its smallest angle
+(clmesh's and Triangle's computed from their output files by a child Python,
+CGAL's by cgal_bench, all as the squared sine of the smallest angle against
+sin^2 ANGLE, 1e-9 relative tolerance), and each tool's peak memory.
+
 Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
            [--dists uniform,grid] [--repeat K] [--markdown FILE.md]
        python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
        python3 scripts/bench.py --quality [--quick] [--sizes 100000] [--angles 20,30]
            [--dists ...] [--algorithms qmv,qm]
+       python3 scripts/bench.py --pslg [--quick] [--sizes ...] [--kinds coast,segments]
+           [--angles 30]
 
 All modes take --build-dir DIR (default build/: DIR/clmesh, DIR/cgal_bench,
 DIR/triangle-native and the cached inputs in DIR/bench/), or the binaries with
@@ -235,6 +270,55 @@ with open(path, 'w') as f:
 """
 
 
+# Runs in a child Python: reads a mesh's STEM.node and STEM.ele (Triangle's
+# formats) and prints its vertex and triangle counts, its smallest angle in
+# degrees and how many triangles have an angle below ANGLE.  The smallest angle's
+# squared sine is 4 area^2 over the product of the squared lengths of the two
+# longer edges (as cgal_bench pslgmesh computes it), a triangle counted when that
+# is below sin^2(ANGLE) by more than 1e-9 relative.  Streams the files: plain
+# Python, no numpy.
+MESH_QUALITY_CHILD = r"""
+import json, math, sys
+from array import array
+
+stem, angle = sys.argv[1], float(sys.argv[2])
+
+def rows(path):
+    with open(path) as f:
+        for line in f:
+            line = line.split('#', 1)[0].split()
+            if line:
+                yield line
+
+nodes = rows(stem + '.node')
+n = int(next(nodes)[0])
+xs, ys = array('d', bytes(8 * n)), array('d', bytes(8 * n))
+for i in range(n):
+    r = next(nodes)
+    if i == 0:
+        base = int(r[0])
+    xs[i], ys[i] = float(r[1]), float(r[2])
+eles = rows(stem + '.ele')
+m = int(next(eles)[0])
+bound = math.sin(math.radians(angle)) ** 2 * (1.0 - 1e-9)
+bad, smallest = 0, 1.0
+for _ in range(m):
+    r = next(eles)
+    a, b, c = int(r[1]) - base, int(r[2]) - base, int(r[3]) - base
+    ax, ay, bx, by, cx, cy = xs[a], ys[a], xs[b], ys[b], xs[c], ys[c]
+    twice_area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+    e = sorted(((bx - cx) ** 2 + (by - cy) ** 2, (cx - ax) ** 2 + (cy - ay) ** 2,
+                (ax - bx) ** 2 + (ay - by) ** 2))
+    q = twice_area * twice_area / (e[1] * e[2])
+    if q < bound:
+        bad += 1
+    if q < smallest:
+        smallest = q
+print(json.dumps({'vertices': n, 'triangles': m, 'bad_triangles': bad,
+                  'min_angle': math.degrees(math.asin(math.sqrt(smallest)))}))
+"""
+
+
 class ToolFailure(Exception):
     pass
 
@@ -317,17 +401,22 @@ def last_json_line(stdout):
 
 # ---- the three tools -------------------------------------------------------
 
-def run_clmesh(exe, node, timeout, switches=()):
+def run_clmesh(exe, node, timeout, switches=(), mesh_check=None):
+    """clmesh on one input; mesh_check, when given, is called with the output
+    files' stem (INPUT.1) before they are deleted and its dict joins the result."""
     if not os.path.isfile(exe):
         raise ToolFailure(f"{exe} not built")
     stem = os.path.splitext(node)[0]
     fd, stats_path = tempfile.mkstemp(suffix=".json", dir=os.path.dirname(node))
     os.close(fd)
+    checked = {}
     try:
         _, peak, system_s = run_measured([exe, *switches, "-Q", "--stats-json", stats_path, node],
                                          timeout)
         with open(stats_path) as f:
             stats = json.load(f)
+        if mesh_check:
+            checked = mesh_check(stem + ".1")
     except (OSError, ValueError) as e:
         raise ToolFailure(f"cannot read the stats JSON: {e}")
     finally:
@@ -347,7 +436,7 @@ def run_clmesh(exe, node, timeout, switches=()):
     return {"seconds": seconds, "peak_mb": peak, "system_s": system_s, "phases": phases,
             "triangles": counts.get("triangles"), "device": stats.get("device"),
             "vertices": vertices, "remaining_bad": refinement.get("remaining_bad_triangles"),
-            "iterations": refinement.get("iterations"), "refinement": refinement}
+            "iterations": refinement.get("iterations"), "refinement": refinement, **checked}
 
 
 def ensure_triangle_package():
@@ -380,14 +469,26 @@ def run_triangle(triangle, node, timeout, child=TRIANGLE_CHILD, switches=""):
             "dt_seconds": r.get("dt_seconds")}
 
 
-def run_native_triangle(exe, path, timeout, switches):
+def run_native_triangle(exe, path, timeout, switches, mesh_check=None):
     """The native Triangle binary (-NEP: no output files) on path, timed by its own
     report: seconds = Delaunay + Segment + Hole + Quality milliseconds (file
     reading and writing excluded); dt_seconds = the Delaunay part alone, so that
-    for -pc the difference is its segment recovery."""
+    for -pc the difference is its segment recovery.  With mesh_check it runs
+    with -P instead (writing INPUT.1.node and INPUT.1.ele, outside its timing)
+    and mesh_check's dict, from those files, joins the result."""
     if not os.access(exe, os.X_OK):
         raise ToolFailure(f"{exe} not built (bash /work/shared/tools/build-triangle.sh)")
-    stdout, peak, system_s = run_measured([exe, "-NEP" + switches, path], timeout)
+    checked = {}
+    if mesh_check:
+        stem = os.path.splitext(path)[0]
+        try:
+            stdout, peak, system_s = run_measured([exe, "-P" + switches, path], timeout)
+            checked = mesh_check(stem + ".1")
+        finally:
+            for out in glob.glob(glob.escape(stem) + ".1.*"):
+                os.unlink(out)
+    else:
+        stdout, peak, system_s = run_measured([exe, "-NEP" + switches, path], timeout)
     ms = {}
     counts = {}
     for line in stdout.splitlines():
@@ -403,7 +504,7 @@ def run_native_triangle(exe, path, timeout, switches):
                           "(built with -DNO_TIMER?)")
     return {"seconds": sum(ms.values()) / 1000.0, "dt_seconds": ms["Delaunay"] / 1000.0,
             "peak_mb": peak, "system_s": system_s,
-            "triangles": counts.get("triangles"), "vertices": counts.get("vertices")}
+            "triangles": counts.get("triangles"), "vertices": counts.get("vertices"), **checked}
 
 
 def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
@@ -413,7 +514,8 @@ def run_cgal(exe, node, timeout, mode="dt", mode_args=()):
     stdout, peak, system_s = run_measured([exe, mode, *mode_args, node], timeout)
     r = last_json_line(stdout)
     return {"seconds": float(r["seconds"]), "peak_mb": peak, "system_s": system_s,
-            "triangles": r.get("triangles"), "vertices": r.get("vertices")}
+            "triangles": r.get("triangles"), "vertices": r.get("vertices"),
+            "bad_triangles": r.get("bad_triangles"), "min_angle": r.get("min_angle")}
 
 
 def best_of(k, fn, *args):
@@ -458,6 +560,28 @@ def pslg_file(bench_dir, variant, n, seed):
     return path
 
 
+def quality_pslg_file(bench_dir, kind, n, seed):
+    """The --pslg input KIND (coast, segments) of n vertices, made by gen_pslg.py."""
+    path = os.path.join(bench_dir, f"qpslg-{kind}-{n}-s{seed}.poly")
+    if not os.path.isfile(path):
+        log(f"bench.py: generating {path}")
+        tmp = path + ".tmp"
+        subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "gen_pslg.py"), kind,
+                        str(n), tmp, "--seed", str(seed)], check=True)
+        os.replace(tmp, path)
+    return path
+
+
+def mesh_quality(angle, timeout):
+    """A mesh_check for run_clmesh / run_native_triangle: MESH_QUALITY_CHILD on
+    the output files, for the minimum angle angle (degrees)."""
+    def check(stem):
+        stdout, _, _ = run_measured([sys.executable, "-c", MESH_QUALITY_CHILD, stem, angle],
+                                    timeout)
+        return last_json_line(stdout)
+    return check
+
+
 def poly_segment_count(path):
     with open(path) as f:
         lines = (l.split("#", 1)[0].split() for l in f)
@@ -496,6 +620,15 @@ def fmt_count(r, key):
     if not r:
         return "fail"
     return "-" if r.get(key) is None else str(r[key])
+
+
+def fmt_bad(r):
+    """Triangles below the angle bound, with the smallest angle: '0 (30.00)'."""
+    if not r:
+        return "fail"
+    if r.get("bad_triangles") is None:
+        return "-"
+    return f"{r['bad_triangles']} ({r['min_angle']:.2f})"
 
 
 def fmt_vertex_ratio(a, b):
@@ -557,14 +690,18 @@ def machine_line(device):
 
 
 def run_tools(a, what, tools, failures):
-    """Runs each (name, fn, args) of tools, best of --repeat, logging as it goes;
-    a tool that fails is recorded in failures and gets None."""
+    """Runs each (name, fn, args) or (name, fn, args, warmup_args) of tools, best
+    of --repeat, logging as it goes; a tool that fails is recorded in failures
+    and gets None.  With warmup_args, fn(*warmup_args) runs first, untimed (e.g.
+    clmesh with -C: a failed check fails the tool)."""
     results = {}
-    for name, fn, args in tools:
+    for name, fn, args, *warmup in tools:
         log(f"bench.py: {what}: {name} ...")
         t0 = time.time()
         try:
-            if fn is run_clmesh and a.repeat == 1:
+            if warmup:
+                fn(*warmup[0])
+            elif fn is run_clmesh and a.repeat == 1:
                 fn(*args)  # untimed: PoCL's kernel compilation (see the help)
             results[name] = best_of(a.repeat, fn, *args)
             vertices = results[name].get("vertices")
@@ -612,13 +749,12 @@ def choose_triangle(option, build_dir):
     return ("python", ensure_triangle_package())
 
 
-def triangle_note(triangle):
+def triangle_note(triangle, outputs="-NEP (no output files)"):
     """How Triangle ran and was timed, for the notes under a table."""
     kind, what = triangle
     if kind == "native":
         return (f"Triangle: the native binary {os.path.relpath(what, ROOT)} (triangle.c 1.6, "
-                "-O3 -march=native, built by build-triangle.sh), run with -NEP (no output "
-                "files) and timed by its own report (Delaunay + Segment + Hole + Quality "
+                f"-O3 -march=native, built by build-triangle.sh), run with {outputs} and timed by its own report (Delaunay + Segment + Hole + Quality "
                 "milliseconds), file reading and writing excluded.")
     return ("Triangle: the PyPI package 'triangle' in a child Python, timing only the "
             "triangle.triangulate call; its peak memory includes Python, numpy and the "
@@ -661,20 +797,32 @@ def main(argv=None):
                     help="quality meshes of the distributions: clmesh --refine qmv and qm "
                          "-qANGLE vs Triangle 'qANGLE' vs CGAL refine_Delaunay_mesh_2 (time, "
                          "output vertices, clmesh's per-step times and flips)")
-    ap.add_argument("--angles", default="20,30",
-                    help="with --quality: comma-separated minimum angles in degrees (default 20,30)")
+    ap.add_argument("--angles", default=None,
+                    help="with --quality (default 20,30) or --pslg (default 30): "
+                         "comma-separated minimum angles in degrees")
+    ap.add_argument("--pslg", action="store_true",
+                    help="quality meshes of large generated PSLGs: clmesh -pqANGLE / -pcqANGLE "
+                         "vs Triangle (same switches) vs CGAL refine_Delaunay_mesh_2 (time, "
+                         "vertices, triangles below the angle, peak memory)")
+    ap.add_argument("--kinds", default="coast,segments",
+                    help="with --pslg: comma-separated subset of coast,segments")
     ap.add_argument("--algorithms", default="qmv,qm",
                     help="with --quality: comma-separated clmesh refinement variants to run, "
                          "subset of qmv,qm (default both)")
     a = ap.parse_args(argv)
-    if a.cdt and a.quality:
-        ap.error("--cdt and --quality cannot be combined")
+    if a.cdt + a.quality + a.pslg > 1:
+        ap.error("--cdt, --quality and --pslg cannot be combined")
+    if a.angles is None:
+        a.angles = "30" if a.pslg else "20,30"
+    a.sizes_given = a.sizes is not None or a.quick
     if a.sizes is None:
-        a.sizes = "100000" if a.quality else "100000,1000000"
+        a.sizes = "100000" if a.quality or a.pslg else "100000,1000000"
     if a.cdt:
         return main_cdt(a, ap)
     if a.quality:
         return main_quality(a, ap)
+    if a.pslg:
+        return main_pslg(a, ap)
 
     dists = distributions(a, ap)
     setup = Setup(a, ap)
@@ -771,13 +919,7 @@ QUALITY_ALGORITHMS = (("qmv", "qmv", "QM-V"), ("qm", "qm", "QM"))
 
 def main_quality(a, ap):
     dists = distributions(a, ap)
-    angles = [s for s in a.angles.replace(" ", "").split(",") if s]
-    for angle in angles:
-        try:
-            if not 0 < float(angle) < 60:
-                raise ValueError
-        except ValueError:
-            ap.error(f"bad angle {angle!r} (degrees, between 0 and 60)")
+    angles = parse_angles(a, ap)
     wanted = [s for s in a.algorithms.replace(" ", "").lower().split(",") if s]
     known = [name for name, _, _ in QUALITY_ALGORITHMS]
     for w in wanted:
@@ -851,6 +993,112 @@ def main_quality(a, ap):
                   device, warnings, failures, "quality", "Quality meshes")
 
 
+# --pslg inputs: (kind, Triangle switches without q, default size, the convex hull is meshed).
+PSLG_KINDS = (("coast", "p", 100000, False), ("segments", "pc", 1000000, True))
+
+
+def main_pslg(a, ap):
+    kinds = [k for k in a.kinds.replace(" ", "").split(",") if k]
+    known = [k for k, _, _, _ in PSLG_KINDS]
+    for k in kinds:
+        if k not in known:
+            ap.error(f"unknown --pslg input {k!r} (choose from {', '.join(known)})")
+    angles = parse_angles(a, ap)
+    setup = Setup(a, ap)
+    clmesh, cgal, bench_dir, triangle = setup.clmesh, setup.cgal, setup.bench_dir, setup.triangle
+
+    rows, failures, warnings = [], [], []
+    device = None
+    for kind, switches, default_n, hull in PSLG_KINDS:
+        if kind not in kinds:
+            continue
+        for n in setup.sizes if a.sizes_given else [default_n]:
+            try:
+                poly = quality_pslg_file(bench_dir, kind, n, a.seed)
+                m = poly_segment_count(poly)
+            except (ToolFailure, subprocess.CalledProcessError) as e:
+                failures.append(f"{kind} n={n}: cannot generate the input: {e}")
+                continue
+            for angle in angles:
+                check = mesh_quality(angle, a.timeout)
+                sw = f"-{switches}q{angle}"
+                tools = [("clmesh", run_clmesh, (clmesh, poly, a.timeout, (sw,), check),
+                          (clmesh, poly, a.timeout, (sw, "-C"))),
+                         ("Triangle", run_pslg_triangle, (triangle, poly, a.timeout,
+                                                          switches + f"q{angle}", check)),
+                         ("CGAL", run_cgal, (cgal, poly, a.timeout, "pslgmesh",
+                                             (angle,) + (("hull",) if hull else ())))]
+                results = run_tools(a, f"pslg {kind} n={n} m={m} {sw}", tools, failures)
+                cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
+                if cl and cl.get("device"):
+                    device = cl["device"]
+                if cl and (cl.get("refinement") or {}).get("stop_reason", "done") != "done":
+                    warnings.append(f"pslg {kind} n={n} {sw}: clmesh's refinement stopped: "
+                                    f"{cl['refinement']['stop_reason']}")
+                rows.append([kind, str(n), str(m), sw]
+                            + [fmt_s(results[k]) for k in ("clmesh", "Triangle", "CGAL")]
+                            + [fmt_ratio(cl, tr), fmt_ratio(cl, cg)]
+                            + [fmt_count(results[k], "vertices")
+                               for k in ("clmesh", "Triangle", "CGAL")]
+                            + [fmt_vertex_ratio(cl, tr)]
+                            + [fmt_bad(results[k]) for k in ("clmesh", "Triangle", "CGAL")]
+                            + [fmt_mb(results[k]) for k in ("clmesh", "Triangle", "CGAL")])
+
+    header = (["input", "n", "m", "switches", "clmesh s", "Triangle s", "CGAL s",
+               "clmesh/Triangle", "clmesh/CGAL", "vertices clmesh", "vertices Triangle",
+               "vertices CGAL", "vertex ratio clmesh/Triangle",
+               "below angle clmesh (min)", "below angle Triangle (min)",
+               "below angle CGAL (min)", "peak MB clmesh", "peak MB Triangle", "peak MB CGAL"])
+    return report(a, header, rows,
+                  [f"Quality meshes of PSLGs made by scripts/gen_pslg.py (seed {a.seed}; n "
+                   "vertices, m segments): 'coast' is a fractal closed outline (half the "
+                   "vertices) around small closed islands of 50 vertices, every island a hole "
+                   "(one hole seed each), meshed with -pqANGLE; 'segments' is n points on a "
+                   "jittered grid, n/10 cells holding a short segment instead of a point "
+                   "(non-crossing, well apart), meshed with -pcqANGLE (the convex hull).",
+                   "clmesh: build/clmesh SWITCHES -Q --stats-json, time = seconds.compute; an "
+                   "untimed run with -C (exact check of the output mesh) comes first, a failed "
+                   "check fails the row.  Triangle: the same switches.  CGAL: build/cgal_bench "
+                   "pslgmesh ANGLE [hull] INPUT.poly (refine_Delaunay_mesh_2 on a "
+                   "Constrained_Delaunay_triangulation_2<Epick> with the segments, the holes "
+                   "as seeds and Delaunay_mesh_criteria_2(b = sin^2 ANGLE), i.e. CGAL's "
+                   "radius-edge bound B = 1 / (2 sin ANGLE); with 'hull' the convex hull edges "
+                   "are constraints too; CGAL guarantees termination only up to about 20.7 "
+                   "degrees), timing insertion and refinement.",
+                   f"Best of {a.repeat} run(s); times exclude file reading and writing; "
+                   "ratios are clmesh time / other time (below 1: clmesh is faster).  Vertices: "
+                   "clmesh's and Triangle's output .node files, CGAL's vertices of faces in the "
+                   "domain; the vertex ratio is clmesh's / Triangle's.  Below angle: triangles "
+                   "of the output with an angle below ANGLE (computed from the output files for "
+                   "clmesh and Triangle, in cgal_bench for CGAL, the same way: squared sine of "
+                   "the smallest angle below sin^2 ANGLE by more than 1e-9 relative), with the "
+                   "mesh's smallest angle in degrees; triangles at input angles below ANGLE "
+                   "cannot be improved by any of the tools.  Peak MB: each process's maximum "
+                   "resident set.",
+                   triangle_note(setup.triangle, "-P (writing the .node and .ele files read "
+                                 "back for the counts)")],
+                  device, warnings, failures, "pslg", "Quality meshes of PSLGs")
+
+
+def run_pslg_triangle(triangle, poly, timeout, switches, mesh_check):
+    kind, what = triangle
+    if kind != "native":
+        raise ToolFailure("--pslg needs the native Triangle binary "
+                          "(bash /work/shared/tools/build-triangle.sh, or --triangle PATH)")
+    return run_native_triangle(what, poly, timeout, switches, mesh_check)
+
+
+def parse_angles(a, ap):
+    angles = [s for s in a.angles.replace(" ", "").split(",") if s]
+    for angle in angles:
+        try:
+            if not 0 < float(angle) < 60:
+                raise ValueError
+        except ValueError:
+            ap.error(f"bad angle {angle!r} (degrees, between 0 and 60)")
+    return angles
+
+
 def report(a, header, rows, description, device, warnings, failures, mode, title):
     """Prints a markdown table with its notes; with --markdown FILE also writes
     them, with the command line, date, machine and clmesh commit, as the section
@@ -869,12 +1117,12 @@ def report(a, header, rows, description, device, warnings, failures, mode, title
 
 # ---- the --markdown file --------------------------------------------------
 
-MARKDOWN_MODES = ("dt", "cdt", "quality")  # section order in the file
+MARKDOWN_MODES = ("dt", "cdt", "quality", "pslg")  # section order in the file
 MARKDOWN_HEAD = """# Benchmarks
 
 This file is written by `scripts/bench.py --markdown docs/benchmarks.md`: each
-run replaces the section of its mode (Delaunay, `--cdt`, `--quality`) and keeps
-the others. Do not edit it by hand.
+run replaces the section of its mode (Delaunay, `--cdt`, `--quality`,
+`--pslg`) and keeps the others. Do not edit it by hand.
 
 clmesh, Shewchuk's Triangle and CGAL run side by side on the same inputs, each
 in a fresh process, timing the meshing alone (no file reading or writing). The

@@ -3,6 +3,7 @@
 //   cgal_bench [MODE] FILE.node
 //   cgal_bench cdt FILE.poly
 //   cgal_bench mesh ANGLE FILE.node
+//   cgal_bench pslgmesh ANGLE [hull] FILE.poly
 //
 // MODE (default dt):
 //   dt    Delaunay triangulation of the points: times only the construction of
@@ -27,6 +28,25 @@
 //         triangle's smallest angle; no size bound).  Times from the point
 //         insertion to the end of the refinement, not the file reading.  CGAL
 //         guarantees termination only up to about 20.7 degrees (b <= 0.125).
+//   pslgmesh  Quality mesh of a .poly with minimum angle ANGLE degrees (like
+//         Triangle's -pqANGLE, or -pcqANGLE with the word `hull` before the
+//         file): the MeshCDT of `mesh`, its points inserted one by one in
+//         CGAL::spatial_sort order (each with the previous vertex as hint, so
+//         that every index keeps its vertex handle), every segment inserted
+//         with insert_constraint, with `hull` every convex hull edge made a
+//         constraint too, then CGAL::refine_Delaunay_mesh_2 with the .poly's
+//         holes as seeds (seeds mark the components not to mesh; the
+//         component of the infinite face is never meshed, as Triangle's -p
+//         eats the triangles outside the outer boundary) and
+//         Delaunay_mesh_criteria_2(sin^2 ANGLE).  The criteria's b is the
+//         bound on the squared sine of the smallest angle: CGAL documents it
+//         as the radius-edge bound B = sqrt(1 / (4 b)), and sin(angle) =
+//         1 / (2 B).  Times from the point insertion to the end of the
+//         refinement.  Regional attributes and area bounds are ignored.  Also
+//         reports the mesh's smallest angle in degrees and how many of its
+//         triangles have an angle below ANGLE (computed in double precision
+//         from the vertex coordinates, with 1e-9 relative tolerance on the
+//         squared sine).
 //
 // Prints one line of JSON on stdout:
 //   {"mode": "dt", "seconds": s, "triangles": n, "vertices": n}
@@ -51,8 +71,12 @@
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -159,10 +183,11 @@ std::vector<Point> read_node(const std::string &path) {
   return pts;
 }
 
-// The node section and the segments of a .poly (0-based endpoints).
+// The node section, the segments (0-based endpoints) and the holes of a .poly.
 struct Poly {
   std::vector<Point> points;
   std::vector<std::pair<long, long>> segments;
+  std::vector<Point> holes;
 };
 
 Poly read_poly(const std::string &path) {
@@ -198,6 +223,14 @@ Poly read_poly(const std::string &path) {
       throw std::runtime_error(path + ": segment " + std::to_string(i + 1) + " out of range");
     poly.segments.emplace_back(a, b);
   }
+  if (r.next_line(tok)) { // the optional hole section
+    const long h = std::strtol(tok[0], nullptr, 10);
+    for (long i = 0; i < h; ++i) {
+      if (!r.next_line(tok) || tok.size() < 3)
+        throw std::runtime_error(path + ": short or missing hole line " + std::to_string(i + 1));
+      poly.holes.emplace_back(to_double(tok[1], path), to_double(tok[2], path));
+    }
+  }
   return poly;
 }
 
@@ -230,6 +263,20 @@ double time_cdt(const Poly &poly, CDT &cdt) {
   return std::chrono::duration<double>(t1 - t0).count();
 }
 
+// The convex hull edges of a triangulation, between consecutive hull vertices (collinear ones
+// too): the finite edge of every infinite face.
+std::vector<std::pair<MeshCDT::Vertex_handle, MeshCDT::Vertex_handle>>
+hull_edges(const MeshCDT &cdt) {
+  std::vector<std::pair<MeshCDT::Vertex_handle, MeshCDT::Vertex_handle>> hull;
+  const MeshCDT::Vertex_handle inf = cdt.infinite_vertex();
+  MeshCDT::Face_circulator f = cdt.incident_faces(inf), done = f;
+  do {
+    const int i = f->index(inf);
+    hull.emplace_back(f->vertex(MeshCDT::ccw(i)), f->vertex(MeshCDT::cw(i)));
+  } while (++f != done);
+  return hull;
+}
+
 // Times CGAL's quality mesh of the points' convex hull (see the top of the file); returns the
 // seconds.
 double time_mesh(const std::vector<Point> &pts, double angle_degrees, MeshCDT &cdt) {
@@ -239,25 +286,62 @@ double time_mesh(const std::vector<Point> &pts, double angle_degrees, MeshCDT &c
   cdt.insert(pts.begin(), pts.end());
   if (cdt.dimension() < 2)
     throw std::runtime_error("the points are collinear: nothing to mesh");
-  // The hull edges, between consecutive hull vertices (collinear ones too): the finite edge of
-  // every infinite face.  Collected first, then constrained.
-  std::vector<std::pair<MeshCDT::Vertex_handle, MeshCDT::Vertex_handle>> hull;
-  const MeshCDT::Vertex_handle inf = cdt.infinite_vertex();
-  MeshCDT::Face_circulator f = cdt.incident_faces(inf), done = f;
-  do {
-    const int i = f->index(inf);
-    hull.emplace_back(f->vertex(MeshCDT::ccw(i)), f->vertex(MeshCDT::cw(i)));
-  } while (++f != done);
-  for (const auto &e : hull)
+  // The hull edges collected first, then constrained.
+  for (const auto &e : hull_edges(cdt))
     cdt.insert_constraint(e.first, e.second);
   CGAL::refine_Delaunay_mesh_2(cdt, CGAL::Delaunay_mesh_criteria_2<MeshCDT>(sine * sine));
   auto t1 = std::chrono::steady_clock::now();
   return std::chrono::duration<double>(t1 - t0).count();
 }
 
+// Times CGAL's quality mesh of the .poly (see pslgmesh at the top of the file); returns the
+// seconds.
+double time_pslg_mesh(const Poly &poly, double angle_degrees, bool convex_hull, MeshCDT &cdt) {
+  const double pi = std::acos(-1.0);
+  const double sine = std::sin(angle_degrees * pi / 180.0);
+  const size_t n = poly.points.size();
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i)
+    order[i] = i;
+  using SortTraits =
+      CGAL::Spatial_sort_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Point>::const_type>;
+
+  auto t0 = std::chrono::steady_clock::now();
+  CGAL::spatial_sort(order.begin(), order.end(), SortTraits(CGAL::make_property_map(poly.points)));
+  std::vector<MeshCDT::Vertex_handle> vertex(n);
+  MeshCDT::Vertex_handle hint;
+  for (const size_t i : order)
+    hint = vertex[i] = cdt.insert(
+        poly.points[i], hint == MeshCDT::Vertex_handle() ? MeshCDT::Face_handle() : hint->face());
+  if (cdt.dimension() < 2)
+    throw std::runtime_error("the points are collinear: nothing to mesh");
+  for (const auto &s : poly.segments)
+    if (vertex[s.first] != vertex[s.second])
+      cdt.insert_constraint(vertex[s.first], vertex[s.second]);
+  if (convex_hull)
+    for (const auto &e : hull_edges(cdt))
+      cdt.insert_constraint(e.first, e.second);
+  CGAL::refine_Delaunay_mesh_2(cdt, poly.holes.begin(), poly.holes.end(),
+                               CGAL::Delaunay_mesh_criteria_2<MeshCDT>(sine * sine));
+  auto t1 = std::chrono::steady_clock::now();
+  return std::chrono::duration<double>(t1 - t0).count();
+}
+
+// The squared sine of a triangle's smallest angle: 4 area^2 over the product of the squared
+// lengths of the two longer edges (the sides of that angle).
+double smallest_angle_sine_squared(const Point &a, const Point &b, const Point &c) {
+  const double twice_area = CGAL::to_double(CGAL::area(a, b, c)) * 2.0;
+  double e[3] = {CGAL::to_double(CGAL::squared_distance(b, c)),
+                 CGAL::to_double(CGAL::squared_distance(c, a)),
+                 CGAL::to_double(CGAL::squared_distance(a, b))};
+  std::sort(e, e + 3);
+  return twice_area * twice_area / (e[1] * e[2]);
+}
+
 int usage() {
   std::fprintf(stderr, "usage: cgal_bench [dt] FILE.node | cgal_bench cdt FILE.poly | "
-                       "cgal_bench mesh ANGLE FILE.node\n");
+                       "cgal_bench mesh ANGLE FILE.node | "
+                       "cgal_bench pslgmesh ANGLE [hull] FILE.poly\n");
   return 2;
 }
 
@@ -267,12 +351,15 @@ int main(int argc, char **argv) {
   std::string mode = "dt";
   std::string path;
   double angle = 0;
+  bool convex_hull = false;
+  const bool with_angle =
+      argc >= 4 && (std::strcmp(argv[1], "mesh") == 0 || std::strcmp(argv[1], "pslgmesh") == 0);
   if (argc == 2) {
     path = argv[1];
   } else if (argc == 3) {
     mode = argv[1];
     path = argv[2];
-  } else if (argc == 4 && std::strcmp(argv[1], "mesh") == 0) {
+  } else if (with_angle) {
     mode = argv[1];
     char *end = nullptr;
     angle = std::strtod(argv[2], &end);
@@ -280,14 +367,52 @@ int main(int argc, char **argv) {
       std::fprintf(stderr, "cgal_bench: bad angle '%s' (degrees, between 0 and 60)\n", argv[2]);
       return 2;
     }
-    path = argv[3];
+    path = argv[argc - 1];
+    if (argc == 5 && mode == "pslgmesh" && std::strcmp(argv[3], "hull") == 0)
+      convex_hull = true;
+    else if (argc != 4)
+      return usage();
   } else {
     return usage();
   }
-  if (mode != "dt" && mode != "cdt" && !(mode == "mesh" && argc == 4))
+  if (mode != "dt" && mode != "cdt" && !(with_angle && (mode == "mesh" || mode == "pslgmesh")))
     return usage();
 
   try {
+    if (mode == "pslgmesh") {
+      const Poly poly = read_poly(path);
+      MeshCDT cdt;
+      const double seconds = time_pslg_mesh(poly, angle, convex_hull, cdt);
+      const double pi = std::acos(-1.0);
+      const double sine = std::sin(angle * pi / 180.0);
+      const double bad_below = sine * sine * (1.0 - 1e-9);
+      size_t triangles = 0, bad = 0;
+      double smallest = 1.0; // squared sine
+      for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+        if (!f->is_in_domain())
+          continue;
+        ++triangles;
+        const double q = smallest_angle_sine_squared(f->vertex(0)->point(), f->vertex(1)->point(),
+                                                     f->vertex(2)->point());
+        smallest = std::min(smallest, q);
+        bad += q < bad_below ? 1 : 0;
+      }
+      // Vertices of the mesh: those with a face in the domain (the hole's and the outside's
+      // vertices that only bound removed faces are not part of it; CGAL keeps them).
+      size_t vertices = 0;
+      for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+        MeshCDT::Face_circulator f = cdt.incident_faces(v), done = f;
+        bool in_domain = false;
+        do
+          in_domain = in_domain || (!cdt.is_infinite(f) && f->is_in_domain());
+        while (!in_domain && ++f != done);
+        vertices += in_domain ? 1 : 0;
+      }
+      std::printf("{\"mode\": \"pslgmesh\", \"seconds\": %.9g, \"triangles\": %zu, "
+                  "\"vertices\": %zu, \"bad_triangles\": %zu, \"min_angle\": %.6f}\n",
+                  seconds, triangles, vertices, bad, std::asin(std::sqrt(smallest)) * 180.0 / pi);
+      return 0;
+    }
     if (mode == "cdt") {
       const Poly poly = read_poly(path);
       CDT cdt;

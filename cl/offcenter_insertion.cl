@@ -11,10 +11,13 @@
 // becomes the midpoint of that hull edge (the convex hull is the boundary). A PSLG's domain is
 // closed by ghosts as a hull is (domain_boundary.cl), and its interior segments act alike: a walk
 // to a candidate stops at a subsegment, and a candidate in a subsegment's lens splits it. A
-// subsegment with one end where segments meet is split on a power of two from that end
-// (concentric shells, Ruppert's remedy for small input angles). Priority: midpoints
-// before off-centers (§3.4.1: segment-split before triangle-split), then the shorter the shortest
-// edge, the worse the triangle; containers are marked with atomic minimum of it, and a candidate
+// subsegment that meets another segment at a small angle at one end is split on a power of two
+// from that end (concentric shells, Ruppert's remedy for small input angles; shell_centre).
+// -D tests diametral circles instead of lenses and makes triangles facing a subsegment with an
+// obtuse angle bad; -Y keeps boundary edges (-YY all subsegments) whole. Priority: midpoints
+// before off-centers (§3.4.1: segment-split before triangle-split), then for skinny triangles
+// the shorter the shortest edge, the worse, and for those only too large the larger, the worse;
+// containers are marked with atomic minimum of it, and a candidate
 // survives the insertion filter when it owns its container's mark and no neighbouring container
 // has a better one, nor one that goes first and would make it redundant in step 3 (GPU-QM-V).
 // Quality decisions use floating point, as Triangle's do; the insertion that follows uses the exact
@@ -24,7 +27,8 @@
 #include "prefetch.h"
 #include "refinement.h"
 
-// Priorities are the bits of a positive float (the squared shortest edge):
+// Priorities are the bits of a positive float (the squared shortest edge, or
+// its inverse):
 // the top bit is free to rank off-centers after midpoints.
 #define CLM_OFFCENTER_RANK 0x80000000u
 inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCENTER_RANK); }

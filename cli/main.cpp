@@ -519,9 +519,9 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
 }
 
 // One warning line when the refinement left bad triangles, naming why it
-// stopped: the -S limit, the device's memory (full because of the area bound,
-// an angle bound above about 33 degrees or the input's size), the iteration
-// limit, or hull angles sharper than the bound.
+// stopped: the -S limit, the limit of an angle bound above about 33 degrees,
+// the device's memory (full because of the area bound or the input's size),
+// the iteration limit, or small input angles (and -Y) it left alone.
 void warn_refinement(const Job &job, const clmesh::RefineStats &refinement) {
   using clmesh::RefineStop;
   const clmesh::Options &options = job.options;

@@ -65,7 +65,8 @@ public:
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
   // triangles whose smallest angle is at one of those cannot be mended and are
-  // left alone; count_unfixable() counts them.
+  // left alone; count_unfixable() counts them, with those left at small
+  // angles between segments and, with -Y, beside protected edges.
   std::size_t flag_hull_vertices(); // returns how many are acute
   std::size_t count_unfixable();
 

@@ -194,7 +194,7 @@ struct RefinementSteps {
 };
 
 // Termination is guaranteed for angles up to about 30 degrees away from
-// small hull angles; the bound on iterations turns anything else into
+// small input angles; the bound on iterations turns anything else into
 // remaining bad triangles, reported, instead of a hang.
 constexpr long kMaxIterations = 1000;
 

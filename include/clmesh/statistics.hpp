@@ -53,7 +53,7 @@ struct ConstrainedStats {
 
 // Why the refinement stopped.
 enum class RefineStop {
-  done,            // no triangle left to mend (those at hull angles below the bound stay)
+  done,            // no triangle left to mend (those at small input angles stay)
   steiner_limit,   // the -S limit was reached
   area_bound,      // out of device memory: the area bound (-a) needs more points
   angle_bound,     // angles above about 33 degrees need not terminate: without -S refinement
@@ -78,7 +78,7 @@ struct RefineStats {
   long non_delaunay_flips = 0;      // step 3's flops and 3-1 flips deleting points
   long growths = 0;                 // times the mesh's arrays grew (thesis §3.6.1)
   bool out_of_memory = false;       // stopped: the device cannot hold more points
-  long remaining_bad = 0;           // bad triangles left (small hull angles, -S reached)
+  long remaining_bad = 0;           // bad triangles left (small input angles, -Y, -S reached)
   RefineStop stop_reason = RefineStop::done;
   // -a: at least this many points mesh the convex hull within the area bound
   // (half its area over the bound); 0 without -a.

@@ -106,4 +106,14 @@ TEST_CASE("device paths: the CPU and the GPU paths give the same meshes") {
       check_same_mesh(a, triangulate(gpu, input, options));
     }
   }
+  {
+    // Quality meshing of a PSLG with crossings, holes carved by -p, regions and -D.
+    const Input pslg = random_pslg(3000, 60, 11);
+    for (const char *switches : {"pq30", "pcq25D", "pq30a0.001"}) {
+      INFO("PSLG refinement ", switches);
+      const Mesh a = triangulate(cpu, pslg, switches);
+      CHECK(a.statistics.refinement.inserted > 0);
+      check_same_mesh(a, triangulate(gpu, pslg, switches));
+    }
+  }
 }

@@ -188,8 +188,6 @@ nb::dict options_dict(const clmesh::Options &o) {
   d["pslg"] = o.pslg;
   d["convex_hull"] = o.convex_hull;
   d["regional_attributes"] = o.regional_attributes;
-  d["quality"] = o.quality;
-  d["refined"] = o.quality || o.max_area.has_value();
   d["edges"] = o.edges;
   d["neighbors"] = o.neighbors;
   d["jettison"] = o.jettison;

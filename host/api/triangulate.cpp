@@ -102,27 +102,29 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   constrained.regional_attributes = options.regional_attributes;
   const bool refined =
       options.quality || options.max_area || options.regional_areas || options.conforming_delaunay;
-  if (options.pslg && refined) {
-    RefineResult result =
-        refine_constrained(device, Pslg{input.points, input.segments, input.holes, input.regions},
-                           constrained, refine);
-    take_points(mesh, input, result.added_points);
-    take_triangulation(mesh, std::move(result.mesh));
-    mesh.segments = std::move(result.segments);
-    take_attributes(mesh, options, std::move(result.triangle_attributes));
+  // A PSLG's mesh: its points, triangles, segments, -A attributes and the
+  // statistics of GPU-CDT.
+  auto take_pslg = [&](const std::vector<Point> &added, DelaunayResult triangulation,
+                       std::vector<Segment> segments, std::vector<double> attributes,
+                       const ConstrainedStats &stats) {
+    take_points(mesh, input, added);
+    take_triangulation(mesh, std::move(triangulation));
+    mesh.segments = std::move(segments);
+    take_attributes(mesh, options, std::move(attributes));
     mesh.statistics.constrained = true;
-    mesh.statistics.constraints = result.constraints;
+    mesh.statistics.constraints = stats;
+  };
+  auto pslg = [&] { return Pslg{input.points, input.segments, input.holes, input.regions}; };
+  if (options.pslg && refined) {
+    RefineResult result = refine_constrained(device, pslg(), constrained, refine);
+    take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments),
+              std::move(result.triangle_attributes), result.constraints);
     mesh.statistics.refined = true;
     mesh.statistics.refinement = result.stats;
   } else if (options.pslg) {
-    ConstrainedResult result = constrained_delaunay(
-        device, Pslg{input.points, input.segments, input.holes, input.regions}, constrained);
-    take_points(mesh, input, result.added_points);
-    take_triangulation(mesh, std::move(result.mesh));
-    mesh.segments = std::move(result.segments);
-    take_attributes(mesh, options, std::move(result.triangle_attributes));
-    mesh.statistics.constrained = true;
-    mesh.statistics.constraints = result.stats;
+    ConstrainedResult result = constrained_delaunay(device, pslg(), constrained);
+    take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments),
+              std::move(result.triangle_attributes), result.stats);
   } else if (refined) {
     RefineResult result = refine_delaunay(device, input.points, refine);
     take_points(mesh, input, result.added_points);

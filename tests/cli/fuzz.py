@@ -106,7 +106,8 @@ MUTATIONS = [truncate, flip_bytes, duplicate_line, delete_line, swap_lines, odd_
 # that quality triangles fill only by the billions (the run then ends when
 # the device is full, minutes later).
 NODE_SWITCHES = ["", "-qS3000", "-zen", "-jN", "-q25eS3000", "-Ie"]
-POLY_SWITCHES = ["-p", "-pc", "-pzen", "-pAO", "-pj"]
+POLY_SWITCHES = ["-p", "-pc", "-pzen", "-pAO", "-pj", "-pq30S3000", "-pcq25aS3000",
+                 "-pAq20DS3000", "-pq30YS3000"]
 
 def mutate(rng, data):
     descriptions = []

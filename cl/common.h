@@ -159,13 +159,14 @@ typedef struct {
   int vertex;   // the vertex at the point's position (CLM_WALK_AT_VERTEX)
 } WalkResult;
 
-// One step of a walk in the real triangle tri: the first edge that separates
-// p from it, or -1 when p is in it (then `result` says where: inside, on an
-// edge, or at a vertex).
+// One step of a walk in the real triangle tri: the first edge, counted from
+// edge `first`, that separates p from it, or -1 when p is in it (then
+// `result` says where: inside, on an edge, or at a vertex).
 inline int edge_to_cross(__global const double2 *points, VertexTriple tri, double2 p,
-                         WalkResult *result) {
+                         WalkResult *result, int first) {
   int zeros = 0, nonzero = -1, on_edge = -1;
-  for (int i = 0; i < 3; ++i) {
+  for (int k = 0; k < 3; ++k) {
+    const int i = (first + k) % 3;
     const int side = orient_point(points, tri.v[next3(i)], tri.v[prev3(i)], p);
     if (side < 0)
       return i;
@@ -185,9 +186,21 @@ inline int edge_to_cross(__global const double2 *points, VertexTriple tri, doubl
   return -1;
 }
 
+// The edge a walk tests first at its step `step` in triangle t: edge 0 for
+// its first CLM_PLAIN_STEPS steps, so that short walks are the same as ever;
+// then an edge that varies with the step and the triangle. A visibility walk
+// that always tests edge 0 first cannot cycle in a Delaunay triangulation, but
+// it can in a constrained one (GPU-CDT, refinement); varying the first edge
+// breaks such cycles (the stochastic walk of Devillers, Pion and Teillaud,
+// made deterministic).
+#define CLM_PLAIN_STEPS 64
+inline int first_edge_to_test(int t, int step) {
+  return step < CLM_PLAIN_STEPS ? 0 : (int)(((uint)t * 2654435761u ^ (uint)step) % 3u);
+}
+
 // Visibility walk from triangle t to point p, stepping across the first edge
-// that separates p from the triangle. It cannot cycle in a Delaunay
-// triangulation; max_steps guards against anything else.
+// that separates p from the triangle (first_edge_to_test); max_steps guards
+// against anything else.
 inline WalkResult walk_to_point(__global const double2 *points, __global const int *tri_vertex,
                                 __global const int *tri_neighbor, int t, double2 p, int max_steps) {
   WalkResult result = {CLM_WALK_LOST, t, -1, -1};
@@ -218,7 +231,7 @@ inline WalkResult walk_to_point(__global const double2 *points, __global const i
           cross = (q > hi) == ((x_axis ? pa.x : pa.y) == hi) ? prev3(k) : next3(k);
       }
     } else {
-      cross = edge_to_cross(points, tri, p, &result);
+      cross = edge_to_cross(points, tri, p, &result, first_edge_to_test(t, step));
       if (cross < 0)
         break;
     }

@@ -484,7 +484,7 @@ inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_step
   WalkResult result = {CLM_WALK_LOST, t, -1, -1};
   for (int step = 0; step < max_steps; ++step) {
     const VertexTriple tri = load_vertices(tri_vertex, t);
-    const int cross = edge_to_cross(points, tri, p, &result);
+    const int cross = edge_to_cross(points, tri, p, &result, first_edge_to_test(t, step));
     if (cross < 0)
       break;
     const int u = link_triangle(tri_neighbor[3 * t + cross]);

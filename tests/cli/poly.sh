@@ -123,6 +123,16 @@ sys.exit(abs(given - split) > 1e-9 * given)
 PY
 [[ "$(holes A.1.poly)" == "$(holes "$references/A.1.poly")" ]] || fail "-pq30a0.5 A.poly: holes"
 
+# Many crossings among random segments: walks in the constrained mesh must end
+# (they once cycled), for GPU-CDT and for its refinement.
+fresh walks
+cp "$source_dir/tests/data/crossings_walk_cycle.poly" .
+for switches in -pc -pcq30; do
+  run "$switches" -Q -C crossings_walk_cycle.poly
+  [[ -f crossings_walk_cycle.1.ele ]] || fail "$switches crossings_walk_cycle.poly: no mesh"
+  rm -f crossings_walk_cycle.1.*
+done
+
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.
 fresh zero
 awk 'BEGIN { print "0  2  0  1" } /^[ \t]*#/ || /^[ \t]*$/ { print; next } { n++ } n > 17' \

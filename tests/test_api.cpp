@@ -61,6 +61,7 @@ bool contains(const std::string &text, const std::string &part) {
 // The switches that are one flag each, with their fields.
 const std::vector<std::pair<char, bool clmesh::Options::*>> kFlags = {
     {'p', &clmesh::Options::pslg},
+    {'r', &clmesh::Options::refine},
     {'c', &clmesh::Options::convex_hull},
     {'O', &clmesh::Options::ignore_holes},
     {'A', &clmesh::Options::regional_attributes},
@@ -357,13 +358,33 @@ TEST_CASE("api: validate(Input) refuses input that cannot be meshed") {
     input.points[3] = {-1e-50, 1};
     CHECK(input_error(input) == "");
   }
-  SUBCASE("triangles to refine (-r), not supported yet") {
-    input.triangles = {{0, 1, 2}};
-    CHECK(contains(input_error(input), "refining an existing mesh"));
-    CHECK_THROWS_AS(clmesh::triangulate(device(), input, "p"), clmesh::InputError);
-    input.triangles.clear();
+  SUBCASE("triangles to refine (-r) that are no triangulation") {
+    input.triangles = {{0, 1, 2}, {0, 2, 3}};
+    CHECK(input_error(input) == "");
+    input.triangles[1] = {0, 3, 2};
+    CHECK(contains(input_error(input), "triangle 1: its corners are in clockwise order"));
+    input.triangles[1] = {0, 2, 4};
+    CHECK(contains(input_error(input), "corner 4 is out of range"));
+    input.triangles[1] = {0, 2, 0};
+    CHECK(contains(input_error(input), "a corner is repeated"));
+    // Two triangles folded over the edge 0-2.
+    input.points.push_back({0.5, 0.25});
+    input.triangles[1] = {0, 4, 2};
+    CHECK(contains(input_error(input), "overlaps triangle"));
+    input.triangles[1] = {0, 2, 3};
     input.triangle_max_area = {0.5};
-    CHECK(contains(input_error(input), "refining an existing mesh"));
+    CHECK(contains(input_error(input), "1 maximum areas for 2 triangles"));
+    input.triangle_max_area = {0.5, -1};
+    input.triangle_attribute_count = 1;
+    CHECK(contains(input_error(input), "0 triangle attributes for 2 triangles"));
+    input.triangle_attributes = {1, 2};
+    CHECK(input_error(input) == "");
+    // Messages name the file and line the triangles came from.
+    input.triangles_source = "shape.ele";
+    input.triangle_lines = {3, 4};
+    input.triangles[1] = {0, 3, 2};
+    CHECK(contains(input_error(input), "shape.ele:4: triangle 1"));
+    CHECK_THROWS_AS(clmesh::triangulate(device(), input, "r"), clmesh::InputError);
   }
   SUBCASE("holes and regions that are not finite") {
     input.holes = {{0.5, std::nan("")}};

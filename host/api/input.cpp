@@ -3,8 +3,12 @@
 
 #include "clmesh/errors.hpp"
 
+#include "predicates.h"
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 namespace clmesh {
 
@@ -16,6 +20,74 @@ std::string where(const Input &input, const std::string &item) {
 }
 
 bool finite(const Point &p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+// Throws an InputError about triangle t: at its line of triangles_source
+// when the input came from a file, numbered as the file numbers them.
+[[noreturn]] void triangle_error(const Input &input, std::size_t t, const std::string &problem) {
+  const std::string name = "triangle " + std::to_string(static_cast<long>(t) + input.first_index);
+  if (!input.triangles_source.empty())
+    throw InputError(input.triangles_source,
+                     t < input.triangle_lines.size() ? input.triangle_lines[t] : 0,
+                     name + ": " + problem);
+  throw InputError(where(input, name), 0, problem);
+}
+
+// -r: the mesh to refine is a triangulation: corners in range and distinct,
+// every triangle counter-clockwise (exact orientation), and no edge taken
+// twice in the same direction (two triangles folded over each other, or
+// more than two around one edge). Overlaps between triangles that share no
+// edge are found on the device (refine_mesh).
+void validate_triangles(const Input &input) {
+  const std::size_t n = input.points.size(), count = input.triangles.size();
+  const std::string source = input.triangles_source.empty()
+                                 ? (input.source.empty() ? "input" : input.source)
+                                 : input.triangles_source;
+  if (input.triangle_attribute_count < 0 ||
+      input.triangle_attributes.size() !=
+          count * static_cast<std::size_t>(input.triangle_attribute_count))
+    throw InputError(source, 0,
+                     std::to_string(input.triangle_attributes.size()) +
+                         " triangle attributes for " + std::to_string(count) + " triangles of " +
+                         std::to_string(input.triangle_attribute_count) + " attributes each");
+  if (!input.triangle_max_area.empty() && input.triangle_max_area.size() != count)
+    throw InputError(source, 0,
+                     std::to_string(input.triangle_max_area.size()) + " maximum areas for " +
+                         std::to_string(count) + " triangles");
+  for (std::size_t t = 0; t < input.triangle_max_area.size(); ++t)
+    if (std::isnan(input.triangle_max_area[t]))
+      triangle_error(input, t, "its maximum area is not a number");
+  std::vector<std::tuple<int32_t, int32_t, std::size_t>> directed;
+  directed.reserve(3 * count);
+  for (std::size_t t = 0; t < count; ++t) {
+    const Triangle &v = input.triangles[t];
+    for (int32_t corner : v)
+      if (corner < 0 || static_cast<std::size_t>(corner) >= n)
+        triangle_error(input, t,
+                       "corner " + std::to_string(static_cast<long>(corner) + input.first_index) +
+                           " is out of range (" + std::to_string(n) + " vertices)");
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+      triangle_error(input, t, "a corner is repeated");
+    const Point &a = input.points[v[0]], &b = input.points[v[1]], &c = input.points[v[2]];
+    const int side = clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+    if (side <= 0)
+      triangle_error(input, t,
+                     side == 0 ? "its corners are collinear (it has no area)"
+                               : "its corners are in clockwise order (counter-clockwise expected)");
+    for (int k = 0; k < 3; ++k)
+      directed.emplace_back(v[k], v[(k + 1) % 3], t);
+  }
+  std::sort(directed.begin(), directed.end());
+  for (std::size_t i = 1; i < directed.size(); ++i)
+    if (std::get<0>(directed[i]) == std::get<0>(directed[i - 1]) &&
+        std::get<1>(directed[i]) == std::get<1>(directed[i - 1]))
+      triangle_error(
+          input, std::get<2>(directed[i]),
+          "it overlaps triangle " +
+              std::to_string(static_cast<long>(std::get<2>(directed[i - 1])) + input.first_index) +
+              " (both take the edge from vertex " +
+              std::to_string(std::get<0>(directed[i]) + input.first_index) + " to " +
+              std::to_string(std::get<1>(directed[i]) + input.first_index) + ")");
+}
 
 } // namespace
 
@@ -35,10 +107,6 @@ void validate(const Input &input) {
     throw InputError(source, 0,
                      std::to_string(input.point_markers.size()) + " point markers for " +
                          std::to_string(n) + " points");
-  if (!input.triangles.empty() || !input.triangle_max_area.empty())
-    throw InputError(source, 0,
-                     "refining an existing mesh (its triangles or their maximum areas) is not "
-                     "supported yet");
   for (std::size_t i = 0; i < n; ++i)
     for (const double value : {input.points[i].x, input.points[i].y}) {
       const double magnitude = std::fabs(value);
@@ -67,6 +135,7 @@ void validate(const Input &input) {
     if (!finite(input.regions[i].seed) || !std::isfinite(input.regions[i].attribute))
       throw InputError(where(input, "region " + std::to_string(i)), 0,
                        "coordinate or attribute is not finite");
+  validate_triangles(input);
 }
 
 } // namespace clmesh

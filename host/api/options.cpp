@@ -11,14 +11,13 @@ namespace clmesh {
 
 namespace {
 
-const char *const kSupported = "-p -c -O -A -D -Y -B -q -a -S -z -e -n -v -g -o2 -N -E -P -I -j -Q "
-                               "-V -C -h (-X -i -F -l -s accepted without effect)";
+const char *const kSupported =
+    "-p -r -c -O -A -D -Y -B -q -a -S -z -e -n -v -g -o2 -N -E -P -I -j -Q "
+    "-V -C -h (-X -i -F -l -s accepted without effect)";
 
 // Triangle's switches that clmesh does not implement yet, with what they do.
 const char *unsupported_switch(char letter) {
   switch (letter) {
-  case 'r':
-    return "refining a previous mesh";
   case 'u':
     return "a user-defined triangle sizing function: it needs a callback from the library "
            "(Triangle's triunsuitable()), which clmesh does not offer yet";
@@ -98,6 +97,9 @@ void parse_switches(const std::string &switches, Options &options) {
     }
     case 'p':
       options.pslg = true;
+      break;
+    case 'r':
+      options.refine = true;
       break;
     case 'c':
       options.convex_hull = true;
@@ -195,9 +197,9 @@ Options parse_switches(const std::string &switches) {
 }
 
 void validate(const Options &options) {
-  if (options.regional_areas && !options.pslg)
-    throw OptionError("-a without a number applies the maximum areas of a .poly file's regions: "
-                      "it needs -p (the .area files of -r are not supported yet)");
+  if (options.regional_areas && !options.pslg && !options.refine)
+    throw OptionError("-a without a number applies the maximum areas of a .poly file's regions "
+                      "(-p) or of an .area file's triangles (-r): it needs -p or -r");
   if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
     throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");
   if (options.max_area && !(*options.max_area > 0))

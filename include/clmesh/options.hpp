@@ -10,6 +10,7 @@ namespace clmesh {
 
 struct Options {
   bool pslg = false;                // -p: triangulate a planar straight-line graph
+  bool refine = false;              // -r: refine Input::triangles (with -p: its segments, holes)
   bool convex_hull = false;         // -c: with -p, keep every triangle of the convex hull
   bool ignore_holes = false;        // -O: with -p, ignore the holes
   bool regional_attributes = false; // -A: with -p, each triangle gets its region's attribute
@@ -18,7 +19,8 @@ struct Options {
   bool quality = false;             // -q: quality mesh, no angle below min_angle
   double min_angle = 20;            // -q<angle>, degrees (0 to 45)
   std::optional<double> max_area;   // -a<area>: no triangle larger
-  bool regional_areas = false;      // -a alone, with -p: each region's maximum area (.poly)
+  bool regional_areas = false;      // -a alone: with -r each triangle's (.area), else with -p
+                                    // each region's maximum area (.poly)
   std::optional<long> max_steiner;  // -S<n>: at most n Steiner points (-S alone: 0)
   bool zero_based = false;          // -z: number the output from zero
   bool edges = false;               // -e: return (and write) the edges

@@ -51,7 +51,7 @@ def test_bad_input_raises_input_error(tri, message):
 @pytest.mark.parametrize("switches, message", [
     ("k", "unknown switch -k"),
     ("pq30x", "unknown switch -x"),
-    ("r", "not supported yet"),
+    ("u", "not supported yet"),
     ("qa", "needs -p"),
     ("a-1", "unknown switch --"),
     ("q50", "between 0 and 45"),

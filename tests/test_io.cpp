@@ -647,6 +647,183 @@ TEST_CASE("read_poly errors name the file and the line") {
 }
 
 // ---------------------------------------------------------------------------
+// Meshes to refine (-r): .ele and .area files
+// ---------------------------------------------------------------------------
+
+// `call` must throw an InputError naming `path` and `line`, with `words` in its message.
+template <typename Call>
+void expect_file_error(Call call, const std::string &path, long line, const std::string &words) {
+  bool thrown = false;
+  try {
+    call();
+  } catch (const InputError &error) {
+    thrown = true;
+    const std::string message = error.what();
+    CAPTURE(message);
+    CHECK(error.file() == path);
+    CHECK(error.line() == line);
+    CHECK(message.find(path + (line > 0 ? ":" + std::to_string(line) + ": " : ": ")) == 0);
+    CHECK(message.find(words) != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  CHECK(thrown);
+}
+
+TEST_CASE("read_ele reads Triangle's meshes: corners, six nodes, attributes, numbering") {
+  const fs::path inputs = kExamples / "inputs";
+  SUBCASE("the examples bbox.1 and ell, against their own text") {
+    for (const std::string name : {"bbox.1", "ell"}) {
+      CAPTURE(name);
+      const PointSet points = read_node((inputs / (name + ".node")).string());
+      const std::string path = (inputs / (name + ".ele")).string();
+      const EleFile ele = read_ele(path, static_cast<long>(points.points.size()), 1);
+      // Independent: the minimal reader of these tests.
+      CHECK(ele.triangles == read_ele(path, 1));
+      CHECK(ele.first_index == 1);
+      CHECK(ele.attribute_count == 0);
+      CHECK(ele.attributes.empty());
+      REQUIRE(ele.lines.size() == ele.triangles.size());
+      CHECK(ele.lines.front() == 2);
+    }
+  }
+  SUBCASE("comments, blank lines, 0-based, attributes, six nodes") {
+    TempDir dir;
+    write_file(dir.file("m.ele"), "# a mesh\n2 6 2\n\n0 0 1 2 3 4 5 1.5 -2 # first\n"
+                                  "1 2 1 3 6 7 8 0 1e3\n");
+    const EleFile ele = read_ele(dir.file("m.ele"), 9, 0);
+    CHECK(ele.triangles == std::vector<Triangle>{{0, 1, 2}, {2, 1, 3}});
+    CHECK(ele.first_index == 0);
+    CHECK(ele.attribute_count == 2);
+    CHECK(ele.attributes == std::vector<double>{1.5, -2, 0, 1000});
+    CHECK(ele.lines == std::vector<long>{4, 5});
+  }
+  SUBCASE("a header of one count: three nodes, no attributes") {
+    TempDir dir;
+    write_file(dir.file("m.ele"), "1\n1 3 2 1\n");
+    const EleFile ele = read_ele(dir.file("m.ele"), 3, 1);
+    CHECK(ele.triangles == std::vector<Triangle>{{2, 1, 0}});
+  }
+}
+
+TEST_CASE("read_ele and read_area errors name the file and the line") {
+  TempDir dir;
+  const std::string ele = dir.file("m.ele");
+  auto ele_error = [&](const std::string &text, long line, const std::string &words) {
+    CAPTURE(text);
+    write_file(ele, text);
+    expect_file_error([&] { read_ele(ele, 4, 1); }, ele, line, words);
+  };
+  expect_file_error([&] { read_ele(dir.file("absent.ele"), 4, 1); }, dir.file("absent.ele"), 0,
+                    "cannot open");
+  ele_error("", 1, "before the header");
+  ele_error("two 3 0\n", 1, "malformed header");
+  ele_error("1 2 0\n", 1, "at least 3 nodes");
+  ele_error("1 3 x\n", 1, "attribute count");
+  ele_error("2 3 0\n1 1 2 3\n", 3, "after 1 of 2 triangles");
+  ele_error("1 3 0\n1 1 2\n", 2, "expected 4 (id, 3 nodes)");
+  ele_error("1 3 1\n1 1 2 3\n", 2, "expected 5 (id, 3 nodes, 1 attribute(s))");
+  ele_error("1 6 0\n1 1 2 3 4\n", 2, "expected 7");
+  ele_error("1 3 0\n1 1 2 c\n", 2, "corner 'c' of triangle 1 is not an integer");
+  ele_error("1 3 0\n1 1 2 5\n", 2,
+            "corner 5 of triangle 1 is not a vertex (vertices are "
+            "numbered 1 to 4)");
+  ele_error("1 3 0\n1 0 2 3\n", 2, "corner 0 of triangle 1 is not a vertex");
+  ele_error("2 3 0\n1 1 2 3\n3 2 3 4\n", 3, "triangle id 3 out of sequence (expected 2)");
+  ele_error("1 3 0\n2 1 2 3\n", 2, "first triangle id must be 0 or 1");
+  ele_error("1 3 1\n1 1 2 3 nan\n", 2, "attribute 'nan' of triangle 1 is not finite");
+  ele_error("1 3 1\n1 1 2 3 big\n", 2, "attribute 'big' of triangle 1 is not a number");
+
+  const std::string area = dir.file("m.area");
+  auto area_error = [&](const std::string &text, long line, const std::string &words) {
+    CAPTURE(text);
+    write_file(area, text);
+    expect_file_error([&] { read_area(area, 2); }, area, line, words);
+  };
+  expect_file_error([&] { read_area(dir.file("absent.area"), 2); }, dir.file("absent.area"), 0,
+                    "cannot open");
+  area_error("", 1, "before the header");
+  area_error("3\n1 1\n2 1\n3 1\n", 1, "the header announces 3 triangles, the .ele file has 2");
+  area_error("x\n", 1, "malformed header");
+  area_error("2\n1 0.5\n", 3, "after 1 of 2 triangles");
+  area_error("2\n1 0.5\n2\n", 3, "triangle 2 has no maximum area");
+  area_error("2\n1 0.5\n2 small\n", 3, "maximum area 'small' of triangle 2 is not a number");
+  area_error("2\n1 0.5\n4 1\n", 3, "out of sequence");
+  write_file(area, "# areas\n2\n0 -1\n1 0.25 # second\n");
+  CHECK(read_area(area, 2) == std::vector<double>{-1, 0.25});
+}
+
+TEST_CASE("read_mesh reads -r's files as Triangle does") {
+  TempDir dir;
+  const std::string square = "4 2 0 1\n1 0 0 1\n2 1 0 2\n3 1 1 0\n4 0 1 0\n";
+  write_file(dir.file("sq.1.node"), square);
+  write_file(dir.file("sq.1.ele"), "2 3 1\n1 1 2 3 7\n2 1 3 4 8\n");
+  write_file(dir.file("sq.1.area"), "2\n1 0.1\n2 -1\n");
+  const std::string base = dir.file("sq.1");
+  SUBCASE(".node and .ele") {
+    std::vector<std::string> opened;
+    const Input input = read_mesh(base, false, false, &opened);
+    CHECK(opened == std::vector<std::string>{base + ".node", base + ".ele"});
+    CHECK(input.points.size() == 4);
+    CHECK(input.point_markers == std::vector<int>{1, 2, 0, 0});
+    CHECK(input.first_index == 1);
+    CHECK(input.triangles == std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}});
+    CHECK(input.triangle_attribute_count == 1);
+    CHECK(input.triangle_attributes == std::vector<double>{7, 8});
+    CHECK(input.triangle_max_area.empty());
+    CHECK(input.source == base + ".node");
+    CHECK(input.triangles_source == base + ".ele");
+    CHECK(input.triangle_lines == std::vector<long>{2, 3});
+    CHECK(input.segments.empty());
+    CHECK_NOTHROW(validate(input));
+  }
+  SUBCASE("with the .area file") {
+    std::vector<std::string> opened;
+    const Input input = read_mesh(base, false, true, &opened);
+    CHECK(opened.back() == base + ".area");
+    CHECK(input.triangle_max_area == std::vector<double>{0.1, -1});
+  }
+  SUBCASE("-p: segments and holes of the .poly, vertices from the .node beside it") {
+    write_file(dir.file("sq.1.poly"), "0 2 0 1\n1 1\n1 1 3 5\n1\n1 5 5\n1\n1 0.5 0.5 3 0.1\n");
+    std::vector<std::string> opened;
+    const Input input = read_mesh(base, true, false, &opened);
+    CHECK(opened == std::vector<std::string>{base + ".poly", base + ".node", base + ".ele"});
+    REQUIRE(input.segments.size() == 1);
+    CHECK(input.segments[0].a == 0);
+    CHECK(input.segments[0].b == 2);
+    CHECK(input.segments[0].marker == 5);
+    CHECK(input.holes.size() == 1);
+    CHECK(input.regions.empty()); // Triangle reads no regions with -r
+    CHECK(input.points.size() == 4);
+    CHECK(input.source == base + ".poly");
+  }
+  SUBCASE("-p: a .poly that lists vertices: those, not the .node's") {
+    write_file(dir.file("sq.1.poly"), "4 2 0 0\n1 0 0\n2 2 0\n3 2 2\n4 0 2\n0 0\n0\n");
+    write_file(dir.file("sq.1.node"), "not a node file\n");
+    std::vector<std::string> opened;
+    const Input input = read_mesh(base, true, false, &opened);
+    CHECK(opened == std::vector<std::string>{base + ".poly", base + ".ele"});
+    CHECK(input.points[2].x == 2);
+  }
+  SUBCASE("errors name the file") {
+    expect_file_error([&] { read_mesh(dir.file("none"), false, false); }, dir.file("none.node"), 0,
+                      "cannot open");
+    write_file(dir.file("nomesh.node"), square);
+    expect_file_error([&] { read_mesh(dir.file("nomesh"), false, false); }, dir.file("nomesh.ele"),
+                      0, "cannot open");
+    expect_file_error([&] { read_mesh(dir.file("sq.1"), true, false); }, dir.file("sq.1.poly"), 0,
+                      "cannot open");
+    std::remove(dir.file("sq.1.area").c_str());
+    expect_file_error([&] { read_mesh(base, false, true); }, base + ".area", 0, "cannot open");
+    // validate() names the .ele's line: a clockwise triangle on line 3.
+    write_file(dir.file("sq.1.ele"), "2 3 0\n1 1 2 3\n2 1 4 3\n");
+    const Input clockwise = read_mesh(base, false, false);
+    expect_file_error([&] { validate(clockwise); }, base + ".ele", 3,
+                      "triangle 2: its corners "
+                      "are in clockwise order");
+  }
+}
+
+// ---------------------------------------------------------------------------
 // Writers
 // ---------------------------------------------------------------------------
 
@@ -975,12 +1152,14 @@ TEST_CASE("-p writers: markers, -B, -A, -j, eaten segments") {
   }
   SUBCASE("-A: an attribute column in .ele") {
     MeshView with = mesh;
+    with.triangle_attribute_count = 1;
     with.triangle_attributes = &attributes;
     TempDir dir;
     OutputBatch batch;
     batch.write_ele(dir.file("a.ele"), with, WriteOptions{});
     const std::vector<double> short_list = {1};
     MeshView wrong = mesh;
+    wrong.triangle_attribute_count = 1;
     wrong.triangle_attributes = &short_list;
     CHECK_THROWS_AS(batch.write_ele(dir.file("w.ele"), wrong, WriteOptions{}), InternalError);
     batch.commit();
@@ -990,6 +1169,30 @@ TEST_CASE("-p writers: markers, -B, -A, -j, eaten segments") {
     CHECK(ele[1] == "   1       1     2     5  1.5");
     CHECK(ele[3] == "   3       3     4     5  -3");
     CHECK(ele[4] == "   4       4     1     5  0.10000000000000001");
+  }
+  SUBCASE("-r: several attribute columns in .ele and .vtu") {
+    const std::vector<double> columns = {1, -1, 2, -2, 3, -3, 4, -4};
+    MeshView with = mesh;
+    with.triangle_attribute_count = 2;
+    with.triangle_attributes = &columns;
+    TempDir dir;
+    OutputBatch batch;
+    batch.write_ele(dir.file("r.ele"), with, WriteOptions{});
+    batch.write_vtu(dir.file("r.vtu"), with, WriteOptions{});
+    MeshView wrong = with;
+    wrong.triangle_attribute_count = 3;
+    CHECK_THROWS_AS(batch.write_ele(dir.file("w.ele"), wrong, WriteOptions{}), InternalError);
+    batch.commit();
+    const auto ele = lines_of(read_file(dir.file("r.ele")));
+    REQUIRE(ele.size() == 5);
+    CHECK(ele[0] == "4  3  2");
+    CHECK(ele[2] == "   2       2     3     5  2  -2");
+    // Read back: the attributes by column, row-major.
+    const EleFile back = read_ele(dir.file("r.ele"), 6, 1);
+    CHECK(back.attributes == columns);
+    const std::string vtu = read_file(dir.file("r.vtu"));
+    CHECK(vtu.find("Name=\"attribute2\"") != std::string::npos);
+    CHECK(vtu.find("Name=\"attribute3\"") == std::string::npos);
   }
   SUBCASE("-j also drops the vertices in no triangle") {
     WriteOptions jettison;

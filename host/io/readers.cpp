@@ -1,4 +1,5 @@
-// clmesh — reading Triangle's .node and .poly files as they stream in (see clmesh/io.hpp).
+// clmesh — reading Triangle's .node, .poly, .ele and .area files as they stream in
+// (see clmesh/io.hpp).
 #include "clmesh/io.hpp"
 
 #include "clmesh/errors.hpp"
@@ -205,6 +206,22 @@ double read_number(FieldReader &reader, std::string_view token, const char *what
   return value;
 }
 
+// The id of the i-th item of a section, numbered from 0 or 1 as its first
+// id says (*first is set from it); `item` names the items in messages.
+void check_id(FieldReader &reader, std::string_view token, long i, long *first, const char *item) {
+  long id = 0;
+  if (!parse_long(token, id))
+    reader.fail(std::string(item) + " id " + quote(token) + " is not an integer");
+  if (i == 0) {
+    if (id != 0 && id != 1)
+      reader.fail("first " + std::string(item) + " id must be 0 or 1, got " + std::to_string(id));
+    *first = id;
+  } else if (id != *first + i) {
+    reader.fail(std::string(item) + " id " + std::to_string(id) + " out of sequence (expected " +
+                std::to_string(*first + i) + ")");
+  }
+}
+
 // The vertex section of a .node or .poly file: header, then the vertices.
 PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   std::vector<std::string_view> fields;
@@ -255,17 +272,10 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
       reader.fail("vertex line has " + std::to_string(fields.size()) + " field(s), expected " +
                   std::to_string(wanted) + " (" + shape + ")");
     }
-    long id = 0;
-    if (!parse_long(fields[0], id))
-      reader.fail("vertex id " + quote(fields[0]) + " is not an integer");
-    if (i == 0) {
-      if (id != 0 && id != 1)
-        reader.fail("first vertex id must be 0 or 1, got " + std::to_string(id));
-      set.first_index = static_cast<int>(id);
-    } else if (id != set.first_index + i) {
-      reader.fail("vertex id " + std::to_string(id) + " out of sequence (expected " +
-                  std::to_string(set.first_index + i) + ")");
-    }
+    long first = set.first_index;
+    check_id(reader, fields[0], i, &first, "vertex");
+    set.first_index = static_cast<int>(first);
+    const long id = first + i;
     double xy[2];
     for (int k = 0; k < 2; ++k) {
       const char *axis = k == 0 ? "x" : "y";
@@ -450,28 +460,146 @@ PolyFile read_poly(const std::string &path) {
   return poly;
 }
 
-Input read_input(const std::string &path, std::string *node_path) {
-  Input input;
-  input.source = path;
-  PointSet points;
-  const bool pslg = path.size() >= 5 && path.compare(path.size() - 5, 5, ".poly") == 0;
-  if (pslg) {
-    PolyFile file = read_poly(path);
-    if (node_path)
-      *node_path = file.node_path;
-    points = std::move(file.points);
-    input.segments = std::move(file.segments);
-    input.holes = std::move(file.holes);
-    input.regions = std::move(file.regions);
-  } else {
-    points = read_node(path);
-  }
+namespace {
+
+// The vertices of `points` (attributes, markers, numbering) into `input`.
+void take_points(Input &input, PointSet &&points) {
   input.points = std::move(points.points);
   input.attribute_count = points.attribute_count;
   input.point_attributes = std::move(points.attributes);
   if (points.has_markers)
     input.point_markers = std::move(points.markers);
   input.first_index = points.first_index;
+}
+
+} // namespace
+
+Input read_input(const std::string &path, std::string *node_path) {
+  Input input;
+  input.source = path;
+  const bool pslg = path.size() >= 5 && path.compare(path.size() - 5, 5, ".poly") == 0;
+  if (pslg) {
+    PolyFile file = read_poly(path);
+    if (node_path)
+      *node_path = file.node_path;
+    take_points(input, std::move(file.points));
+    input.segments = std::move(file.segments);
+    input.holes = std::move(file.holes);
+    input.regions = std::move(file.regions);
+  } else {
+    take_points(input, read_node(path));
+  }
+  return input;
+}
+
+EleFile read_ele(const std::string &path, long vertex_count, int first_vertex) {
+  FieldReader reader(path);
+  std::vector<std::string_view> fields;
+  const std::string shape = "<#triangles> <nodes per triangle> <#attributes>";
+  next_line(reader, path, fields, "before the header (expected '" + shape + "')");
+  const long count = read_count(reader, fields[0], shape);
+  long nodes = 3, attributes = 0;
+  if (fields.size() > 1 && !parse_long(fields[1], nodes))
+    reader.fail("malformed header: nodes per triangle " + quote(fields[1]) + " is not an integer");
+  if (nodes < 3 || nodes > 1000)
+    reader.fail("malformed header: a triangle has at least 3 nodes (3, or 6 for second-order "
+                "triangles), not " +
+                std::to_string(nodes));
+  if (fields.size() > 2 &&
+      (!parse_long(fields[2], attributes) || attributes < 0 || attributes > 1000000))
+    reader.fail("malformed header: " + quote(fields[2]) + " is not an attribute count");
+
+  EleFile ele;
+  ele.attribute_count = static_cast<int>(attributes);
+  // Do not trust the header for the allocation: a triangle line is at least 8 bytes.
+  const std::size_t reserve =
+      std::min<std::size_t>(static_cast<std::size_t>(count), reader.size_bound() / 8);
+  ele.triangles.reserve(reserve);
+  ele.lines.reserve(reserve);
+  ele.attributes.reserve(reserve * static_cast<std::size_t>(attributes));
+  const std::size_t wanted = 1 + static_cast<std::size_t>(nodes + attributes);
+  reader.expect_fields(wanted);
+  long first = 0;
+  for (long i = 0; i < count; ++i) {
+    next_line(reader, path, fields, progress(i, count, "triangles"));
+    check_id(reader, fields[0], i, &first, "triangle");
+    const std::string name = "of triangle " + std::to_string(first + i);
+    if (fields.size() < wanted)
+      reader.fail("triangle line has " + std::to_string(fields.size()) + " field(s), expected " +
+                  std::to_string(wanted) + " (id, " + std::to_string(nodes) + " nodes" +
+                  (attributes > 0 ? ", " + std::to_string(attributes) + " attribute(s))" : ")"));
+    Triangle triangle{};
+    for (int k = 0; k < 3; ++k) {
+      long corner = 0;
+      if (!parse_long(fields[1 + k], corner))
+        reader.fail("corner " + quote(fields[1 + k]) + " " + name + " is not an integer");
+      if (corner < first_vertex || corner >= first_vertex + vertex_count)
+        reader.fail("corner " + std::to_string(corner) + " " + name +
+                    " is not a vertex (vertices are numbered " + std::to_string(first_vertex) +
+                    " to " + std::to_string(first_vertex + vertex_count - 1) + ")");
+      triangle[k] = static_cast<int32_t>(corner - first_vertex);
+    }
+    ele.triangles.push_back(triangle);
+    ele.lines.push_back(reader.line());
+    for (long a = 0; a < attributes; ++a)
+      ele.attributes.push_back(
+          read_number(reader, fields[1 + static_cast<std::size_t>(nodes + a)], "attribute", name));
+  }
+  ele.first_index = static_cast<int>(first);
+  return ele;
+}
+
+std::vector<double> read_area(const std::string &path, std::size_t triangle_count) {
+  FieldReader reader(path);
+  std::vector<std::string_view> fields;
+  next_line(reader, path, fields, "before the header (expected '<#triangles>')");
+  const long count = read_count(reader, fields[0], "<#triangles>");
+  if (static_cast<std::size_t>(count) != triangle_count)
+    reader.fail("the header announces " + std::to_string(count) + " triangles, the .ele file has " +
+                std::to_string(triangle_count));
+  std::vector<double> areas;
+  areas.reserve(triangle_count);
+  long first = 0;
+  for (long i = 0; i < count; ++i) {
+    next_line(reader, path, fields, progress(i, count, "triangles"));
+    check_id(reader, fields[0], i, &first, "triangle");
+    if (fields.size() < 2)
+      reader.fail("triangle " + std::to_string(first + i) +
+                  " has no maximum area (expected id, maximum area)");
+    areas.push_back(
+        read_number(reader, fields[1], "maximum area", "of triangle " + std::to_string(first + i)));
+  }
+  return areas;
+}
+
+Input read_mesh(const std::string &base, bool pslg, bool areas, std::vector<std::string> *opened) {
+  auto open = [opened](const std::string &path) {
+    if (opened)
+      opened->push_back(path);
+    return path;
+  };
+  Input input;
+  if (pslg) {
+    input.source = open(base + ".poly");
+    PolyFile file = read_poly(input.source);
+    if (!file.node_path.empty())
+      open(file.node_path);
+    take_points(input, std::move(file.points));
+    input.segments = std::move(file.segments);
+    input.holes = std::move(file.holes);
+  } else {
+    input.source = open(base + ".node");
+    take_points(input, read_node(input.source));
+  }
+  input.triangles_source = open(base + ".ele");
+  EleFile ele =
+      read_ele(input.triangles_source, static_cast<long>(input.points.size()), input.first_index);
+  input.triangles = std::move(ele.triangles);
+  input.triangle_attribute_count = ele.attribute_count;
+  input.triangle_attributes = std::move(ele.attributes);
+  input.triangle_lines = std::move(ele.lines);
+  if (areas)
+    input.triangle_max_area = read_area(open(base + ".area"), input.triangles.size());
   return input;
 }
 

@@ -48,6 +48,19 @@ inline std::size_t attributes_of(const MeshView &mesh) {
   return static_cast<std::size_t>(std::max(mesh.attribute_count, 0));
 }
 
+// Attributes per triangle (0 without them), checked against the triangles.
+inline std::size_t triangle_attributes_of(const MeshView &mesh) {
+  if (!mesh.triangle_attributes)
+    return 0;
+  const auto columns = static_cast<std::size_t>(std::max(mesh.triangle_attribute_count, 0));
+  if (columns == 0 || mesh.triangle_attributes->size() != triangles_of(mesh).size() * columns)
+    throw InternalError("output writer called with " +
+                        std::to_string(mesh.triangle_attributes->size()) +
+                        " triangle attributes for " + std::to_string(triangles_of(mesh).size()) +
+                        " triangles of " + std::to_string(columns) + " attributes each");
+  return columns;
+}
+
 // -o2's middle nodes, checked against the triangles; empty without -o2.
 inline const std::vector<Point> &midpoints_of(const MeshView &mesh) {
   static const std::vector<Point> none;

@@ -86,12 +86,11 @@ void OutputBatch::write_vtu(const std::string &path, const MeshView &mesh,
     file.text("</DataArray>\n");
   }
   file.text("</PointData>\n<CellData>\n");
-  if (mesh.triangle_attributes) {
-    if (mesh.triangle_attributes->size() != triangles.size())
-      throw InternalError("write_vtu: triangle attributes do not match the triangles");
-    file.text("<DataArray type=\"Float64\" Name=\"attribute1\" format=\"ascii\">\n");
-    for (double value : *mesh.triangle_attributes) {
-      file.real(value);
+  const std::size_t columns = triangle_attributes_of(mesh);
+  for (std::size_t a = 0; a < columns; ++a) {
+    file.format("<DataArray type=\"Float64\" Name=\"attribute%zu\" format=\"ascii\">\n", a + 1);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      file.real((*mesh.triangle_attributes)[t * columns + a]);
       file.end_line();
     }
     file.text("</DataArray>\n");

@@ -113,10 +113,13 @@ MeshView view_of(const Mesh &mesh) {
   view.triangles = &mesh.triangles;
   view.neighbors = &mesh.neighbors;
   view.duplicate_of = &mesh.duplicate_of;
-  if (mesh.statistics.constrained)
+  // -p, and -r: the mesh's boundary edges and the .poly's segments.
+  if (mesh.statistics.constrained || !mesh.segments.empty())
     view.segments = &mesh.segments;
-  if (mesh.triangle_attribute_count > 0)
+  if (mesh.triangle_attribute_count > 0) {
+    view.triangle_attribute_count = mesh.triangle_attribute_count;
     view.triangle_attributes = &mesh.triangle_attributes;
+  }
   if (!mesh.triangle_midpoints.empty() || !mesh.edge_midpoints.empty()) {
     view.edge_midpoints = &mesh.edge_midpoints;
     view.edge_midpoint_attributes = &mesh.edge_midpoint_attributes;
@@ -306,15 +309,11 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
                             const WriteOptions &options) {
   const std::vector<Triangle> &triangles = triangles_of(mesh);
   const std::vector<int32_t> numbers = output_vertex_numbers(mesh, options);
-  const std::vector<double> *attributes = mesh.triangle_attributes;
-  if (attributes && attributes->size() != triangles.size())
-    throw InternalError("output writer called with " + std::to_string(attributes->size()) +
-                        " triangle attributes for " + std::to_string(triangles.size()) +
-                        " triangles");
+  const std::size_t columns = triangle_attributes_of(mesh);
   const bool six_nodes = !midpoints_of(mesh).empty();
   const long first_midpoint = static_cast<long>(written_count(numbers)) + options.first_index;
   TextFile file(temporary_for(path), path);
-  file.format("%zu  %d  %d\n", triangles.size(), six_nodes ? 6 : 3, attributes ? 1 : 0);
+  file.format("%zu  %d  %zu\n", triangles.size(), six_nodes ? 6 : 3, columns);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     // "%4ld    %4d  %4d  %4d" (and "  %4d" per middle node), then "  %.17g" per attribute
     file.integer(static_cast<long>(t) + options.first_index, 4);
@@ -326,9 +325,9 @@ void OutputBatch::write_ele(const std::string &path, const MeshView &mesh,
       file.text("  ");
       file.integer(first_midpoint + (*mesh.triangle_midpoints)[t][k], 4);
     }
-    if (attributes) {
+    for (std::size_t a = 0; a < columns; ++a) {
       file.text("  ");
-      file.real((*attributes)[t]);
+      file.real((*mesh.triangle_attributes)[t * columns + a]);
     }
     file.end_line();
   }

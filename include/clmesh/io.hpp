@@ -1,5 +1,5 @@
-// clmesh — Triangle's file formats (.node .poly .ele .edge .neigh, .v.node .v.edge,
-// .off), VTK's .vtu, SVG and PGM pictures.
+// clmesh — Triangle's file formats (.node .poly .ele .area .edge .neigh, .v.node
+// .v.edge, .off), VTK's .vtu, SVG and PGM pictures.
 //
 // Readers accept '#' comments anywhere on a line, blank lines, and 0- or
 // 1-based numbering (decided by the first id). Every problem is reported as
@@ -55,6 +55,43 @@ PolyFile read_poly(const std::string &path);
 // point set). Throws InputError as read_poly() and read_node() do.
 Input read_input(const std::string &path, std::string *node_path = nullptr);
 
+// A Triangle .ele file: the triangles of a mesh to refine (-r).
+struct EleFile {
+  // 0-based corners, as the file gives them (validate() checks their
+  // orientation); of a six-node triangle the first three, as Triangle reads it.
+  std::vector<Triangle> triangles;
+  int attribute_count = 0;        // attributes per triangle
+  std::vector<double> attributes; // triangles.size() * attribute_count, row-major
+  std::vector<long> lines;        // line of each triangle in the file, for messages
+  int first_index = 0;            // numbering of the triangles (0 or 1, from the first id)
+};
+
+// Reads a .ele file ("<#triangles> <nodes per triangle> <#attributes>", then
+// "<id> <corner> <corner> <corner> [more nodes] [attributes]") over
+// `vertex_count` vertices numbered from `first_vertex`. Throws InputError
+// naming the file and line (malformed header, fewer than 3 nodes per
+// triangle, a missing corner or attribute, a corner that is no integer or
+// out of range, a non-finite attribute, ids out of sequence, premature end).
+EleFile read_ele(const std::string &path, long vertex_count, int first_vertex);
+
+// Reads a .area file ("<#triangles>", then "<id> <maximum area>"): one
+// maximum area per triangle of the mesh (<= 0: none), for the
+// `triangle_count` triangles of its .ele file. Throws InputError naming the
+// file and line (a count that differs from triangle_count, a missing or
+// non-numeric area, ids out of sequence, premature end).
+std::vector<double> read_area(const std::string &path, std::size_t triangle_count);
+
+// Reads a mesh to refine (-r), as Triangle does: the vertices of base.node,
+// or with `pslg` those of base.poly (or, when it lists none, of the base.node
+// beside it) with its segments and holes (its regions are not read, as
+// Triangle reads none with -r); the triangles of base.ele, with their
+// attributes; with `areas` (-a without a number) the maximum areas of
+// base.area. Input::source is the vertices' file, Input::triangles_source
+// the .ele. Every file read is appended to *opened (when given), in order.
+// Throws InputError as the readers above do.
+Input read_mesh(const std::string &base, bool pslg, bool areas,
+                std::vector<std::string> *opened = nullptr);
+
 // What the writers need of the mesh.
 struct MeshView {
   const std::vector<Point> *points = nullptr; // vertices written to .node
@@ -68,7 +105,10 @@ struct MeshView {
   // They set the boundary markers of .node, .edge and .poly as Triangle's -p
   // does, and -j then also drops vertices that no triangle uses.
   const std::vector<Segment> *segments = nullptr;
-  // -A: one attribute per triangle, written as the .ele attribute column.
+  // Triangle attributes (-A: the region's; -r: the refined triangle's),
+  // triangle_attribute_count per triangle (row-major), written as the .ele
+  // attribute columns.
+  int triangle_attribute_count = 0;
   const std::vector<double> *triangle_attributes = nullptr;
   // -o2 (Mesh's fields of the same names): middle nodes, written after the
   // vertices with their attributes and markers, and each triangle's three.
@@ -153,7 +193,7 @@ public:
   // A VTK XML unstructured grid (.vtu, ASCII) for ParaView: the written
   // vertices (and middle nodes) with z = 0, the triangles (six-node
   // quadratic triangles with -o2), the point data "marker" (unless -B) and
-  // "attribute1".. and the cell data "attribute1" of -A.
+  // "attribute1".. and the cell data "attribute1".. of the triangle attributes.
   void write_vtu(const std::string &path, const MeshView &mesh, const WriteOptions &options);
   // Triangle's output .poly: no vertices (they are in the .node), the segments
   // of mesh.segments that are edges of the mesh (segments eaten with a hole

@@ -1,6 +1,6 @@
 // clmesh — the command line, a drop-in for Triangle's:
 //
-//   clmesh [-pcOAqaSzenvgBPNEIjo2QVC] [--device SPEC] [...] input_file[.node|.poly]...
+//   clmesh [-prcOAqaSzenvgBPNEIjo2QVC] [--device SPEC] [...] input_file[.node|.poly|.ele]...
 //
 // Argument parsing, file names, reading, writing and printing only: the
 // switches are parsed by clmesh::parse_switches() and the mesh comes from
@@ -66,16 +66,25 @@ void print_help() {
       "triangulation of a PSLG (-p), on an OpenCL device, with the command line of\n"
       "Shewchuk's Triangle.\n"
       "\n"
-      "Usage: clmesh [-pcOADqaSzenvgBPNEIjo2QVC] [long options] input_file[.node|.poly]...\n"
+      "Usage: clmesh [-prcOADqaSzenvgBPNEIjo2QVC] [long options] input_file[.node|.poly|.ele]...\n"
       "\n"
       "Reads input_file.node and writes input_file.1.node and input_file.1.ele (an input\n"
       "named name.K.node gives name.K+1.*). Vertices are numbered as in the input (0 or 1).\n"
       "With -p (or a .poly input) it reads input_file.poly, a planar straight-line graph,\n"
       "and writes its constrained Delaunay triangulation and input_file.1.poly.\n"
+      "With -r it refines a mesh: input_file.node (with -p the vertices of\n"
+      "input_file.poly when it lists any), input_file.ele, with -p the segments and\n"
+      "holes of input_file.poly, with -a alone the areas of input_file.area; name.1\n"
+      "gives name.2.*.\n"
       "\n"
       "Switches (Triangle's letters, combinable as in -pzenQ):\n"
       "  -p  Triangulate a planar straight-line graph (.poly): constrained Delaunay\n"
       "      triangulation, the exterior and the holes removed.\n"
+      "  -r  Refine a mesh (.node and .ele; an input named .ele implies -r, .area -ra):\n"
+      "      its boundary edges (and with -p the .poly's segments) are kept, it is made\n"
+      "      constrained Delaunay, then refined with -q and -a. Its triangles'\n"
+      "      attributes pass to the triangles refining them. With -c the mesh's\n"
+      "      boundary edges are written to the output .poly.\n"
       "  -c  With -p: keep every triangle of the convex hull (only the holes are removed).\n"
       "  -O  With -p: ignore the holes of the .poly file.\n"
       "  -A  With -p: give each triangle the attribute of its region (.ele attribute\n"
@@ -98,7 +107,7 @@ void print_help() {
       "  -E  Do not write the .ele file.\n"
       "  -P  Do not write the .poly file.\n"
       "  -I  No iteration number: write name.ele (etc.) instead of name.1.ele; the .node\n"
-      "      file is then not written, as it would replace the input.\n"
+      "      file is then not written, as it would replace the input. Refused with -r.\n"
       "  -j  Jettison duplicate vertices from the .node output and renumber the rest.\n"
       "  -Q  Quiet: print nothing but errors.\n"
       "  -V  Verbose: also device, phase timings, flips and other counts.\n"
@@ -114,8 +123,9 @@ void print_help() {
       "  -a  Maximum triangle area, after it (-a0.01). A bound the device cannot\n"
       "      hold (it needs at least half the convex hull's area over the\n"
       "      bound in points) is refused, unless -S stops the refinement sooner.\n"
-      "      -a alone, with -p: each region's maximum area from the .poly file (both\n"
-      "      -a and -a<area>: the smaller bound).\n"
+      "      -a alone, with -p: each region's maximum area from the .poly file; with\n"
+      "      -r: each triangle's from the .area file (<= 0: none); both -a and\n"
+      "      -a<area>: the smaller bound.\n"
       "  -S  At most the number after it of Steiner points (-S1000).\n"
       "      A refinement that stops early says why: -S, the device's memory (full\n"
       "      because of -a), -q above about 33 degrees, or the iteration limit.\n"
@@ -125,9 +135,8 @@ void print_help() {
       "      algorithms are GPU-DT, GPU-CDT and GPU-QM(-V): the mesh is the same\n"
       "      (with -s Triangle would split segments; clmesh recovers them by flips).\n"
       "\n"
-      "Triangle switches refused with an error: -r (refining a mesh, .area files),\n"
-      "not yet implemented; -u (a user-defined sizing function: it needs a library\n"
-      "callback, which clmesh does not offer yet).\n"
+      "Triangle switch refused with an error: -u (a user-defined sizing function: it\n"
+      "needs a library callback, which clmesh does not offer yet).\n"
       "\n"
       "Long options (each a separate argument, value after it or after '='):\n"
       "  --device SPEC         OpenCL device: \"P:D\" (platform:device), \"N\" (N-th in\n"
@@ -171,7 +180,7 @@ void print_help() {
 }
 
 void print_usage() {
-  std::printf("clmesh [-pcOAqaSzenvgBPNEIjo2QVC] [long options] input_file[.node|.poly]...\n"
+  std::printf("clmesh [-prcOAqaSzenvgBPNEIjo2QVC] [long options] input_file[.node|.poly|.ele]...\n"
               "Try 'clmesh -h' for more information.\n");
 }
 
@@ -325,14 +334,39 @@ std::string generated_by(const CommandLine &command, const std::string &input) {
   return line.insert(command.input_at, " " + input);
 }
 
-// The options for `input`: as Triangle, a .poly input implies -p.
+// An input file name as Triangle reads it: ".node", ".poly", ".ele" and
+// ".area" stripped in that order, each but the first implying switches.
+struct InputName {
+  std::string base;  // the name without them
+  bool poly = false; // it ended in .poly: -p
+  bool ele = false;  // .ele: -r
+  bool area = false; // .area: -r and -a without a number
+};
+
+InputName input_name(const std::string &input) {
+  InputName name;
+  name.base = input;
+  auto strip = [&name](const char *suffix) {
+    if (!ends_with(name.base, suffix))
+      return false;
+    name.base.resize(name.base.size() - std::strlen(suffix));
+    return true;
+  };
+  strip(".node");
+  name.poly = strip(".poly");
+  name.ele = strip(".ele");
+  name.area = strip(".area");
+  return name;
+}
+
+// The options for `input`: as Triangle, a .poly input implies -p, a .ele
+// input -r, an .area input -r and -a.
 clmesh::Options options_for(const CommandLine &command, const std::string &input) {
   clmesh::Options options = command.options;
-  std::string base = input;
-  if (ends_with(base, ".node"))
-    base.resize(base.size() - 5);
-  if (ends_with(base, ".poly"))
-    options.pslg = true;
+  const InputName name = input_name(input);
+  options.pslg = options.pslg || name.poly;
+  options.refine = options.refine || name.ele || name.area;
+  options.regional_areas = options.regional_areas || name.area;
   return options;
 }
 
@@ -388,21 +422,19 @@ std::vector<std::string> inputs_of(const CommandLine &command) {
 
 // File names as Triangle derives them.
 struct FileNames {
-  std::string input;  // file read: name.node, or name.poly with -p
+  std::string base;   // the input's name without its extension
+  std::string input;  // file read: name.node, or name.poly with -p (-r: more, see read_mesh)
   std::string output; // base of the outputs: name.1 (or name with -I)
 };
 
 FileNames file_names(const clmesh::Options &options, const std::string &input) {
-  // Strip ".node", then ".poly".
-  std::string base = input;
-  if (ends_with(base, ".node"))
-    base.resize(base.size() - 5);
-  if (ends_with(base, ".poly"))
-    base.resize(base.size() - 5);
-  if (ends_with(base, ".ele") || ends_with(base, ".area"))
-    throw clmesh::OptionError(clmesh::printable(base) +
-                              ": .ele/.area input (-r, refining a mesh) is not supported yet");
+  const std::string base = input_name(input).base;
+  // As Triangle: the outputs would replace the input's .ele.
+  if (options.refine && options.no_iteration_number)
+    throw clmesh::OptionError("-I cannot be used with -r: the output " + clmesh::printable(base) +
+                              ".ele would replace the input's");
   FileNames names;
+  names.base = base;
   names.input = base + (options.pslg ? ".poly" : ".node");
   if (options.no_iteration_number) {
     names.output = base;
@@ -459,7 +491,9 @@ void write_outputs(const CommandLine &command, const Job &job, const FileNames &
     batch.write_node(announce(out + ".node"), view, write);
   if (!options.no_ele_file)
     batch.write_ele(announce(out + ".ele"), view, write);
-  if (options.pslg && !options.no_iteration_number && !options.no_poly_file)
+  // With -r, -c also writes the .poly (the mesh's boundary edges), as Triangle.
+  const bool poly = options.pslg || (options.refine && options.convex_hull);
+  if (poly && !options.no_iteration_number && !options.no_poly_file)
     batch.write_poly(announce(out + ".poly"), view, input.holes, input.regions, write);
   if (options.edges)
     batch.write_edge(announce(out + ".edge"), view, write);
@@ -485,7 +519,8 @@ void write_outputs(const CommandLine &command, const Job &job, const FileNames &
   }
 }
 
-void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool pslg) {
+void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool pslg,
+                      bool refine) {
   std::size_t hull = 0, vertices = 0;
   for (const auto &t : mesh.neighbors)
     for (int32_t other : t)
@@ -504,6 +539,8 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
   const std::size_t triangles = mesh.triangles.size();
   std::printf("\nStatistics:\n\n");
   std::printf("  Input vertices: %ld\n", mesh.input_points);
+  if (refine)
+    std::printf("  Input triangles: %zu\n", input.triangles.size());
   if (pslg) {
     std::printf("  Input segments: %zu\n", input.segments.size());
     if (!input.holes.empty())
@@ -606,6 +643,29 @@ struct DeviceSlot {
   }
 };
 
+// Reads one input: the .node or .poly file, or with -r the mesh's files
+// (read_mesh), naming each file it opens unless quiet.
+clmesh::Input read(const clmesh::Options &options, const FileNames &names, bool talk) {
+  auto say = [talk](const std::string &path) {
+    if (talk)
+      std::printf("Opening %s.\n", path.c_str());
+  };
+  if (options.refine) {
+    std::vector<std::string> opened;
+    clmesh::Input input =
+        clmesh::read_mesh(names.base, options.pslg, options.regional_areas, &opened);
+    for (const std::string &path : opened)
+      say(path);
+    return input;
+  }
+  say(names.input);
+  std::string node_path;
+  clmesh::Input input = clmesh::read_input(names.input, &node_path);
+  if (!node_path.empty())
+    say(node_path);
+  return input;
+}
+
 // Meshes one input and writes its outputs; returns the exit status (1: the
 // -C check failed) or throws.
 int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
@@ -621,19 +681,16 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
 
   clmesh::RunSeconds seconds;
   Clock::time_point phase = Clock::now();
-  if (talk)
-    std::printf("Opening %s.\n", names.input.c_str());
-  std::string node_path;
-  const clmesh::Input input = clmesh::read_input(names.input, &node_path);
-  if (talk && !node_path.empty())
-    std::printf("Opening %s.\n", node_path.c_str());
+  const clmesh::Input input = read(options, names, talk);
   clmesh::validate(input);
   seconds.read = seconds_since(phase);
 
   clmesh::Device &device = slot.open(options.device);
   if (talk)
-    std::printf(options.pslg ? "Constructing constrained Delaunay triangulation by GPU-CDT on %s.\n"
-                             : "Constructing Delaunay triangulation by GPU-DT on %s.\n",
+    std::printf(options.refine ? "Refining the mesh on %s.\n"
+                : options.pslg
+                    ? "Constructing constrained Delaunay triangulation by GPU-CDT on %s.\n"
+                    : "Constructing Delaunay triangulation by GPU-DT on %s.\n",
                 clmesh::describe(device).c_str());
 
   phase = Clock::now();
@@ -646,8 +703,9 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   const double device_compute = mesh.statistics.delaunay.compute_seconds;
   seconds.compute = device_compute > 0 ? device_compute : compute_wall;
   if (talk) {
-    std::printf(options.pslg ? "Constrained Delaunay milliseconds:  %.0f\n"
-                             : "Delaunay milliseconds:  %.0f\n",
+    std::printf(options.refine  ? "Mesh refinement milliseconds:  %.0f\n"
+                : options.pslg ? "Constrained Delaunay milliseconds:  %.0f\n"
+                               : "Delaunay milliseconds:  %.0f\n",
                 compute_wall * 1000);
     std::size_t duplicates = 0;
     for (std::size_t i = 0; i < mesh.duplicate_of.size(); ++i)
@@ -676,7 +734,7 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   if (talk) {
     std::printf("\nOutput milliseconds:  %.0f\n", seconds.write * 1000);
     std::printf("Total running milliseconds:  %.0f\n", seconds_since(start) * 1000);
-    print_statistics(input, mesh, options.pslg);
+    print_statistics(input, mesh, options.pslg, options.refine);
     if (options.verbose > 0) {
       if (!options.no_effect_switches.empty()) {
         std::string letters;

@@ -30,7 +30,7 @@ expect "dimension 3" 1 "dim3.node:1:" "dimension" -- dim3.node
 expect "coordinate beyond exact arithmetic" 1 "huge.node:5:" "exact arithmetic" -- huge.node
 expect "unknown switch" 2 "-x" "-z" -- -zx good.node
 expect "unknown long option" 2 "--frobnicate" -- --frobnicate good.node
-expect "unsupported Triangle switch" 2 "-r" "not supported" -- -r good.node
+expect "-r without the mesh's .ele" 1 "good.ele" "cannot open" -- -r good.node
 expect "regional areas of a point set" 2 "-a" "needs -p" -- -qa good.node
 expect "bad minimum angle" 2 "-q" -- -qx good.node
 expect "unknown refinement algorithm" 2 "--refine" "qm" "qmv" -- -q --refine fast good.node

@@ -48,7 +48,7 @@ expect "segment without the marker its header announces" 1 "nomarker.poly:7:" \
 expect "vertex without the marker its header announces, in the .node beside" 1 \
   "nomarker2.node:3:" "boundary marker" -- nomarker2.poly
 expect "missing .poly" 1 "missing.poly" -- -p missing
-expect "-r stays refused" 2 "-r" "not supported" -- -r endpoint.poly
+expect "-rp reads the .poly first" 1 "endpoint.poly:8:" "endpoint 4 of segment 3" -- -rp endpoint.poly
 
 # ---------------------------------------------------------------------------
 # Meshing Triangle's examples.

@@ -101,12 +101,9 @@ run -XiV spiral.node
 [[ "$(grep -c -- '-X -i: accepted, no effect' stdout.txt)" == 1 ]] ||
   fail "-V does not say that -X -i have no effect: $(cat stdout.txt)"
 
-# Refused: -u (with why), -o without 2; -r stays refused.
+# Refused: -u (with why), -o without 2.
 expect "-u" 2 "-u" "callback" "not supported" -- -u spiral.node
 expect "-o3" 2 "-o" "-o2" -- -o3 spiral.node
-for letter in r; do
-  expect "-$letter" 2 "-$letter" "not supported" -- "-$letter" spiral.node
-done
 
 # All or nothing: a directory in the way of the .v.edge leaves no file.
 mkdir blocked && cp spiral.node blocked/ && cd blocked && mkdir spiral.1.v.edge

@@ -87,9 +87,11 @@ def run(tri, opts="", device=None):
 
 def triangulate(tri, opts="", device=None):
     """The mesh of `tri` (a dict with vertices, and optionally vertex_markers,
-    vertex_attributes, segments, segment_markers, holes, regions) with
-    Triangle's switches `opts`, as a dict of NumPy arrays as the triangle
-    package returns it. Raises InputError, OptionError, DeviceError."""
+    vertex_attributes, segments, segment_markers, holes, regions; with -r the
+    mesh to refine: triangles, triangle_attributes, and with -a alone
+    triangle_max_area) with Triangle's switches `opts`, as a dict of NumPy
+    arrays as the triangle package returns it. Raises InputError,
+    OptionError, DeviceError."""
     return run(tri, opts, device).mesh
 
 

@@ -42,7 +42,7 @@ def _shaped(array, key, columns, rows=None):
         raise InputError(f"{key}: expected shape {want}, got {array.shape}")
     if rows is not None and array.shape[0] != rows:
         raise InputError(f"{key}: {array.shape[0]} rows, expected {rows} "
-                         "(one per vertex or segment)")
+                         "(one per vertex, segment or triangle)")
     return array
 
 
@@ -93,6 +93,11 @@ def arrays(tri):
     none_int = np.zeros((0, 1), np.int32)
     attributes = floats(tri, "vertex_attributes", None, rows=n, finite=False)
     regions = floats(tri, "regions", 4)
+    # -r: the mesh to refine (the library takes it only with -r, as Triangle).
+    triangles = integers(tri, "triangles", 3, limit=n)
+    t = 0 if triangles is None else triangles.shape[0]
+    # Maximum areas <= 0 (or infinite) mean none; the library refuses NaN.
+    max_areas = floats(tri, "triangle_max_area", 1, rows=t, finite=False)
     return dict(
         vertices=vertices,
         vertex_markers=_or(integers(tri, "vertex_markers", 1, rows=n), none_int),
@@ -101,6 +106,12 @@ def arrays(tri):
         segment_markers=_or(integers(tri, "segment_markers", 1, rows=m), none_int),
         holes=_or(floats(tri, "holes", 2), np.zeros((0, 2))),
         regions=_or(regions, np.zeros((0, 4))),
+        triangles=_or(triangles, np.zeros((0, 3), np.int32)),
+        has_triangles=triangles is not None,
+        triangle_attributes=_or(floats(tri, "triangle_attributes", None, rows=t),
+                                np.zeros((t, 0))),
+        triangle_max_area=_or(max_areas, np.zeros((0, 1))),
+        has_triangle_max_area=max_areas is not None,
     )
 
 

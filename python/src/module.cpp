@@ -104,11 +104,42 @@ struct Run {
   clmesh::MeshView view() const { return clmesh::view_of(mesh); }
 };
 
+// -r: the mesh to refine, its triangles' attributes and (with -a alone)
+// maximum areas into `input`; given without -r they are ignored, as Triangle
+// ignores them. has_triangles / has_max_area: the dict had the key.
+void take_mesh(clmesh::Input &input, const clmesh::Options &options, const In<int32_t> &triangles,
+               bool has_triangles, const In<double> &triangle_attributes,
+               const In<double> &triangle_max_area, bool has_max_area) {
+  if (!options.refine)
+    return;
+  if (!has_triangles)
+    throw clmesh::InputError("input", 0, "'triangles' is missing: -r refines the mesh they form");
+  require_shape(triangles, "triangles", 3);
+  const long t = static_cast<long>(triangles.shape(0));
+  input.triangles.resize(triangles.shape(0));
+  for (long k = 0; k < t; ++k)
+    input.triangles[k] = {triangles(k, 0), triangles(k, 1), triangles(k, 2)};
+  require_shape(triangle_attributes, "triangle_attributes", triangle_attributes.shape(1), t);
+  input.triangle_attribute_count = static_cast<int>(triangle_attributes.shape(1));
+  input.triangle_attributes.assign(triangle_attributes.data(),
+                                   triangle_attributes.data() + triangle_attributes.size());
+  if (!options.regional_areas)
+    return;
+  if (!has_max_area)
+    throw clmesh::InputError("input", 0,
+                             "'triangle_max_area' is missing: -r with -a without a number "
+                             "takes each triangle's maximum area from it");
+  require_shape(triangle_max_area, "triangle_max_area", 1, t);
+  input.triangle_max_area.assign(triangle_max_area.data(), triangle_max_area.data() + t);
+}
+
 std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &vertex_markers,
                                  const In<double> &vertex_attributes, const In<int32_t> &segments,
                                  const In<int32_t> &segment_markers, const In<double> &holes,
-                                 const In<double> &regions, const std::string &switches,
-                                 const std::string &device) {
+                                 const In<double> &regions, const In<int32_t> &triangles,
+                                 bool has_triangles, const In<double> &triangle_attributes,
+                                 const In<double> &triangle_max_area, bool has_triangle_max_area,
+                                 const std::string &switches, const std::string &device) {
   auto run = std::make_unique<Run>();
   clmesh::Input &input = run->input;
   input.points = points_of(vertices, "vertices");
@@ -138,6 +169,8 @@ std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &
   run->options = clmesh::parse_switches(switches);
   run->options.zero_based = true; // as the triangle package, which always adds -z
   run->options.device = device;
+  take_mesh(input, run->options, triangles, has_triangles, triangle_attributes, triangle_max_area,
+            has_triangle_max_area);
   {
     nb::gil_scoped_release unlocked;
     run->mesh = clmesh::triangulate(run->input, run->options);
@@ -186,6 +219,7 @@ nb::dict quality_of(const In<double> &vertices, const In<int32_t> &triangles) {
 nb::dict options_dict(const clmesh::Options &o) {
   nb::dict d;
   d["pslg"] = o.pslg;
+  d["refine"] = o.refine;
   d["convex_hull"] = o.convex_hull;
   d["regional_attributes"] = o.regional_attributes;
   d["edges"] = o.edges;
@@ -325,7 +359,9 @@ NB_MODULE(_clmesh, m) {
 
   m.def("triangulate", &triangulate, nb::arg("vertices"), nb::arg("vertex_markers"),
         nb::arg("vertex_attributes"), nb::arg("segments"), nb::arg("segment_markers"),
-        nb::arg("holes"), nb::arg("regions"), nb::arg("switches"), nb::arg("device"));
+        nb::arg("holes"), nb::arg("regions"), nb::arg("triangles"), nb::arg("has_triangles"),
+        nb::arg("triangle_attributes"), nb::arg("triangle_max_area"),
+        nb::arg("has_triangle_max_area"), nb::arg("switches"), nb::arg("device"));
   m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
   m.def("devices", &devices);
   m.def(

@@ -67,14 +67,6 @@ def test_switches_must_be_a_string():
         clmesh.triangulate({"vertices": SQUARE}, 30)
 
 
-def test_refining_a_mesh_is_refused():
-    mesh = clmesh.triangulate({"vertices": SQUARE})
-    with pytest.raises(clmesh.OptionError, match="refining"):
-        clmesh.triangulate(mesh, "r")
-    # Without -r the triangles are ignored, as Triangle does.
-    assert clmesh.triangulate(mesh, "")["triangles"].shape == mesh["triangles"].shape
-
-
 def test_unknown_device_raises_device_error():
     with pytest.raises(clmesh.DeviceError):
         clmesh.triangulate({"vertices": SQUARE}, "", device="no such device anywhere")

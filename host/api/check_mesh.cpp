@@ -24,13 +24,14 @@ CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &opti
     // constraints and every other edge as locally Delaunay: with -D every
     // one, subsegments included.
     const std::vector<Segment> boundary = boundary_edges(mesh);
+    const bool segments = options.pslg || options.refine;
     CheckReport report = {};
-    if (!options.pslg || options.conforming_delaunay)
+    if (!segments || options.conforming_delaunay)
       report = check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
                                  boundary, false);
-    // A PSLG's subsegments are mesh edges, the boundary edges of its domain
-    // among them.
-    if (report.ok && options.pslg)
+    // A PSLG's (or a refined mesh's) subsegments are mesh edges, the
+    // boundary edges of its domain among them.
+    if (report.ok && segments)
       report = check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
                                  mesh.segments, false);
     return report;

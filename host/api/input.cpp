@@ -1,6 +1,8 @@
 // clmesh — checks of an Input before it goes to the device.
 #include "clmesh/input.hpp"
 
+#include "api/triangle_error.hpp"
+
 #include "clmesh/errors.hpp"
 
 #include "predicates.h"
@@ -20,17 +22,6 @@ std::string where(const Input &input, const std::string &item) {
 }
 
 bool finite(const Point &p) { return std::isfinite(p.x) && std::isfinite(p.y); }
-
-// Throws an InputError about triangle t: at its line of triangles_source
-// when the input came from a file, numbered as the file numbers them.
-[[noreturn]] void triangle_error(const Input &input, std::size_t t, const std::string &problem) {
-  const std::string name = "triangle " + std::to_string(static_cast<long>(t) + input.first_index);
-  if (!input.triangles_source.empty())
-    throw InputError(input.triangles_source,
-                     t < input.triangle_lines.size() ? input.triangle_lines[t] : 0,
-                     name + ": " + problem);
-  throw InputError(where(input, name), 0, problem);
-}
 
 // -r: the mesh to refine is a triangulation: corners in range and distinct,
 // every triangle counter-clockwise (exact orientation), and no edge taken
@@ -55,23 +46,25 @@ void validate_triangles(const Input &input) {
                          std::to_string(count) + " triangles");
   for (std::size_t t = 0; t < input.triangle_max_area.size(); ++t)
     if (std::isnan(input.triangle_max_area[t]))
-      triangle_error(input, t, "its maximum area is not a number");
+      throw_triangle_error(input, t, "its maximum area is not a number");
   std::vector<std::tuple<int32_t, int32_t, std::size_t>> directed;
   directed.reserve(3 * count);
   for (std::size_t t = 0; t < count; ++t) {
     const Triangle &v = input.triangles[t];
     for (int32_t corner : v)
       if (corner < 0 || static_cast<std::size_t>(corner) >= n)
-        triangle_error(input, t,
-                       "corner " + std::to_string(static_cast<long>(corner) + input.first_index) +
-                           " is out of range (" + std::to_string(n) + " vertices)");
+        throw_triangle_error(input, t,
+                             "corner " +
+                                 std::to_string(static_cast<long>(corner) + input.first_index) +
+                                 " is out of range (" + std::to_string(n) + " vertices)");
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
-      triangle_error(input, t, "a corner is repeated");
+      throw_triangle_error(input, t, "a corner is repeated");
     const Point &a = input.points[v[0]], &b = input.points[v[1]], &c = input.points[v[2]];
     const int side = clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
     if (side <= 0)
-      triangle_error(input, t,
-                     side == 0 ? "its corners are collinear (it has no area)"
+      throw_triangle_error(input, t,
+                           side == 0
+                               ? "its corners are collinear (it has no area)"
                                : "its corners are in clockwise order (counter-clockwise expected)");
     for (int k = 0; k < 3; ++k)
       directed.emplace_back(v[k], v[(k + 1) % 3], t);
@@ -80,7 +73,7 @@ void validate_triangles(const Input &input) {
   for (std::size_t i = 1; i < directed.size(); ++i)
     if (std::get<0>(directed[i]) == std::get<0>(directed[i - 1]) &&
         std::get<1>(directed[i]) == std::get<1>(directed[i - 1]))
-      triangle_error(
+      throw_triangle_error(
           input, std::get<2>(directed[i]),
           "it overlaps triangle " +
               std::to_string(static_cast<long>(std::get<2>(directed[i - 1])) + input.first_index) +
@@ -90,6 +83,15 @@ void validate_triangles(const Input &input) {
 }
 
 } // namespace
+
+void throw_triangle_error(const Input &input, std::size_t t, const std::string &problem) {
+  const std::string name = "triangle " + std::to_string(static_cast<long>(t) + input.first_index);
+  if (!input.triangles_source.empty())
+    throw InputError(input.triangles_source,
+                     t < input.triangle_lines.size() ? input.triangle_lines[t] : 0,
+                     name + ": " + problem);
+  throw InputError(where(input, name), 0, problem);
+}
 
 void validate(const Input &input) {
   const std::size_t n = input.points.size();

@@ -3,6 +3,7 @@
 // comes back as one Mesh with every point, marker and attribute in place.
 #include "clmesh/triangulate.hpp"
 
+#include "api/triangle_error.hpp"
 #include "cdt/constrained.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
@@ -11,6 +12,7 @@
 #include "output/voronoi_diagram.hpp"
 #include "refine/refine.hpp"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -47,15 +49,33 @@ void take_triangulation(Mesh &mesh, DelaunayResult &&result) {
   mesh.duplicate_of.resize(mesh.points.size(), -1);
 }
 
-// -A: each triangle's regional attribute, one column.
+// -A: each triangle's regional attribute, one column (not with -r, as in
+// Triangle: the given triangles' attributes are inherited instead).
 void take_attributes(Mesh &mesh, const Options &options, std::vector<double> attributes) {
-  if (!options.regional_attributes)
+  if (!options.regional_attributes || options.refine)
     return;
   if (attributes.size() != mesh.triangles.size())
     throw InternalError("-A: " + std::to_string(attributes.size()) + " regional attributes for " +
                         std::to_string(mesh.triangles.size()) + " triangles");
   mesh.triangle_attribute_count = 1;
   mesh.triangle_attributes = std::move(attributes);
+}
+
+// -r: each triangle inherits the attributes of the input triangle it refines.
+void take_origin_attributes(Mesh &mesh, const Input &input, const std::vector<int32_t> &origin) {
+  const auto count = static_cast<std::size_t>(input.triangle_attribute_count);
+  if (count == 0)
+    return;
+  if (origin.size() != mesh.triangles.size())
+    throw InternalError("-r: " + std::to_string(origin.size()) + " origins for " +
+                        std::to_string(mesh.triangles.size()) + " triangles");
+  mesh.triangle_attribute_count = input.triangle_attribute_count;
+  mesh.triangle_attributes.assign(mesh.triangles.size() * count, 0.0);
+  for (std::size_t t = 0; t < origin.size(); ++t)
+    if (origin[t] >= 0)
+      std::copy_n(input.triangle_attributes.begin() +
+                      static_cast<std::ptrdiff_t>(origin[t] * count),
+                  count, mesh.triangle_attributes.begin() + static_cast<std::ptrdiff_t>(t * count));
 }
 
 // Meshes a validated input with validated options.
@@ -115,7 +135,34 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     mesh.statistics.constraints = stats;
   };
   auto pslg = [&] { return Pslg{input.points, input.segments, input.holes, input.regions}; };
-  if (options.pslg && refined) {
+  if (options.refine) {
+    if (input.triangles.empty())
+      throw InputError(input.source.empty() ? "input" : input.source, 0,
+                       "-r refines a mesh, and the input has no triangles");
+    // The .poly's segments and holes come with -p only; its regions never
+    // (Triangle's -r: the .area file's bounds and the triangles' attributes
+    // take their place).
+    const Pslg given{input.points,
+                     options.pslg ? input.segments : std::vector<Segment>{},
+                     options.pslg ? input.holes : std::vector<Point>{},
+                     {}};
+    refine.attributes = input.triangle_attribute_count > 0;
+    constrained.keep_convex_hull = false;
+    RefineResult result;
+    try {
+      result =
+          refine_mesh(device, given, input.triangles, input.triangle_max_area, constrained, refine);
+    } catch (const TriangleNotInMesh &bad) {
+      throw_triangle_error(input, bad.triangle,
+                           "it overlaps another triangle, or a vertex lies inside it: the "
+                           "triangles are no triangulation");
+    }
+    take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments), {},
+              result.constraints);
+    mesh.statistics.refined = true;
+    mesh.statistics.refinement = result.stats;
+    take_origin_attributes(mesh, input, result.triangle_origin);
+  } else if (options.pslg && refined) {
     RefineResult result = refine_constrained(device, pslg(), constrained, refine);
     take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments),
               std::move(result.triangle_attributes), result.constraints);

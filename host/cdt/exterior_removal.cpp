@@ -14,6 +14,7 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       seed_from_points_(device.kernel(kFile, "seed_from_points", kPhase)),
       spread_(device.kernel(kFile, "spread_flood", kPhase)),
       seed_label_(device.kernel(kFile, "seed_label", kPhase)),
+      remove_unlabelled_(device.kernel(kFile, "remove_unlabelled", kPhase)),
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
       count_(device, 1) {
@@ -44,6 +45,13 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
     count_seeds_on_segments(on_segment, seeds.size());
   }
   return flood(-1);
+}
+
+void ExteriorRemoval::remove_unlabelled(const DeviceArray<cl_int> &label) {
+  const std::size_t slots = mesh_.triangle_count;
+  set_args_from(remove_unlabelled_, mesh_.bind_triangulation(remove_unlabelled_, 0), label.buffer(),
+                removed_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, remove_unlabelled_, slots, kPhase);
 }
 
 void ExteriorRemoval::count_seeds_on_segments(const DeviceArray<cl_int> &on_segment,

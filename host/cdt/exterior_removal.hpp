@@ -21,6 +21,10 @@ public:
   long run(bool from_hull, const std::vector<Point> &holes);
   const DeviceArray<cl_int> &removed() const { return removed_; }
 
+  // A mesh to refine (-r): removes the real triangles whose label is -1 (no
+  // input triangle's, MeshReconstruction).
+  void remove_unlabelled(const DeviceArray<cl_int> &label);
+
   // Labels every triangle with the index of the region whose seed reaches it
   // without crossing a constraint (-1: none); later regions win.
   const DeviceArray<cl_int> &label_regions(const std::vector<Point> &seeds);
@@ -40,7 +44,7 @@ private:
 
   long seeds_on_segments_ = 0;
 
-  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_;
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 

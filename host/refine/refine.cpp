@@ -17,6 +17,7 @@
 #include "refine/refine.hpp"
 
 #include "cdt/exterior_removal.hpp"
+#include "cdt/mesh_reconstruction.hpp"
 #include "dt/delaunay_scheduler.hpp"
 #include "dt/missing_point_insertion.hpp"
 #include "refine/domain_boundary.hpp"
@@ -198,15 +199,28 @@ struct RefinementSteps {
 // remaining bad triangles, reported, instead of a hang.
 constexpr long kMaxIterations = 1000;
 
+// A mesh to refine (-r): its triangles (input numbering) and their area
+// bounds (empty: none).
+struct GivenMesh {
+  const std::vector<Triangle> &triangles;
+  const std::vector<double> &max_area;
+};
+
+// The marker that tells a given mesh's inner edges among the constraints of
+// its CDT (refine_mesh): they are constraints only until its triangles are
+// found.
+constexpr int kInnerEdge = std::numeric_limits<int>::min();
+
 // One refinement: the mesh, its phase objects and what the iterations count.
-// With a PSLG (pslg and constrained not null), of its domain.
+// With a PSLG (pslg and constrained not null), of its domain; with a given
+// mesh too (-r: pslg's segments then include its edges), of that mesh.
 class Refinement {
 public:
   Refinement(Device &device, const std::vector<Point> &points, const RefineOptions &options,
              RefineResult &result, const Pslg *pslg = nullptr,
-             const ConstrainedOptions *constrained = nullptr)
+             const ConstrainedOptions *constrained = nullptr, const GivenMesh *given = nullptr)
       : device_(device), points_(points), options_(options), result_(result), stats_(result.stats),
-        pslg_(pslg), constrained_(constrained),
+        pslg_(pslg), constrained_(constrained), given_(given),
         // Refinement breaks ties by triangle slot; its first compaction gives
         // the triangles a layout that depends on them alone, whichever
         // construction (and grid) built them.
@@ -220,8 +234,8 @@ public:
     for (const char *file : kPrograms)
       device_.program(file, "setup");
     if (pslg_)
-      for (const char *file :
-           {"constraint_marking.cl", "exterior_removal.cl", "domain_boundary.cl"})
+      for (const char *file : {"constraint_marking.cl", "exterior_removal.cl", "domain_boundary.cl",
+                               "mesh_reconstruction.cl"})
         device_.program(file, "setup");
     if (!scheduler_.triangulate()) {
       scheduler_.download_collinear(result_.mesh);
@@ -232,7 +246,9 @@ public:
     const auto [low, side] = bounding_square(points_);
     low_ = low;
     side_ = side;
-    if (pslg_)
+    if (given_)
+      reconstruct();
+    else if (pslg_)
       constrain();
     first_steiner_ = mesh().point_count;
     scheduler_.mesh().enable_refinement(device_);
@@ -320,11 +336,7 @@ private:
     remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints);
     label_regions(removal);
     DomainBoundary boundary(device_, mesh(), scheduler_.scan());
-    const std::size_t ghosts = boundary.room_needed(removal.removed());
-    if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
-      scheduler_.grow(ghosts / 2 + 1);
-    boundary.close(removal.removed());
-    scheduler_.timer().charge(DomainBoundary::kPhase);
+    close_domain(boundary, removal);
     if (!constrained_->keep_convex_hull)
       return;
     std::set<std::pair<int32_t, int32_t>> segments;
@@ -333,6 +345,65 @@ private:
     for (const Segment &edge : boundary.edges())
       if (segments.insert(std::minmax(edge.a, edge.b)).second)
         constraints_.push_back(edge);
+  }
+
+  // The domain left by `removal` closed by ghosts.
+  void close_domain(DomainBoundary &boundary, const ExteriorRemoval &removal) {
+    const std::size_t ghosts = boundary.room_needed(removal.removed());
+    if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
+      scheduler_.grow(ghosts / 2 + 1);
+    boundary.close(removal.removed());
+    scheduler_.timer().charge(DomainBoundary::kPhase);
+  }
+
+  // -r: the given mesh as the domain. With every edge of it a constraint,
+  // its triangles are triangles of the CDT; they are found (and labelled
+  // with their input triangle), every other triangle and those the holes
+  // reach are removed, the inner edges cease to be constraints, and flips
+  // make the mesh constrained Delaunay.
+  void reconstruct() {
+    std::vector<Segment> constraints =
+        insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
+    std::vector<Triangle> corners = given_->triangles;
+    for (Triangle &t : corners)
+      for (int32_t &v : t)
+        v = scheduler_.device_point(v);
+    MeshReconstruction reconstruction(device_, mesh(), corners);
+    const long missing = reconstruction.label();
+    scheduler_.timer().charge(MeshReconstruction::kPhase);
+    if (missing >= 0)
+      throw TriangleNotInMesh{static_cast<std::size_t>(missing)};
+    for (const Segment &s : constraints)
+      if (s.marker != kInnerEdge)
+        constraints_.push_back(s);
+    result_.constraints.segments = static_cast<long>(constraints_.size());
+    DeviceMesh &m = mesh();
+    m.set_constraint_rows(device_, constraints_);
+    DeviceArray<cl_int> every_slot(device_, m.triangle_count);
+    every_slot.fill(device_, 1, m.triangle_count);
+    FlipCounts flips;
+    scheduler_.flip_flagged(every_slot, flips, "constrained_flipping");
+    result_.constraints.delaunay_flips += flips.flips;
+
+    ExteriorRemoval removal(device_, m);
+    removal.remove_unlabelled(reconstruction.labels());
+    if (!pslg_->holes.empty() && !constrained_->ignore_holes) {
+      result_.constraints.eaten_triangles = removal.run(false, pslg_->holes);
+      result_.constraints.ignored_holes = removal.seeds_on_segments();
+    }
+    scheduler_.timer().charge(ExteriorRemoval::kPhase);
+    // Each triangle's input triangle: for its area bound, and for the
+    // attributes it inherits.
+    const bool areas = options_.regional_areas && !given_->max_area.empty();
+    if (areas || options_.attributes) {
+      m.tri_region = reconstruction.labels();
+      m.has_regions = true;
+      region_areas_.assign(given_->triangles.size(), -1);
+      if (areas)
+        region_areas_ = given_->max_area;
+    }
+    DomainBoundary boundary(device_, m, scheduler_.scan());
+    close_domain(boundary, removal);
   }
 
   // With -a alone or -A, and regions: each triangle slot's region, kept in
@@ -376,7 +447,9 @@ private:
     std::vector<int32_t> labels;
     const bool attributes = options_.attributes && mesh().has_regions;
     scheduler_.download(result_.mesh, nullptr, attributes ? &mesh().tri_region : nullptr, &labels);
-    if (options_.attributes) {
+    if (attributes && given_) {
+      result_.triangle_origin = std::move(labels);
+    } else if (options_.attributes) {
       result_.triangle_attributes.assign(result_.mesh.triangles.size(), 0.0);
       for (std::size_t t = 0; t < labels.size(); ++t)
         if (labels[t] >= 0)
@@ -576,6 +649,7 @@ private:
   RefineStats &stats_;
   const Pslg *pslg_;
   const ConstrainedOptions *constrained_;
+  const GivenMesh *given_;
   DelaunayScheduler scheduler_;
   std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
   std::vector<Point> crossings_;     // vertices added where segments cross
@@ -594,6 +668,35 @@ private:
   std::size_t compacted_slots_ = 0; // triangle slots after the last compaction
   std::size_t last_bad_ = 0;        // bad triangles at the last search
 };
+
+// The constraints of a given mesh's CDT: the segments (marker 0 turned to 1
+// on the mesh's boundary, as Triangle marks boundary edges), the boundary
+// edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
+// later, keeping the first.
+std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
+                                      const std::vector<Segment> &segments) {
+  std::vector<std::pair<int32_t, int32_t>> directed;
+  directed.reserve(3 * triangles.size());
+  for (const Triangle &t : triangles)
+    for (int k = 0; k < 3; ++k)
+      directed.emplace_back(t[k], t[(k + 1) % 3]);
+  std::sort(directed.begin(), directed.end());
+  auto has = [&](int32_t a, int32_t b) {
+    return std::binary_search(directed.begin(), directed.end(), std::make_pair(a, b));
+  };
+  auto on_boundary = [&](int32_t a, int32_t b) { return has(a, b) != has(b, a); };
+  std::vector<Segment> constraints = segments;
+  for (Segment &s : constraints)
+    if (s.marker == 0 && on_boundary(s.a, s.b))
+      s.marker = 1;
+  for (const auto &[a, b] : directed)
+    if (!has(b, a))
+      constraints.push_back({a, b, 1});
+  for (const auto &[a, b] : directed)
+    if (a < b && has(b, a))
+      constraints.push_back({a, b, kInnerEdge});
+  return constraints;
+}
 
 } // namespace
 
@@ -615,6 +718,22 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
   RefineResult result;
   check_area_bound(device, pslg.points, options, result.stats);
   Refinement refinement(device, pslg.points, options, result, &pslg, &constrained);
+  if (!refinement.triangulate())
+    return result;
+  refinement.iterate();
+  refinement.finish();
+  return result;
+}
+
+RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
+                         const std::vector<double> &max_area, const ConstrainedOptions &constrained,
+                         const RefineOptions &options) {
+  RefineResult result;
+  check_area_bound(device, pslg.points, options, result.stats);
+  Pslg with_edges{pslg.points, mesh_constraints(triangles, pslg.segments), pslg.holes, {}};
+  const GivenMesh given{triangles, max_area};
+  Refinement refinement(device, with_edges.points, options, result, &with_edges, &constrained,
+                        &given);
   if (!refinement.triangulate())
     return result;
   refinement.iterate();

@@ -43,6 +43,16 @@ struct RefineResult {
   std::vector<Segment> segments;
   ConstrainedStats constraints;
   std::vector<double> triangle_attributes; // -A: per triangle, its region's attribute (0: none)
+  // -r with attributes (RefineOptions::attributes): per triangle, the input
+  // triangle it refines.
+  std::vector<int32_t> triangle_origin;
+};
+
+// refine_mesh's input is no triangulation: input triangle `triangle` is not
+// a triangle of the CDT of the mesh's edges (it overlaps another one, or a
+// vertex lies inside it).
+struct TriangleNotInMesh {
+  std::size_t triangle;
 };
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
@@ -54,5 +64,20 @@ RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
 RefineResult refine_constrained(Device &device, const Pslg &pslg,
                                 const ConstrainedOptions &constrained,
                                 const RefineOptions &options);
+
+// Refinement of a given mesh (Triangle's -r). pslg.points are its vertices,
+// pslg.segments the .poly's segments and pslg.holes its holes (regions are
+// not used); `triangles` (counter-clockwise, input numbering) its
+// triangles, and `max_area` (empty, or one per triangle; <= 0: none) their
+// area bounds, used with options.regional_areas. The mesh's boundary edges
+// (marker 1) and the segments are constraints; its vertices and every edge
+// go through GPU-CDT, the input triangles are found in it (the rest is
+// outside the mesh), the inner edges cease to be constraints and flips make
+// the mesh constrained Delaunay; then GPU-QM/QM-V refines it, each new
+// triangle inheriting its input triangle's area bound. Throws
+// TriangleNotInMesh when the triangles overlap.
+RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
+                         const std::vector<double> &max_area, const ConstrainedOptions &constrained,
+                         const RefineOptions &options);
 
 } // namespace clmesh

@@ -1,0 +1,249 @@
+// Refining a given mesh (-r): the mesh taken as it is, made constrained
+// Delaunay by flips and refined within its own domain, its boundary edges
+// and segments kept, each new triangle inheriting the area bound and the
+// attributes of the input triangle it refines. Every output is checked
+// exactly (valid, subsegments present, every other edge locally Delaunay)
+// and against the given mesh: the same domain area, its segments as chains.
+#include <doctest/doctest.h>
+
+#include "clmesh/clmesh.hpp"
+#include "test_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <set>
+#include <string>
+
+using clmesh::Point;
+using clmesh::Segment;
+using test_support::area;
+using test_support::device;
+using test_support::problems;
+using test_support::smallest_angle_degrees;
+
+namespace {
+
+long double total_area(const std::vector<Point> &points,
+                       const std::vector<clmesh::Triangle> &triangles) {
+  long double sum = 0;
+  for (const auto &t : triangles)
+    sum += area(points, t);
+  return sum;
+}
+
+// The mesh as the input of a later -r run: its points (with their markers),
+// triangles and segments, and the holes of the input it came from.
+clmesh::Input as_input(const clmesh::Mesh &mesh, const clmesh::Input &from = {}) {
+  clmesh::Input input;
+  input.points = mesh.points;
+  input.point_markers = mesh.point_markers;
+  input.triangles = mesh.triangles;
+  input.segments = mesh.segments;
+  input.holes = from.holes;
+  return input;
+}
+
+// Is every segment of `given` a chain of collinear subsegments of `refined`?
+bool segments_kept(const clmesh::Input &given, const clmesh::Mesh &refined) {
+  std::set<std::pair<int32_t, int32_t>> pieces;
+  for (const Segment &s : refined.segments)
+    pieces.insert(std::minmax(s.a, s.b));
+  for (const Segment &s : given.segments) {
+    const Point a = refined.points[s.a], b = refined.points[s.b];
+    // The vertices on the segment, in order from a.
+    std::vector<std::pair<double, int32_t>> on;
+    for (std::size_t v = 0; v < refined.points.size(); ++v) {
+      const Point p = refined.points[v];
+      const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+      const double length2 = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
+      const double along = (p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y);
+      if (std::fabs(cross) <= 1e-9 * length2 && along >= 0 && along <= length2 &&
+          (v < given.points.size()
+               ? v == static_cast<std::size_t>(s.a) || v == static_cast<std::size_t>(s.b)
+               : true))
+        on.emplace_back(along, static_cast<int32_t>(v));
+    }
+    std::sort(on.begin(), on.end());
+    for (std::size_t i = 1; i < on.size(); ++i)
+      if (!pieces.count(std::minmax(on[i - 1].second, on[i].second)))
+        return false;
+  }
+  return true;
+}
+
+// Refines `given` with `switches` (which hold -r) and checks the result:
+// exact validity against the given mesh's segments and boundary, the same
+// domain area, the segments kept, the angle bound beyond the triangles the
+// refinement could not mend, every triangle within its area bound.
+// `eaten`: the area the .poly's holes remove.
+clmesh::Mesh refine_checked(const clmesh::Input &given, const std::string &switches,
+                            long double eaten = 0) {
+  INFO(switches);
+  const clmesh::Options options = clmesh::parse_switches(switches);
+  const clmesh::Mesh mesh = clmesh::triangulate(device(), given, options);
+  const auto report = clmesh::check_mesh(given, mesh, options);
+  INFO(problems(report));
+  CHECK(report.ok);
+  CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::done);
+  REQUIRE(test_support::starts_with(mesh.points, given.points));
+  const long double domain = total_area(given.points, given.triangles) - eaten;
+  CHECK(std::fabs(static_cast<double>(total_area(mesh.points, mesh.triangles) - domain)) <=
+        1e-9 * static_cast<double>(domain));
+  if (options.pslg)
+    CHECK(segments_kept(given, mesh));
+  long below = 0;
+  double largest = 0;
+  for (const auto &t : mesh.triangles) {
+    below += options.quality && smallest_angle_degrees(mesh.points, t) < options.min_angle - 1e-6;
+    largest = std::max(largest, area(mesh.points, t));
+  }
+  CHECK(below <= mesh.statistics.refinement.remaining_bad);
+  if (options.max_area)
+    CHECK(largest <= *options.max_area * (1 + 1e-9));
+  return mesh;
+}
+
+// A rows x columns grid of rectangles over [0, width] x [0, 1], each cut by
+// the diagonal that is not Delaunay when the rectangles are wide: a valid
+// triangulation, far from Delaunay.
+clmesh::Input skewed_grid(int rows, int columns, double width) {
+  clmesh::Input input;
+  for (int r = 0; r <= rows; ++r)
+    for (int c = 0; c <= columns; ++c)
+      input.points.push_back({width * c / columns, static_cast<double>(r) / rows});
+  auto at = [&](int r, int c) { return static_cast<int32_t>(r * (columns + 1) + c); };
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) {
+      input.triangles.push_back({at(r, c), at(r, c + 1), at(r + 1, c + 1)});
+      input.triangles.push_back({at(r, c), at(r + 1, c + 1), at(r + 1, c)});
+    }
+  return input;
+}
+
+} // namespace
+
+TEST_CASE("refine mesh: a mesh clmesh wrote, refined twice (-pq then -rpq30a, -rpq30a)") {
+  for (const char *name : {"A", "face", "square_circle_hole", "la"}) {
+    INFO(std::string(name));
+    const clmesh::Input pslg = clmesh::read_input(std::string(CLMESH_SHARED_DATA) +
+                                                  "/triangle-examples/inputs/" + name + ".poly");
+    const clmesh::Mesh first = clmesh::triangulate(device(), pslg, "pq");
+    const double area =
+        static_cast<double>(total_area(first.points, first.triangles)) / first.triangles.size();
+    const clmesh::Input once = as_input(first, pslg);
+    const clmesh::Mesh second = refine_checked(once, "rpq30a" + std::to_string(area / 2));
+    CHECK(second.points.size() > first.points.size());
+    const clmesh::Input twice = as_input(second, pslg);
+    const clmesh::Mesh third = refine_checked(twice, "rpq30a" + std::to_string(area / 8));
+    CHECK(third.points.size() > second.points.size());
+    // The same run again gives the same mesh.
+    test_support::check_same_mesh(
+        third, clmesh::triangulate(device(), twice, "rpq30a" + std::to_string(area / 8)));
+  }
+}
+
+TEST_CASE("refine mesh: -r alone makes a valid mesh constrained Delaunay, adding no point") {
+  const clmesh::Input grid = skewed_grid(6, 8, 8);
+  const clmesh::Mesh mesh = refine_checked(grid, "r");
+  CHECK(mesh.points.size() == grid.points.size());
+  CHECK(mesh.triangles.size() == grid.triangles.size());
+  CHECK(mesh.statistics.constraints.delaunay_flips > 0);
+  // Without -p, the boundary edges are the segments, marker 1.
+  CHECK(mesh.segments.size() == 2 * (6 + 8));
+  for (const Segment &s : mesh.segments)
+    CHECK(s.marker == 1);
+  // Refined further: the boundary is kept, split only.
+  const clmesh::Mesh quality = refine_checked(grid, "rq30");
+  CHECK(quality.points.size() > grid.points.size());
+}
+
+TEST_CASE("refine mesh: holes in the mesh stay holes; .poly holes carve; regions are ignored") {
+  // A frame: the grid less its middle triangles.
+  clmesh::Input frame = skewed_grid(6, 6, 1);
+  std::vector<clmesh::Triangle> kept;
+  for (const auto &t : frame.triangles) {
+    const Point c{(frame.points[t[0]].x + frame.points[t[1]].x + frame.points[t[2]].x) / 3,
+                  (frame.points[t[0]].y + frame.points[t[1]].y + frame.points[t[2]].y) / 3};
+    if (std::fabs(c.x - 0.5) > 0.3 || std::fabs(c.y - 0.5) > 0.3)
+      kept.push_back(t);
+  }
+  frame.triangles = kept;
+  refine_checked(frame, "rq30a0.002");
+  // A hole seed in the frame's hole changes nothing.
+  frame.holes = {{0.5, 0.5}};
+  refine_checked(frame, "rpq30");
+  // One in the corner square, which segments (-p) close, eats it.
+  frame.holes = {{1.0 / 12, 1.0 / 12}};
+  frame.segments = {{0, 1, 3}, {1, 8, 3}, {8, 7, 3}, {7, 0, 3}};
+  const clmesh::Mesh carved = refine_checked(frame, "rpq30", 1.0 / 36);
+  CHECK(carved.statistics.constraints.eaten_triangles == 2);
+  // Without -p the .poly's holes and segments are not read.
+  refine_checked(frame, "rq30");
+  // Regions, regional attributes and areas of a .poly play no part in -r.
+  frame.regions = {{{0.5, 0.1}, 7, 1e-5}};
+  const clmesh::Mesh ignored = refine_checked(frame, "rpq30aA", 1.0 / 36);
+  CHECK(ignored.points.size() == carved.points.size());
+  CHECK(ignored.triangle_attribute_count == 0);
+}
+
+TEST_CASE(
+    "refine mesh: each new triangle inherits its input triangle's area bound and attributes") {
+  clmesh::Input grid = skewed_grid(4, 4, 1);
+  // Attributes: the triangle's index, and its row.
+  grid.triangle_attribute_count = 2;
+  std::vector<double> bounds;
+  for (std::size_t t = 0; t < grid.triangles.size(); ++t) {
+    grid.triangle_attributes.push_back(static_cast<double>(t));
+    grid.triangle_attributes.push_back(static_cast<double>(t / 8));
+    // Dense in the left half, none elsewhere but in one triangle.
+    bounds.push_back(t % 8 < 4 ? 0.0005 : (t == 13 ? 0.002 : -1));
+  }
+  grid.triangle_max_area = bounds;
+  for (const char *switches : {"ra", "rq25a", "rq30a0.01a"}) {
+    const clmesh::Mesh mesh = refine_checked(grid, switches);
+    REQUIRE(mesh.triangle_attribute_count == 2);
+    REQUIRE(mesh.triangle_attributes.size() == 2 * mesh.triangles.size());
+    const std::optional<double> global = clmesh::parse_switches(switches).max_area;
+    long dense = 0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const double origin = mesh.triangle_attributes[2 * t];
+      REQUIRE(origin >= 0);
+      REQUIRE(origin < grid.triangles.size());
+      const auto k = static_cast<std::size_t>(origin);
+      CHECK(mesh.triangle_attributes[2 * t + 1] == static_cast<double>(k / 8));
+      double bound = bounds[k] > 0 ? bounds[k] : HUGE_VAL;
+      if (global)
+        bound = std::min(bound, *global);
+      CHECK(area(mesh.points, mesh.triangles[t]) <= bound * (1 + 1e-9));
+      dense += bounds[k] == 0.0005;
+    }
+    // The left half (1/2 of the domain) holds at least its area over the bound.
+    CHECK(dense >= 1000);
+  }
+}
+
+TEST_CASE("refine mesh: triangles that are no triangulation are refused, naming one") {
+  clmesh::Input input;
+  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}, {5, 1}, {1, 5}};
+  input.triangles = {{0, 1, 2}, {3, 4, 5}}; // overlapping, no edge shared
+  input.triangles_source = "two.ele";
+  input.triangle_lines = {2, 3};
+  input.first_index = 1;
+  std::string message;
+  try {
+    clmesh::triangulate(device(), input, "rq");
+  } catch (const clmesh::InputError &error) {
+    message = error.what();
+  }
+  CHECK(message.find("two.ele:") != std::string::npos);
+  CHECK(message.find("overlaps another triangle") != std::string::npos);
+  // A vertex inside a triangle that does not use it.
+  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}};
+  input.triangles = {{0, 1, 2}};
+  input.triangles_source.clear();
+  CHECK_THROWS_AS(clmesh::triangulate(device(), input, "r"), clmesh::InputError);
+  // -r needs triangles.
+  input.triangles.clear();
+  CHECK_THROWS_AS(clmesh::triangulate(device(), input, "rq"), clmesh::InputError);
+}

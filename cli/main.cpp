@@ -508,9 +508,9 @@ void write_outputs(const CommandLine &command, const Job &job, const FileNames &
   if (!command.vtk.empty())
     batch.write_vtu(announce(command.vtk), view, write);
   if (!command.svg.empty())
-    batch.write_text(
-        announce(command.svg),
-        clmesh::mesh_svg(mesh.points, mesh.triangles, options.pslg ? &mesh.segments : nullptr));
+    batch.write_text(announce(command.svg),
+                     clmesh::mesh_svg(mesh.points, mesh.triangles,
+                                      options.pslg || options.refine ? &mesh.segments : nullptr));
   if (!command.voronoi_image.empty()) {
     if (mesh.voronoi_image.empty())
       throw clmesh::InternalError("--voronoi-image: no digital Voronoi diagram was returned");
@@ -519,13 +519,16 @@ void write_outputs(const CommandLine &command, const Job &job, const FileNames &
   }
 }
 
-void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool pslg,
-                      bool refine) {
+// Triangle's statistics lines; `constrained`: -p or -r, whose meshes have
+// subsegments and may leave vertices out.
+void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh,
+                      const clmesh::Options &options) {
+  const bool pslg = options.pslg, constrained = options.pslg || options.refine;
   std::size_t hull = 0, vertices = 0;
   for (const auto &t : mesh.neighbors)
     for (int32_t other : t)
       hull += other == -1;
-  if (pslg) { // vertices used by a triangle
+  if (constrained) { // vertices used by a triangle
     std::vector<char> used(mesh.points.size(), 0);
     for (const clmesh::Triangle &t : mesh.triangles)
       for (int32_t v : t)
@@ -539,7 +542,7 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
   const std::size_t triangles = mesh.triangles.size();
   std::printf("\nStatistics:\n\n");
   std::printf("  Input vertices: %ld\n", mesh.input_points);
-  if (refine)
+  if (options.refine)
     std::printf("  Input triangles: %zu\n", input.triangles.size());
   if (pslg) {
     std::printf("  Input segments: %zu\n", input.segments.size());
@@ -550,7 +553,7 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh, bool
   std::printf("  Mesh triangles: %zu\n", triangles);
   std::printf("  Mesh edges: %zu\n", (3 * triangles + hull) / 2);
   std::printf("  Mesh exterior boundary edges: %zu\n", hull);
-  if (pslg)
+  if (constrained)
     std::printf("  Mesh subsegments (constrained edges): %zu\n", mesh.segments.size());
   std::printf("\n");
 }
@@ -672,6 +675,7 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   const clmesh::Options &options = job.options;
   const Clock::time_point start = Clock::now();
   const bool talk = !options.quiet;
+  const bool constrained = options.pslg || options.refine; // the mesh has subsegments
   clmesh::validate(options);
   const FileNames names = file_names(options, job.input);
   if (options.jettison && options.no_node_file && talk)
@@ -703,7 +707,7 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   const double device_compute = mesh.statistics.delaunay.compute_seconds;
   seconds.compute = device_compute > 0 ? device_compute : compute_wall;
   if (talk) {
-    std::printf(options.refine  ? "Mesh refinement milliseconds:  %.0f\n"
+    std::printf(options.refine ? "Mesh refinement milliseconds:  %.0f\n"
                 : options.pslg ? "Constrained Delaunay milliseconds:  %.0f\n"
                                : "Delaunay milliseconds:  %.0f\n",
                 compute_wall * 1000);
@@ -715,9 +719,9 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
     if (duplicates > 10)
       std::printf("Warning:  %zu more duplicate vertices were ignored.\n", duplicates - 10);
     if (mesh.triangles.empty())
-      std::printf(options.pslg ? "Warning:  The triangulation has no triangles left.\n"
-                               : "Warning:  The input vertices are all collinear, so there are no "
-                                 "triangles.\n");
+      std::printf(constrained ? "Warning:  The triangulation has no triangles left.\n"
+                              : "Warning:  The input vertices are all collinear, so there are no "
+                                "triangles.\n");
   }
 
   phase = Clock::now();
@@ -734,7 +738,7 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   if (talk) {
     std::printf("\nOutput milliseconds:  %.0f\n", seconds.write * 1000);
     std::printf("Total running milliseconds:  %.0f\n", seconds_since(start) * 1000);
-    print_statistics(input, mesh, options.pslg, options.refine);
+    print_statistics(input, mesh, options);
     if (options.verbose > 0) {
       if (!options.no_effect_switches.empty()) {
         std::string letters;
@@ -753,8 +757,8 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
   if (!options.check)
     return 0;
   if (talk)
-    std::printf(options.pslg ? "Checking consistency and constrained Delaunay property of mesh...\n"
-                             : "Checking consistency and Delaunay property of mesh...\n");
+    std::printf(constrained ? "Checking consistency and constrained Delaunay property of mesh...\n"
+                            : "Checking consistency and Delaunay property of mesh...\n");
   const clmesh::CheckReport report = clmesh::check_mesh(input, mesh, options);
   if (!report.ok) {
     for (const std::string &problem : report.problems)
@@ -764,8 +768,8 @@ int mesh_input(const CommandLine &command, const Job &job, DeviceSlot &slot) {
     return 1;
   }
   if (talk)
-    std::printf(options.pslg ? "  The mesh is consistent and constrained Delaunay.\n"
-                             : "  The mesh is consistent and Delaunay.\n");
+    std::printf(constrained ? "  The mesh is consistent and constrained Delaunay.\n"
+                            : "  The mesh is consistent and Delaunay.\n");
   return 0;
 }
 

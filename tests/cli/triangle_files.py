@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Independent readers and checks of clmesh's -v, -o2, -g and --vtk files.
+"""Independent readers and checks of clmesh's -v, -o2, -g, --vtk and -r files.
 
 Used by triangle_files.sh; each command prints one line per problem and exits
 1 when there is any.
@@ -15,6 +15,14 @@ Used by triangle_files.sh; each command prints one line per problem and exits
   off BASE  BASE.off holds BASE.node's points and BASE.ele's corners.
   vtu FILE BASE  the .vtu holds BASE.node's points, markers and attributes and
       BASE.ele's triangles (quadratic with six nodes) and attributes.
+  refined BASE INPUT [MAX_AREA]  BASE refines the mesh INPUT (-r): INPUT's
+      vertices come first, with their numbers and coordinates; the domain has
+      INPUT's area; each triangle's attributes are those of an INPUT triangle;
+      with MAX_AREA no triangle is larger; with INPUT.area, no triangle is
+      larger than the bound of the INPUT triangle that its first attribute
+      names (the test numbers INPUT's triangles in that column).
+  boundary BASE  BASE.poly's segments are exactly the boundary edges of
+      BASE.ele (-rc without -p).
 """
 import math
 import sys
@@ -247,10 +255,65 @@ def check_vtu(path, base):
         got = [float(w) for w in array("PointData", f"attribute{a + 1}")]
         if got != [nodes[k + first][2][a] for k in range(len(nodes))]:
             problem(f"{path}: attribute{a + 1} differs from the .node")
-    if cell_attributes:
-        got = [float(w) for w in array("CellData", "attribute1")]
-        if got != [triangles[t][1][0] for t in range(len(triangles))]:
-            problem(f"{path}: cell attribute1 differs from the .ele")
+    for a in range(cell_attributes):
+        got = [float(w) for w in array("CellData", f"attribute{a + 1}")]
+        if got != [triangles[t][1][a] for t in range(len(triangles))]:
+            problem(f"{path}: cell attribute{a + 1} differs from the .ele")
+
+
+def triangle_area(nodes, corners):
+    (ax, ay), (bx, by), (cx, cy) = (nodes[v][:2] for v in corners[:3])
+    return 0.5 * ((bx - ax) * (cy - ay) - (by - ay) * (cx - ax))
+
+
+def check_refined(base, given, max_area):
+    nodes, _, _ = read_node(base + ".node")
+    triangles, _, _ = read_ele(base + ".ele")
+    given_nodes, _, _ = read_node(given + ".node")
+    given_triangles, _, _ = read_ele(given + ".ele")
+    for number, node in given_nodes.items():
+        if nodes.get(number, (None, None))[:2] != node[:2]:
+            problem(f"{base}.node: input vertex {number} {node[:2]} is not kept")
+            break
+    domain = sum(triangle_area(given_nodes, t) for t, _ in given_triangles)
+    total = sum(triangle_area(nodes, t) for t, _ in triangles)
+    if abs(total - domain) > 1e-9 * domain:
+        problem(f"{base}: domain area {total!r}, the input's is {domain!r}")
+    given_rows = {tuple(a) for _, a in given_triangles}
+    for number, (corners, attributes) in enumerate(triangles):
+        if tuple(attributes) not in given_rows:
+            problem(f"{base}.ele: triangle {number}'s attributes {attributes} are no input "
+                    "triangle's")
+            break
+    largest = max(triangle_area(nodes, t) for t, _ in triangles)
+    if max_area is not None and largest > max_area * (1 + 1e-9):
+        problem(f"{base}: a triangle of area {largest!r} exceeds -a{max_area!r}")
+    try:
+        bounds = {int(w[0]): float(w[1]) for w in list(rows(given + ".area"))[1:]}
+    except FileNotFoundError:
+        return
+    for number, (corners, attributes) in enumerate(triangles):
+        bound = bounds[int(attributes[0])]
+        if bound > 0 and triangle_area(nodes, corners) > bound * (1 + 1e-9):
+            problem(f"{base}.ele: triangle {number} of area {triangle_area(nodes, corners)!r} "
+                    f"exceeds the bound {bound!r} of input triangle {int(attributes[0])}")
+            break
+
+
+def check_boundary(base):
+    triangles, _, _ = read_ele(base + ".ele")
+    count = {}
+    for corners, _ in triangles:
+        for i in range(3):
+            edge = frozenset((corners[i], corners[(i + 1) % 3]))
+            count[edge] = count.get(edge, 0) + 1
+    boundary = {edge for edge, n in count.items() if n == 1}
+    lines = list(rows(base + ".poly"))
+    segments = int(lines[1][0])
+    listed = {frozenset(int(w) for w in words[1:3]) for words in lines[2 : 2 + segments]}
+    if listed != boundary or segments != len(boundary):
+        problem(f"{base}.poly: {segments} segments, {len(listed & boundary)} of them among the "
+                f"{len(boundary)} boundary edges of {base}.ele")
 
 
 def main():
@@ -263,6 +326,10 @@ def main():
         check_off(args[0])
     elif command == "vtu":
         check_vtu(args[0], args[1])
+    elif command == "boundary":
+        check_boundary(args[0])
+    elif command == "refined":
+        check_refined(args[0], args[1], float(args[2]) if len(args) > 2 else None)
     else:
         sys.exit(f"unknown command {command}")
     for text in problems:

@@ -62,3 +62,60 @@ def test_a_delaunay_output_refined_without_bounds_is_itself():
     again = clmesh.triangulate(first, "r")
     assert np.array_equal(again["vertices"], first["vertices"])
     assert triangle_set(again["triangles"]) == triangle_set(first["triangles"])
+
+
+def _areas(vertices, triangles):
+    a, b, c = (vertices[triangles[:, k]] for k in range(3))
+    return 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1])
+                  - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+
+
+def _ring_mesh():
+    """A square with a square hole, meshed by clmesh -pq: the mesh to refine."""
+    outer = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], float)
+    inner = np.array([[1.5, 1.5], [2.5, 1.5], [2.5, 2.5], [1.5, 2.5]])
+    loop = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
+    pslg = dict(vertices=np.r_[outer, inner], segments=np.r_[loop, loop + 4], holes=[[2, 2]])
+    return pslg, clmesh.triangulate(pslg, "pq")
+
+
+def test_refined_mesh_keeps_domain_attributes_and_bounds():
+    pslg, given = _ring_mesh()
+    t = len(given["triangles"])
+    numbers = np.arange(t, dtype=float)
+    given["triangle_attributes"] = np.c_[numbers, -2 * numbers]
+    given["triangle_max_area"] = np.where(numbers % 2 == 0, 0.05, -1.0)
+    result = clmesh.run(given, "rpq30a")
+    assert result.check() == []
+    out = result.mesh
+    # The input's vertices first, the same domain, segments and holes kept.
+    assert np.array_equal(out["vertices"][:len(given["vertices"])], given["vertices"])
+    assert np.isclose(_areas(out["vertices"], out["triangles"]).sum(), 15.0, rtol=1e-12)
+    assert "segments" in out and np.array_equal(out["holes"], [[2, 2]])
+    # Every column inherited from one input triangle, whose bound holds.
+    attributes = out["triangle_attributes"]
+    assert attributes.shape == (len(out["triangles"]), 2)
+    parent = attributes[:, 0].astype(int)
+    assert np.array_equal(attributes[:, 1], -2 * parent)
+    bound = given["triangle_max_area"][parent]
+    areas = _areas(out["vertices"], out["triangles"])
+    assert (areas[bound > 0] <= bound[bound > 0] * (1 + 1e-9)).all()
+    assert (bound > 0).sum() > (bound < 0).sum()  # the bounded half got the points
+
+
+def test_refined_twice_as_with_the_command_line():
+    pslg, given = _ring_mesh()
+    once = clmesh.triangulate(dict(given, holes=pslg["holes"]), "rpq30a0.05")
+    twice = clmesh.run(dict(once, holes=pslg["holes"]), "rpq30a0.02")
+    assert twice.check() == []
+    assert len(twice.mesh["vertices"]) > len(once["vertices"])
+    assert _areas(twice.mesh["vertices"], twice.mesh["triangles"]).max() <= 0.02 * (1 + 1e-9)
+
+
+def test_vertex_counts_near_the_triangle_package():
+    triangle = pytest.importorskip("triangle")
+    _, given = _ring_mesh()
+    for switches in ("rq30a0.01", "rpq30a0.005"):
+        ours = len(clmesh.triangulate(given, switches)["vertices"])
+        theirs = len(triangle.triangulate(given, switches)["vertices"])
+        assert 0.8 < ours / theirs <= 1.05, (switches, ours, theirs)

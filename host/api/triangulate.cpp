@@ -139,8 +139,7 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   auto pslg = [&] { return Pslg{input.points, input.segments, input.holes, input.regions}; };
   if (options.refine) {
     if (input.triangles.empty())
-      throw InputError(input.source.empty() ? "input" : input.source, 0,
-                       "-r refines a mesh, and the input has no triangles");
+      throw InputError("input", 0, "-r refines a mesh, and the input has no triangles");
     // The .poly's segments and holes come with -p only; its regions never
     // (Triangle's -r: the .area file's bounds and the triangles' attributes
     // take their place).

@@ -110,15 +110,23 @@ inline bool across_input_angle(__global const double2 *points, __global const in
   return false;
 }
 
-// The area bound of triangle slot t: -a's (max_area, <= 0: none) and, with
-// regions, its region's (region_area, <= 0: none), the smaller.
+// The tighter of two area bounds (<= 0: none).
+inline double tighter_bound(double a, double b) {
+  if (b <= 0)
+    return a;
+  return a > 0 ? fmin(a, b) : b;
+}
+
+// The area bound of triangle slot t: -a's (max_area, <= 0: none); with
+// regions, its region's (region_area, <= 0: none); with a sizing field or
+// callback (sized), the slot's own (size_bound, size_bound.cl): the
+// tightest.
 inline double area_bound_of(__global const int *tri_region, int regional,
-                            __global const double *region_area, double max_area, int t) {
+                            __global const double *region_area, __global const double *size_bound,
+                            int sized, double max_area, int t) {
   const int r = regional ? tri_region[t] : -1;
-  const double bound = r >= 0 ? region_area[r] : -1;
-  if (bound <= 0)
-    return max_area;
-  return max_area > 0 ? fmin(max_area, bound) : bound;
+  const double bound = tighter_bound(max_area, r >= 0 ? region_area[r] : -1);
+  return sized ? tighter_bound(bound, size_bound[t]) : bound;
 }
 
 // Do all three corners of tri lie on one segment (at least one added on it)?
@@ -252,9 +260,10 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
 
 __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
                                  const double ratio_bound_squared, const double max_area,
-                                 __global const double *region_area, const double offconstant,
-                                 const int conforming, const int protect, __global int *is_bad,
-                                 const int election, const int n) {
+                                 __global const double *region_area,
+                                 __global const double *size_bound, const int sized,
+                                 const double offconstant, const int conforming, const int protect,
+                                 __global int *is_bad, const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -266,12 +275,13 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   const VertexTriple tri = load_vertices(tri_vertex, t);
   double2 steiner;
   uint priority;
-  const bool bad = !is_ghost(tri) && !is_dead(tri) &&
-                   bad_triangle_candidate(
-                       points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
-                       area_bound_of(tri_region, regional, region_area, max_area, t), offconstant,
-                       conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
-                       protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
+  const bool bad =
+      !is_ghost(tri) && !is_dead(tri) &&
+      bad_triangle_candidate(
+          points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+          area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
+          offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
+          protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -282,6 +292,7 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
 // those whose candidate lies beyond an edge of their own no point may split.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
                                         const double max_area, __global const double *region_area,
+                                        __global const double *size_bound, const int sized,
                                         const int protect, volatile __global int *counts,
                                         const int n) {
   const int t = get_global_id(0);
@@ -290,7 +301,8 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
-  const double bound = area_bound_of(tri_region, regional, region_area, max_area, t);
+  const double bound =
+      area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t);
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, bound);
   double2 steiner;
@@ -531,6 +543,7 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
 __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
                                 const int located_stamp, const double ratio_bound_squared,
                                 const double max_area, __global const double *region_area,
+                                __global const double *size_bound, const int sized,
                                 const double offconstant, const int conforming, const int protect,
                                 __global double2 *candidate, __global int *container,
                                 __global int *split_edge, __global const int *origin,
@@ -547,8 +560,8 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
   bad_triangle_candidate(
       points, point_state, point_segment, segment_end, bad_triangle, ratio_bound_squared,
-      area_bound_of(tri_region, regional, region_area, max_area, bad), offconstant,
-      conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
+      area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, bad),
+      offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
       protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =

@@ -385,7 +385,7 @@ TEST_CASE("refine: bad options are refused") {
   CHECK_THROWS_AS(refine(fixtures::uniform(10, 79), refine_options(60)), clmesh::OptionError);
   CHECK_THROWS_AS(refine(fixtures::uniform(10, 79), clmesh::parse_switches("q30a0")),
                   clmesh::OptionError);
-  CHECK_THROWS_AS(clmesh::parse_switches("q30r"), clmesh::OptionError);
+  CHECK_THROWS_AS(clmesh::parse_switches("q30u"), clmesh::OptionError);
   CHECK_THROWS_AS(clmesh::parse_switches("qx"), clmesh::OptionError);
   clmesh::Options pslg_quality = clmesh::parse_switches("pq");
   CHECK_NOTHROW(clmesh::validate(pslg_quality));

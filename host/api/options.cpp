@@ -200,6 +200,8 @@ void validate(const Options &options) {
   if (options.regional_areas && !options.pslg && !options.refine)
     throw OptionError("-a without a number applies the maximum areas of a .poly file's regions "
                       "(-p) or of an .area file's triangles (-r): it needs -p or -r");
+  if (options.size_field)
+    validate(*options.size_field);
   if (options.quality && !(options.min_angle >= 0 && options.min_angle <= 45))
     throw OptionError("the minimum angle (-q) must be between 0 and 45 degrees");
   if (options.max_area && !(*options.max_area > 0))

@@ -115,13 +115,15 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   refine.regional_areas = options.regional_areas;
   refine.attributes = options.regional_attributes;
   refine.protected_segments = options.no_steiner_on_segments;
+  refine.size_field = options.size_field.get();
+  refine.unsuitable = options.unsuitable ? &options.unsuitable : nullptr;
   ConstrainedOptions constrained;
   constrained.delaunay = delaunay_options;
   constrained.keep_convex_hull = options.convex_hull;
   constrained.ignore_holes = options.ignore_holes;
   constrained.regional_attributes = options.regional_attributes;
-  const bool refined =
-      options.quality || options.max_area || options.regional_areas || options.conforming_delaunay;
+  const bool refined = options.quality || options.max_area || options.regional_areas ||
+                       options.conforming_delaunay || options.size_field || options.unsuitable;
   // A PSLG's mesh: its points, triangles, segments, -A attributes and the
   // statistics of GPU-CDT.
   auto take_pslg = [&](const std::vector<Point> &added, DelaunayResult triangulation,
@@ -137,8 +139,7 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   auto pslg = [&] { return Pslg{input.points, input.segments, input.holes, input.regions}; };
   if (options.refine) {
     if (input.triangles.empty())
-      throw InputError(input.source.empty() ? "input" : input.source, 0,
-                       "-r refines a mesh, and the input has no triangles");
+      throw InputError("input", 0, "-r refines a mesh, and the input has no triangles");
     // The .poly's segments and holes come with -p only; its regions never
     // (Triangle's -r: the .area file's bounds and the triangles' attributes
     // take their place).

@@ -14,7 +14,8 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
                                        double max_area, int filter_rings, int filter_distance_rings,
                                        double filter_near, bool parallel_midpoints,
                                        int election_rings, bool conforming, int protected_segments,
-                                       const std::vector<double> &region_areas)
+                                       const std::vector<double> &region_areas,
+                                       const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
@@ -38,7 +39,8 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
       tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
       priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
-      radius2_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()) {
+      radius2_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()),
+      size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
@@ -72,9 +74,10 @@ std::size_t OffcenterInsertion::count_unfixable() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
-  set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), static_cast<cl_int>(protected_segments_), count.buffer(),
-                static_cast<cl_int>(slots));
+  set_args_from(
+      count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
+      region_area_.buffer(), size_bound_buffer(), static_cast<cl_int>(size_bound_ != nullptr),
+      static_cast<cl_int>(protected_segments_), count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -101,9 +104,10 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   const auto items = static_cast<cl_int>(entries);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
                 static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), offconstant_, static_cast<cl_int>(conforming_),
-                static_cast<cl_int>(protected_segments_), keep_.buffer(),
-                static_cast<cl_int>(election_rings_ > 0), items);
+                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
+                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -134,7 +138,8 @@ void OffcenterInsertion::locate_candidates(int stamp) {
   // Each candidate's bad triangle: the elected ones, or every bad one.
   const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
   set_args_from(locate_, mesh_.bind(locate_, 0), last_container_.buffer(), located_stamp_,
-                ratio_bound_squared_, max_area_, region_area_.buffer(), offconstant_,
+                ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
                 candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
                 priority_.buffer(), radius2_.buffer(), lens_,

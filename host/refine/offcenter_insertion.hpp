@@ -29,11 +29,13 @@ public:
   // encroaches on one goes in all the same, one beyond it is dropped, and a
   // bad triangle whose candidate lies beyond such an edge of its own is left;
   // region_areas: the maximum area of
-  // each region of DeviceMesh::tri_region (<= 0: none; empty without regions).
+  // each region of DeviceMesh::tri_region (<= 0: none; empty without regions);
+  // size_bound: each triangle slot's own area bound (SizeBound; null: none).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
                      bool parallel_midpoints, int election_rings, bool conforming,
-                     int protected_segments, const std::vector<double> &region_areas);
+                     int protected_segments, const std::vector<double> &region_areas,
+                     const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
@@ -101,8 +103,13 @@ private:
   DeviceArray<cl_int> last_container_;
   DeviceArray<cl_double> radius2_;     // each candidate's insertion radius, squared
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
-  cl_int located_stamp_ = 0;           // the mesh's stamp when the last search located
-  std::size_t located_slots_ = 0;      // last_container_ is -1 from here on
+  const DeviceArray<cl_double> *size_bound_;
+  // The kernels' size_bound argument (region_area_ stands in, unread, without one).
+  const cl::Buffer &size_bound_buffer() const {
+    return size_bound_ ? size_bound_->buffer() : region_area_.buffer();
+  }
+  cl_int located_stamp_ = 0;      // the mesh's stamp when the last search located
+  std::size_t located_slots_ = 0; // last_container_ is -1 from here on
 };
 
 } // namespace clmesh

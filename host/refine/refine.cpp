@@ -24,6 +24,7 @@
 #include "refine/flip_flop.hpp"
 #include "refine/free_slots.hpp"
 #include "refine/offcenter_insertion.hpp"
+#include "refine/size_bound.hpp"
 #include "refine/steiner_renumbering.hpp"
 #include "refine/zorder_compaction.hpp"
 
@@ -170,13 +171,13 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 // mesh grows.
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options,
-                  const std::vector<double> &region_areas)
+                  const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
-                  options.protected_segments, region_areas),
+                  options.protected_segments, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -255,7 +256,12 @@ public:
     if (pslg_)
       set_segments();
     scheduler_.flipping().set_fixed_boundary(true);
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_);
+    if (options_.size_field || options_.unsuitable) {
+      device_.program("size_bound.cl", "setup");
+      size_bound_ =
+          std::make_unique<SizeBound>(device_, mesh(), options_.size_field, options_.unsuitable);
+    }
+    make_steps();
     acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
     return true;
   }
@@ -552,6 +558,7 @@ private:
     steps_->compaction.compact(low_, side_, first_steiner_);
     steps_->offcenter.forget_triangles();
     changed_.size = 0;
+    sizes_stale_ = true;
     deleted_since_collection_ = false;
     compacted_slots_ = mesh().triangle_count;
     scheduler_.timer().charge(FlipFlop::kPhase); // timed with step 3
@@ -560,11 +567,28 @@ private:
   // Step 1: the bad triangles, among those rewritten since the last search
   // and the bad ones then. Returns how many there are.
   std::size_t find_bad_triangles() {
+    update_size_bounds();
     const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
     changed_.size = 0;
     stats_.remaining_bad = static_cast<long>(bad);
     last_bad_ = bad;
     return bad;
+  }
+
+  // The sizing field's or callback's bounds of the triangles rewritten since
+  // the last search (of every slot after the slots moved or grew).
+  void update_size_bounds() {
+    if (!size_bound_)
+      return;
+    size_bound_->update(sizes_stale_ ? nullptr : &changed_);
+    sizes_stale_ = false;
+    scheduler_.timer().charge(SizeBound::kPhase);
+  }
+
+  // The phase objects of the steps, for the mesh's arrays as they are.
+  void make_steps() {
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_,
+                                               size_bound_ ? &size_bound_->bounds() : nullptr);
   }
 
   // Step 1: the bad triangles that send a candidate (all, without an election).
@@ -593,7 +617,11 @@ private:
     steps_.reset(); // before the mesh grows: a lower peak
     scheduler_.grow(extra);
     ++stats_.growths;
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_);
+    if (size_bound_) {
+      size_bound_->fit();
+      sizes_stale_ = true;
+    }
+    make_steps();
     return Room::grown;
   }
 
@@ -651,10 +679,12 @@ private:
   const ConstrainedOptions *constrained_;
   const GivenMesh *given_;
   DelaunayScheduler scheduler_;
-  std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
-  std::vector<Point> crossings_;     // vertices added where segments cross
-  std::vector<double> region_areas_; // with regions: each one's area bound (<= 0: none)
-  std::size_t first_steiner_ = 0;    // slot of the first Steiner point
+  std::vector<Segment> constraints_;      // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;          // vertices added where segments cross
+  std::vector<double> region_areas_;      // with regions: each one's area bound (<= 0: none)
+  std::size_t first_steiner_ = 0;         // slot of the first Steiner point
+  std::unique_ptr<SizeBound> size_bound_; // with a sizing field or callback
+  bool sizes_stale_ = true;               // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   std::size_t acute_hull_vertices_ = 0;

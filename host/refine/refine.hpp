@@ -8,6 +8,8 @@
 #include "cdt/constrained.hpp"
 #include "dt/delaunay.hpp"
 
+#include "clmesh/size_field.hpp"
+
 #include <optional>
 #include <vector>
 
@@ -28,6 +30,9 @@ struct RefineOptions {
   bool attributes = false;
   // -Y (1): no Steiner point on the domain's boundary; -YY (2): on no segment.
   int protected_segments = 0;
+  // A sizing field and a user's test of each triangle (null: none).
+  const SizeField *size_field = nullptr;
+  const Unsuitable *unsuitable = nullptr;
 };
 
 struct RefineResult {

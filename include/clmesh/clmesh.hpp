@@ -15,6 +15,7 @@
 #include "clmesh/mesh.hpp"
 #include "clmesh/options.hpp"
 #include "clmesh/report.hpp"
+#include "clmesh/size_field.hpp"
 #include "clmesh/statistics.hpp"
 #include "clmesh/triangulate.hpp"
 #include "clmesh/tuning.hpp"

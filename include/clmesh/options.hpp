@@ -1,8 +1,10 @@
 // clmesh — what a user chooses: Triangle's switches, one field each.
 #pragma once
 
+#include "clmesh/size_field.hpp"
 #include "clmesh/tuning.hpp"
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -19,6 +21,11 @@ struct Options {
   bool quality = false;             // -q: quality mesh, no angle below min_angle
   double min_angle = 20;            // -q<angle>, degrees (0 to 45)
   std::optional<double> max_area;   // -a<area>: no triangle larger
+  // Not Triangle's switches: a sizing field (--size-field) and a test of
+  // each triangle (Triangle's -u, from the library only). Either refines,
+  // alone or with -q and -a; a triangle is refined when any bound asks.
+  std::shared_ptr<const SizeField> size_field;
+  Unsuitable unsuitable;
   bool regional_areas = false;      // -a alone: with -r each triangle's (.area), else with -p
                                     // each region's maximum area (.poly)
   std::optional<long> max_steiner;  // -S<n>: at most n Steiner points (-S alone: 0)

@@ -1,0 +1,103 @@
+// clmesh — size control beyond -a (not in the thesis, whose GPU-QM bounds
+// angles and one area, §3.3): each triangle slot's own area bound, set when
+// the slot is (re)written and read by the bad-triangle test
+// (offcenter_insertion.cl, area_bound_of). From a sizing field the device
+// evaluates: a background mesh's target areas interpolated linearly at the
+// triangle's centroid, the background triangle found through a grid of
+// cells, each listing the background triangles its box meets (an empty
+// cell: those of the nearest cell that has some). Or from a user's callback
+// on the host: the corners gathered here, the answers scattered back.
+#include "common.h"
+
+// The slot of entry i: list[i] (use_list), else i; -1 for none.
+inline int slot_of(__global const int *list, int use_list, int i) { return use_list ? list[i] : i; }
+
+// The field at p: among the cell's background triangles, the one whose
+// smallest barycentric coordinate of p is largest (the one holding p, or
+// the nearest), first on ties; its coordinates clamped to its edges. The
+// arithmetic of clmesh::size_at on the host.
+inline double field_at(double2 p, __global const double2 *field_points,
+                       __global const double *field_area, __global const int *field_triangles,
+                       __global const int *cell_start, __global const int *cell_entry, double4 grid,
+                       int columns, int rows) {
+  const int column = clamp((int)floor((p.x - grid.x) * grid.z), 0, columns - 1);
+  const int row = clamp((int)floor((p.y - grid.y) * grid.w), 0, rows - 1);
+  const int cell = row * columns + column;
+  double best = -INFINITY, value = 0;
+  for (int i = cell_start[cell]; i < cell_start[cell + 1]; ++i) {
+    const int k = cell_entry[i];
+    const int v0 = field_triangles[3 * k], v1 = field_triangles[3 * k + 1],
+              v2 = field_triangles[3 * k + 2];
+    const double2 a = field_points[v0], b = field_points[v1], c = field_points[v2];
+    const double twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double l0 = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / twice;
+    const double l1 = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / twice;
+    const double l2 = 1 - l0 - l1;
+    const double score = fmin(l0, fmin(l1, l2));
+    if (score > best) {
+      best = score;
+      const double w0 = fmax(l0, 0.0), w1 = fmax(l1, 0.0), w2 = fmax(l2, 0.0);
+      value = (w0 * field_area[v0] + w1 * field_area[v1] + w2 * field_area[v2]) / (w0 + w1 + w2);
+    }
+  }
+  return value;
+}
+
+// bound[t] for the slot of each entry: the field at its centroid (-1 for a
+// ghost or a dead slot).
+__kernel void evaluate_size_field(__global const double2 *points, __global const int *tri_vertex,
+                                  __global const int *list, const int use_list,
+                                  __global const double2 *field_points,
+                                  __global const double *field_area,
+                                  __global const int *field_triangles,
+                                  __global const int *cell_start, __global const int *cell_entry,
+                                  const double4 grid, const int columns, const int rows,
+                                  __global double *bound, const int n) {
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int t = slot_of(list, use_list, i);
+  if (t < 0)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_ghost(tri) || is_dead(tri)) {
+    bound[t] = -1;
+    return;
+  }
+  const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]];
+  const double2 centroid = (double2)((a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3);
+  bound[t] = field_at(centroid, field_points, field_area, field_triangles, cell_start, cell_entry,
+                      grid, columns, rows);
+}
+
+// The corners of each entry's slot for the host's callback (NaN for a ghost,
+// a dead slot or none).
+__kernel void gather_corners(__global const double2 *points, __global const int *tri_vertex,
+                             __global const int *list, const int use_list,
+                             __global double2 *corners, const int n) {
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int t = slot_of(list, use_list, i);
+  const VertexTriple tri =
+      t < 0 ? (VertexTriple){{CLM_DEAD, CLM_DEAD, CLM_DEAD}} : load_vertices(tri_vertex, t);
+  const bool real = t >= 0 && !is_ghost(tri) && !is_dead(tri);
+  for (int k = 0; k < 3; ++k)
+    corners[3 * i + k] = real ? points[tri.v[k]] : (double2)(NAN, NAN);
+}
+
+// The callback's answers: value[i] is half the triangle's area where it
+// asks for refinement (the triangle is then too large whatever else bounds
+// it), else -1: the slot keeps the field's bound (combine) or has none.
+__kernel void scatter_bounds(__global const int *list, const int use_list,
+                             __global const double *value, const int combine,
+                             __global double *bound, const int n) {
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int t = slot_of(list, use_list, i);
+  if (t < 0)
+    return;
+  const double v = value[i];
+  bound[t] = combine && v < 0 ? bound[t] : v;
+}

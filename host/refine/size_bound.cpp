@@ -1,0 +1,150 @@
+#include "refine/size_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+namespace clmesh {
+
+namespace {
+const char *kFile = "size_bound.cl";
+}
+
+SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
+                     const Unsuitable *unsuitable)
+    : device_(device), mesh_(mesh), field_(field), unsuitable_(unsuitable),
+      evaluate_(device.kernel(kFile, "evaluate_size_field", kPhase)),
+      gather_(device.kernel(kFile, "gather_corners", kPhase)),
+      scatter_(device.kernel(kFile, "scatter_bounds", kPhase)),
+      bound_(device, mesh.triangle_capacity), no_list_(device, 1) {
+  bound_.fill(device_, -1, mesh.triangle_capacity);
+  if (field_)
+    build_grid(*field_);
+}
+
+void SizeBound::build_grid(const SizeField &field) {
+  std::vector<cl_double2> points;
+  double low_x = HUGE_VAL, low_y = HUGE_VAL, high_x = -HUGE_VAL, high_y = -HUGE_VAL;
+  for (const Point &p : field.points) {
+    points.push_back({{p.x, p.y}});
+    low_x = std::min(low_x, p.x);
+    low_y = std::min(low_y, p.y);
+    high_x = std::max(high_x, p.x);
+    high_y = std::max(high_y, p.y);
+  }
+  // About one cell per background triangle.
+  const auto side = static_cast<int>(
+      std::clamp(std::ceil(std::sqrt(static_cast<double>(field.triangles.size()))), 1.0, 2048.0));
+  columns_ = rows_ = side;
+  const double width = high_x > low_x ? high_x - low_x : 1,
+               height = high_y > low_y ? high_y - low_y : 1;
+  grid_ = {{low_x, low_y, columns_ / width, rows_ / height}};
+  auto column = [&](double x) {
+    return std::clamp(static_cast<int>(std::floor((x - low_x) * grid_.s[2])), 0, columns_ - 1);
+  };
+  auto row = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - low_y) * grid_.s[3])), 0, rows_ - 1);
+  };
+  // Each cell's triangles: those whose box meets it.
+  const std::size_t cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  std::vector<std::vector<cl_int>> listed(cells);
+  std::vector<cl_int> corners;
+  for (std::size_t k = 0; k < field.triangles.size(); ++k) {
+    const Triangle &t = field.triangles[k];
+    double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+    for (int32_t v : t) {
+      corners.push_back(v);
+      x0 = std::min(x0, field.points[v].x);
+      y0 = std::min(y0, field.points[v].y);
+      x1 = std::max(x1, field.points[v].x);
+      y1 = std::max(y1, field.points[v].y);
+    }
+    for (int r = row(y0); r <= row(y1); ++r)
+      for (int c = column(x0); c <= column(x1); ++c)
+        listed[static_cast<std::size_t>(r * columns_ + c)].push_back(static_cast<cl_int>(k));
+  }
+  // An empty cell takes the triangles of the nearest cell that has some
+  // (breadth first over the grid, in cell order).
+  std::vector<long> source(cells, -1);
+  std::deque<long> queue;
+  for (std::size_t c = 0; c < cells; ++c)
+    if (!listed[c].empty()) {
+      source[c] = static_cast<long>(c);
+      queue.push_back(static_cast<long>(c));
+    }
+  while (!queue.empty()) {
+    const long c = queue.front();
+    queue.pop_front();
+    const long r = c / columns_, k = c % columns_;
+    const long around[4][2] = {{r - 1, k}, {r + 1, k}, {r, k - 1}, {r, k + 1}};
+    for (const auto &[rr, kk] : around)
+      if (rr >= 0 && rr < rows_ && kk >= 0 && kk < columns_) {
+        const long next = rr * columns_ + kk;
+        if (source[static_cast<std::size_t>(next)] < 0) {
+          source[static_cast<std::size_t>(next)] = source[static_cast<std::size_t>(c)];
+          queue.push_back(next);
+        }
+      }
+  }
+  std::vector<cl_int> start(cells + 1, 0), entries;
+  for (std::size_t c = 0; c < cells; ++c) {
+    const std::vector<cl_int> &own = listed[static_cast<std::size_t>(source[c])];
+    entries.insert(entries.end(), own.begin(), own.end());
+    start[c + 1] = static_cast<cl_int>(entries.size());
+  }
+  field_points_ = DeviceArray<cl_double2>(device_, points.size());
+  field_points_.upload(device_, points);
+  field_area_ = DeviceArray<cl_double>(device_, field.area.size());
+  field_area_.upload(device_, std::vector<cl_double>(field.area.begin(), field.area.end()));
+  field_triangles_ = DeviceArray<cl_int>(device_, corners.size());
+  field_triangles_.upload(device_, corners);
+  cell_start_ = DeviceArray<cl_int>(device_, start.size());
+  cell_start_.upload(device_, start);
+  cell_entry_ = DeviceArray<cl_int>(device_, entries.size());
+  cell_entry_.upload(device_, entries);
+}
+
+void SizeBound::fit() {
+  if (bound_.size() < mesh_.triangle_capacity)
+    bound_ = bound_.grown(device_, mesh_.triangle_capacity, -1);
+}
+
+void SizeBound::update(const DeviceList<cl_int> *changed) {
+  const bool use_list = changed != nullptr;
+  const std::size_t n = use_list ? changed->size : mesh_.triangle_count;
+  if (n == 0)
+    return;
+  const cl::Buffer &list = use_list ? changed->items.buffer() : no_list_.buffer();
+  if (field_) {
+    set_args(evaluate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), list,
+             static_cast<cl_int>(use_list), field_points_.buffer(), field_area_.buffer(),
+             field_triangles_.buffer(), cell_start_.buffer(), cell_entry_.buffer(), grid_,
+             static_cast<cl_int>(columns_), static_cast<cl_int>(rows_), bound_.buffer(),
+             static_cast<cl_int>(n));
+    launch(device_, evaluate_, n, kPhase);
+  }
+  if (!unsuitable_)
+    return;
+  DeviceArray<cl_double2> corners(device_, 3 * n);
+  set_args(gather_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), list,
+           static_cast<cl_int>(use_list), corners.buffer(), static_cast<cl_int>(n));
+  launch(device_, gather_, n, kPhase);
+  const std::vector<cl_double2> at = corners.download(device_, 3 * n);
+  std::vector<cl_double> value(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point a{at[3 * i].s[0], at[3 * i].s[1]}, b{at[3 * i + 1].s[0], at[3 * i + 1].s[1]},
+        c{at[3 * i + 2].s[0], at[3 * i + 2].s[1]};
+    if (std::isnan(a.x))
+      continue;
+    const double area = std::fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)) / 2;
+    if ((*unsuitable_)(a, b, c, area))
+      value[i] = area / 2;
+  }
+  DeviceArray<cl_double> values(device_, n);
+  values.upload(device_, value);
+  set_args(scatter_, list, static_cast<cl_int>(use_list), values.buffer(),
+           static_cast<cl_int>(field_ != nullptr), bound_.buffer(), static_cast<cl_int>(n));
+  launch(device_, scatter_, n, kPhase);
+}
+
+} // namespace clmesh

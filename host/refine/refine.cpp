@@ -366,15 +366,23 @@ private:
   // its triangles are triangles of the CDT; they are found (and labelled
   // with their input triangle), every other triangle and those the holes
   // reach are removed, the inner edges cease to be constraints, and flips
-  // make the mesh constrained Delaunay.
+  // make the mesh constrained Delaunay. A mesh whose triangles are all in
+  // the Delaunay triangulation of its vertices already (a Delaunay mesh of
+  // its convex hull) needs only its boundary and segments inserted.
   void reconstruct() {
-    std::vector<Segment> constraints =
-        insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     std::vector<Triangle> corners = given_->triangles;
     for (Triangle &t : corners)
       for (int32_t &v : t)
         v = scheduler_.device_point(v);
     MeshReconstruction reconstruction(device_, mesh(), corners);
+    const bool delaunay = reconstruction.label() < 0;
+    Pslg outline;
+    if (delaunay)
+      for (const Segment &s : pslg_->segments)
+        if (s.marker != kInnerEdge)
+          outline.segments.push_back(s);
+    std::vector<Segment> constraints = insert_constraints(
+        device_, scheduler_, delaunay ? outline : *pslg_, result_.constraints, crossings_);
     const long missing = reconstruction.label();
     scheduler_.timer().charge(MeshReconstruction::kPhase);
     if (missing >= 0)

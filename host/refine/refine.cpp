@@ -256,10 +256,10 @@ public:
     if (pslg_)
       set_segments();
     scheduler_.flipping().set_fixed_boundary(true);
-    if (options_.size_field || options_.unsuitable) {
+    if (options_.size_field || options_.unsuitable || triangle_areas_) {
       device_.program("size_bound.cl", "setup");
-      size_bound_ =
-          std::make_unique<SizeBound>(device_, mesh(), options_.size_field, options_.unsuitable);
+      size_bound_ = std::make_unique<SizeBound>(device_, mesh(), options_.size_field,
+                                                triangle_areas_.get(), options_.unsuitable);
     }
     make_steps();
     acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
@@ -406,16 +406,18 @@ private:
       result_.constraints.ignored_holes = removal.seeds_on_segments();
     }
     scheduler_.timer().charge(ExteriorRemoval::kPhase);
-    // Each triangle's input triangle: for its area bound, and for the
-    // attributes it inherits.
-    const bool areas = options_.regional_areas && !given_->max_area.empty();
-    if (areas || options_.attributes) {
+    // Each triangle's input triangle, whose attributes it inherits (the
+    // labels diffuse with flips, as Triangle's attributes do).
+    if (options_.attributes) {
       m.tri_region = reconstruction.labels();
       m.has_regions = true;
       region_areas_.assign(given_->triangles.size(), -1);
-      if (areas)
-        region_areas_ = given_->max_area;
     }
+    // The .area bounds (-a alone) bound the triangles by where they lie:
+    // each input triangle those whose centroid it holds (SizeBound).
+    if (options_.regional_areas && !given_->max_area.empty())
+      triangle_areas_ =
+          std::make_unique<SizeField>(SizeField{points_, given_->max_area, given_->triangles});
     DomainBoundary boundary(device_, m, scheduler_.scan());
     close_domain(boundary, removal);
   }
@@ -687,12 +689,13 @@ private:
   const ConstrainedOptions *constrained_;
   const GivenMesh *given_;
   DelaunayScheduler scheduler_;
-  std::vector<Segment> constraints_;      // a PSLG's segments as they stand (device numbering)
-  std::vector<Point> crossings_;          // vertices added where segments cross
-  std::vector<double> region_areas_;      // with regions: each one's area bound (<= 0: none)
-  std::size_t first_steiner_ = 0;         // slot of the first Steiner point
-  std::unique_ptr<SizeBound> size_bound_; // with a sizing field or callback
-  bool sizes_stale_ = true;               // every slot's size bound is to be set again
+  std::vector<Segment> constraints_;          // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;              // vertices added where segments cross
+  std::vector<double> region_areas_;          // with regions: each one's area bound (<= 0: none)
+  std::size_t first_steiner_ = 0;             // slot of the first Steiner point
+  std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
+  std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback
+  bool sizes_stale_ = true;                   // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   std::size_t acute_hull_vertices_ = 0;

@@ -260,11 +260,18 @@ TEST_CASE("refine mesh: triangles that are no triangulation are refused, naming 
   }
   CHECK(message.find("two.ele:") != std::string::npos);
   CHECK(message.find("overlaps another triangle") != std::string::npos);
-  // A vertex inside a triangle that does not use it.
-  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}};
+  // A vertex that no triangle uses stays out of the mesh, as in Triangle
+  // (the middle nodes of a six-node mesh, here one inside and one on an edge).
+  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}, {2, 0}};
   input.triangles = {{0, 1, 2}};
   input.triangles_source.clear();
-  CHECK_THROWS_AS(clmesh::triangulate(device(), input, "r"), clmesh::InputError);
+  const clmesh::Mesh unused = clmesh::triangulate(device(), input, "r");
+  CHECK(unused.triangles == std::vector<clmesh::Triangle>{{0, 1, 2}});
+  CHECK(unused.points.size() == 5);
+  const clmesh::Mesh refined = refine_checked(input, "rq30a0.5");
+  for (const auto &t : refined.triangles)
+    for (int32_t v : t)
+      CHECK((v < 3 || v >= 5));
   // -r needs triangles.
   input.triangles.clear();
   CHECK_THROWS_AS(clmesh::triangulate(device(), input, "rq"), clmesh::InputError);

@@ -769,16 +769,63 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
 RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
                          const std::vector<double> &max_area, const ConstrainedOptions &constrained,
                          const RefineOptions &options) {
+  // Vertices that no triangle or segment uses (the middle nodes of a six-node
+  // mesh, points left over) stay out of the mesh, as in Triangle. `kept`
+  // numbers the others in order, so the renumbering keeps every order.
+  const std::size_t n = pslg.points.size();
+  std::vector<char> used(n, 0);
+  for (const Triangle &t : triangles)
+    for (int32_t v : t)
+      used[static_cast<std::size_t>(v)] = 1;
+  for (const Segment &s : pslg.segments)
+    used[static_cast<std::size_t>(s.a)] = used[static_cast<std::size_t>(s.b)] = 1;
+  std::vector<int32_t> kept, index_of(n, -1);
+  for (std::size_t i = 0; i < n; ++i)
+    if (used[i]) {
+      index_of[i] = static_cast<int32_t>(kept.size());
+      kept.push_back(static_cast<int32_t>(i));
+    }
+  Pslg subset{{}, {}, pslg.holes, {}};
+  for (int32_t i : kept)
+    subset.points.push_back(pslg.points[static_cast<std::size_t>(i)]);
+  std::vector<Triangle> corners = triangles;
+  for (Triangle &t : corners)
+    for (int32_t &v : t)
+      v = index_of[static_cast<std::size_t>(v)];
+  std::vector<Segment> segments = pslg.segments;
+  for (Segment &s : segments) {
+    s.a = index_of[static_cast<std::size_t>(s.a)];
+    s.b = index_of[static_cast<std::size_t>(s.b)];
+  }
+  subset.segments = mesh_constraints(corners, segments);
+
   RefineResult result;
-  check_area_bound(device, pslg.points, options, result.stats);
-  Pslg with_edges{pslg.points, mesh_constraints(triangles, pslg.segments), pslg.holes, {}};
-  const GivenMesh given{triangles, max_area};
-  Refinement refinement(device, with_edges.points, options, result, &with_edges, &constrained,
-                        &given);
-  if (!refinement.triangulate())
+  check_area_bound(device, subset.points, options, result.stats);
+  const GivenMesh given{corners, max_area};
+  Refinement refinement(device, subset.points, options, result, &subset, &constrained, &given);
+  if (refinement.triangulate()) {
+    refinement.iterate();
+    refinement.finish();
+  }
+  if (kept.size() == n)
     return result;
-  refinement.iterate();
-  refinement.finish();
+  // Back to the input's numbering; the added points follow all its points.
+  const auto m = static_cast<int32_t>(kept.size());
+  auto original = [&](int32_t v) {
+    return v < 0 ? v : v < m ? kept[static_cast<std::size_t>(v)] : v - m + static_cast<int32_t>(n);
+  };
+  for (Triangle &t : result.mesh.triangles)
+    for (int32_t &v : t)
+      v = original(v);
+  for (Segment &s : result.segments) {
+    s.a = original(s.a);
+    s.b = original(s.b);
+  }
+  std::vector<int32_t> duplicate_of(n + result.added_points.size(), -1);
+  for (std::size_t v = 0; v < result.mesh.duplicate_of.size(); ++v)
+    duplicate_of[static_cast<std::size_t>(original(static_cast<int32_t>(v)))] =
+        original(result.mesh.duplicate_of[v]);
+  result.mesh.duplicate_of = std::move(duplicate_of);
   return result;
 }
 

@@ -407,15 +407,17 @@ private:
     }
     scheduler_.timer().charge(ExteriorRemoval::kPhase);
     // Each triangle's input triangle, whose attributes it inherits (the
-    // labels diffuse with flips, as Triangle's attributes do).
-    if (options_.attributes) {
+    // labels diffuse with flips, as Triangle's attributes do), and where a
+    // .area bound's lookup starts.
+    const bool areas = options_.regional_areas && !given_->max_area.empty();
+    if (options_.attributes || areas) {
       m.tri_region = reconstruction.labels();
       m.has_regions = true;
       region_areas_.assign(given_->triangles.size(), -1);
     }
     // The .area bounds (-a alone) bound the triangles by where they lie:
     // each input triangle those whose centroid it holds (SizeBound).
-    if (options_.regional_areas && !given_->max_area.empty())
+    if (areas)
       triangle_areas_ =
           std::make_unique<SizeField>(SizeField{points_, given_->max_area, given_->triangles});
     DomainBoundary boundary(device_, m, scheduler_.scan());

@@ -152,6 +152,8 @@ void SizeBound::evaluate(const Background &background, const cl::Buffer &list, b
            static_cast<cl_int>(background.per_triangle), background.triangles.buffer(),
            background.cell_start.buffer(), background.cell_entry.buffer(), background.grid,
            static_cast<cl_int>(background.columns), static_cast<cl_int>(background.rows),
+           mesh_.tri_region.buffer(),
+           static_cast<cl_int>(background.per_triangle && mesh_.has_regions),
            static_cast<cl_int>(combine), bound_.buffer(), static_cast<cl_int>(n));
   launch(device_, evaluate_, n, kPhase);
 }

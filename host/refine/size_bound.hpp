@@ -16,7 +16,9 @@ public:
   static constexpr const char *kPhase = "size_bound";
 
   // Any of them may be null, not all; `areas`: a mesh with one maximum area
-  // per triangle (<= 0: none), in SizeField's shape.
+  // per triangle (<= 0: none), in SizeField's shape. With `areas`, the
+  // mesh's regions (DeviceMesh::tri_region), when it has them, are the
+  // triangles of `areas` its slots descend from: tried first.
   SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field, const SizeField *areas,
             const Unsuitable *unsuitable);
 

@@ -9,7 +9,8 @@
 // one or holds a vertex, which makes the input no triangulation.
 // Input triangles come as rows by their smallest corner (device numbering):
 // row v lists, for each input triangle whose smallest corner is v, the other
-// two corners in counter-clockwise order and the triangle's index.
+// two corners in counter-clockwise order and the triangle's index; points
+// added since the rows were made (where segments cross) have none.
 #include "common.h"
 
 // Each real triangle slot t < n: label[t] = the matching input triangle, or
@@ -19,7 +20,7 @@
 __kernel void match_input_triangles(__global const int *tri_vertex, __global const int *row_start,
                                     __global const int4 *row_entry, __global int *label,
                                     __global int *found, volatile __global int *matched,
-                                    const int n) {
+                                    const int rows, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -35,6 +36,8 @@ __kernel void match_input_triangles(__global const int *tri_vertex, __global con
   if (tri.v[2] < tri.v[k])
     k = 2;
   const int v = tri.v[k], b = tri.v[next3(k)], c = tri.v[prev3(k)];
+  if (v >= rows)
+    return;
   for (int i = row_start[v]; i < row_start[v + 1]; ++i) {
     const int4 entry = row_entry[i];
     if (entry.x == b && entry.y == c) {

@@ -1,57 +1,89 @@
 // clmesh — size control beyond -a (not in the thesis, whose GPU-QM bounds
 // angles and one area, §3.3): each triangle slot's own area bound, set when
 // the slot is (re)written and read by the bad-triangle test
-// (offcenter_insertion.cl, area_bound_of). From a sizing field the device
-// evaluates: a background mesh's target areas interpolated linearly at the
-// triangle's centroid, the background triangle found through a grid of
-// cells, each listing the background triangles its box meets (an empty
-// cell: those of the nearest cell that has some). Or from a user's callback
-// on the host: the corners gathered here, the answers scattered back.
+// (offcenter_insertion.cl, area_bound_of). From background meshes the
+// device evaluates at the triangle's centroid: a sizing field's target
+// areas interpolated linearly, or a refined mesh's maximum area per
+// triangle (-r's .area) taken from the triangle that holds the centroid;
+// the background triangle is found through a grid of cells, each listing
+// the background triangles its box meets (an empty cell: those of the
+// nearest cell that has some). Or from a user's callback on the host: the
+// corners gathered here, the answers scattered back.
 #include "common.h"
 
 // The slot of entry i: list[i] (use_list), else i; -1 for none.
 inline int slot_of(__global const int *list, int use_list, int i) { return use_list ? list[i] : i; }
 
-// The field at p: among the cell's background triangles, the one whose
+// The tighter of two area bounds (<= 0: none).
+inline double tighter(double a, double b) {
+  if (b <= 0)
+    return a;
+  return a > 0 ? fmin(a, b) : b;
+}
+
+// The barycentric coordinates of p in background triangle k (l[0..2]);
+// returns the smallest.
+inline double barycentric(double2 p, __global const double2 *field_points,
+                          __global const int *field_triangles, int k, double *l) {
+  const double2 a = field_points[field_triangles[3 * k]],
+                b = field_points[field_triangles[3 * k + 1]],
+                c = field_points[field_triangles[3 * k + 2]];
+  const double twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  l[0] = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / twice;
+  l[1] = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / twice;
+  l[2] = 1 - l[0] - l[1];
+  return fmin(l[0], fmin(l[1], l[2]));
+}
+
+// The background at p: among the cell's background triangles, the one whose
 // smallest barycentric coordinate of p is largest (the one holding p, or
-// the nearest), first on ties; its coordinates clamped to its edges. The
-// arithmetic of clmesh::size_at on the host.
+// the nearest), first on ties; its value (per_triangle), else the values of
+// its corners interpolated, its coordinates clamped to its edges. The
+// arithmetic of clmesh::size_at on the host. Per triangle, `hint` (>= 0: the
+// given triangle the slot descends from, which usually holds p) is tried
+// first.
 inline double field_at(double2 p, __global const double2 *field_points,
-                       __global const double *field_area, __global const int *field_triangles,
-                       __global const int *cell_start, __global const int *cell_entry, double4 grid,
-                       int columns, int rows) {
+                       __global const double *field_area, int per_triangle,
+                       __global const int *field_triangles, __global const int *cell_start,
+                       __global const int *cell_entry, double4 grid, int columns, int rows,
+                       int hint) {
+  double l[3];
+  if (per_triangle && hint >= 0 && barycentric(p, field_points, field_triangles, hint, l) >= 0)
+    return field_area[hint];
   const int column = clamp((int)floor((p.x - grid.x) * grid.z), 0, columns - 1);
   const int row = clamp((int)floor((p.y - grid.y) * grid.w), 0, rows - 1);
   const int cell = row * columns + column;
   double best = -INFINITY, value = 0;
   for (int i = cell_start[cell]; i < cell_start[cell + 1]; ++i) {
     const int k = cell_entry[i];
-    const int v0 = field_triangles[3 * k], v1 = field_triangles[3 * k + 1],
-              v2 = field_triangles[3 * k + 2];
-    const double2 a = field_points[v0], b = field_points[v1], c = field_points[v2];
-    const double twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    const double l0 = ((b.x - p.x) * (c.y - p.y) - (b.y - p.y) * (c.x - p.x)) / twice;
-    const double l1 = ((c.x - p.x) * (a.y - p.y) - (c.y - p.y) * (a.x - p.x)) / twice;
-    const double l2 = 1 - l0 - l1;
-    const double score = fmin(l0, fmin(l1, l2));
-    if (score > best) {
+    const double score = barycentric(p, field_points, field_triangles, k, l);
+    if (score > best && per_triangle) {
       best = score;
-      const double w0 = fmax(l0, 0.0), w1 = fmax(l1, 0.0), w2 = fmax(l2, 0.0);
-      value = (w0 * field_area[v0] + w1 * field_area[v1] + w2 * field_area[v2]) / (w0 + w1 + w2);
+      value = field_area[k];
+    } else if (score > best) {
+      best = score;
+      const double w0 = fmax(l[0], 0.0), w1 = fmax(l[1], 0.0), w2 = fmax(l[2], 0.0);
+      value =
+          (w0 * field_area[field_triangles[3 * k]] + w1 * field_area[field_triangles[3 * k + 1]] +
+           w2 * field_area[field_triangles[3 * k + 2]]) /
+          (w0 + w1 + w2);
     }
   }
   return value;
 }
 
-// bound[t] for the slot of each entry: the field at its centroid (-1 for a
-// ghost or a dead slot).
+// bound[t] for the slot of each entry: the background at its centroid (-1
+// for a ghost or a dead slot); with combine, the tighter of that and the
+// bound already there. hint (hinted): per slot, a background triangle to
+// try first (-1: none).
 __kernel void evaluate_size_field(__global const double2 *points, __global const int *tri_vertex,
                                   __global const int *list, const int use_list,
                                   __global const double2 *field_points,
-                                  __global const double *field_area,
+                                  __global const double *field_area, const int per_triangle,
                                   __global const int *field_triangles,
                                   __global const int *cell_start, __global const int *cell_entry,
                                   const double4 grid, const int columns, const int rows,
+                                  __global const int *hint, const int hinted, const int combine,
                                   __global double *bound, const int n) {
   const int i = get_global_id(0);
   if (i >= n)
@@ -66,8 +98,9 @@ __kernel void evaluate_size_field(__global const double2 *points, __global const
   }
   const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]];
   const double2 centroid = (double2)((a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3);
-  bound[t] = field_at(centroid, field_points, field_area, field_triangles, cell_start, cell_entry,
-                      grid, columns, rows);
+  const double value = field_at(centroid, field_points, field_area, per_triangle, field_triangles,
+                                cell_start, cell_entry, grid, columns, rows, hinted ? hint[t] : -1);
+  bound[t] = combine ? tighter(bound[t], value) : value;
 }
 
 // The corners of each entry's slot for the host's callback (NaN for a ghost,

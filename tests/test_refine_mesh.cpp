@@ -187,39 +187,61 @@ TEST_CASE("refine mesh: holes in the mesh stay holes; .poly holes carve; regions
   CHECK(ignored.triangle_attribute_count == 0);
 }
 
-TEST_CASE(
-    "refine mesh: each new triangle inherits its input triangle's area bound and attributes") {
+// The .area bound at p: that of the given triangle holding p (the largest
+// of them when p lies on an edge between two; none: infinite).
+double area_bound_at(const clmesh::Input &given, Point p) {
+  double bound = -1;
+  for (std::size_t k = 0; k < given.triangles.size(); ++k) {
+    const auto &t = given.triangles[k];
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i) {
+      const Point a = given.points[t[i]], b = given.points[t[(i + 1) % 3]];
+      inside = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) >= 0;
+    }
+    if (inside)
+      bound =
+          std::max(bound, given.triangle_max_area[k] > 0 ? given.triangle_max_area[k] : HUGE_VAL);
+  }
+  return bound;
+}
+
+TEST_CASE("refine mesh: .area bounds the triangles in each given triangle; attributes diffuse") {
   clmesh::Input grid = skewed_grid(4, 4, 1);
   // Attributes: the triangle's index, and its row.
   grid.triangle_attribute_count = 2;
-  std::vector<double> bounds;
   for (std::size_t t = 0; t < grid.triangles.size(); ++t) {
     grid.triangle_attributes.push_back(static_cast<double>(t));
     grid.triangle_attributes.push_back(static_cast<double>(t / 8));
     // Dense in the left half, none elsewhere but in one triangle.
-    bounds.push_back(t % 8 < 4 ? 0.0005 : (t == 13 ? 0.002 : -1));
+    grid.triangle_max_area.push_back(t % 8 < 4 ? 0.0005 : (t == 13 ? 0.002 : -1));
   }
-  grid.triangle_max_area = bounds;
   for (const char *switches : {"ra", "rq25a", "rq30a0.01a"}) {
     const clmesh::Mesh mesh = refine_checked(grid, switches);
-    REQUIRE(mesh.triangle_attribute_count == 2);
-    REQUIRE(mesh.triangle_attributes.size() == 2 * mesh.triangles.size());
     const std::optional<double> global = clmesh::parse_switches(switches).max_area;
     long dense = 0;
+    for (const auto &t : mesh.triangles) {
+      const Point a = mesh.points[t[0]], b = mesh.points[t[1]], c = mesh.points[t[2]];
+      const Point centroid{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3};
+      double bound = area_bound_at(grid, centroid);
+      REQUIRE(bound > 0);
+      dense += bound == 0.0005;
+      if (global)
+        bound = std::min(bound, *global);
+      CHECK(area(mesh.points, t) <= bound * (1 + 1e-9));
+    }
+    // The left half (1/2 of the domain) holds at least its area over the bound.
+    CHECK(dense >= 1000);
+    // Each triangle carries the attributes of one given triangle (those of
+    // the triangle it came from by splits; flips pass them on, as Triangle's do).
+    REQUIRE(mesh.triangle_attribute_count == 2);
+    REQUIRE(mesh.triangle_attributes.size() == 2 * mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const double origin = mesh.triangle_attributes[2 * t];
       REQUIRE(origin >= 0);
       REQUIRE(origin < grid.triangles.size());
-      const auto k = static_cast<std::size_t>(origin);
-      CHECK(mesh.triangle_attributes[2 * t + 1] == static_cast<double>(k / 8));
-      double bound = bounds[k] > 0 ? bounds[k] : HUGE_VAL;
-      if (global)
-        bound = std::min(bound, *global);
-      CHECK(area(mesh.points, mesh.triangles[t]) <= bound * (1 + 1e-9));
-      dense += bounds[k] == 0.0005;
+      CHECK(mesh.triangle_attributes[2 * t + 1] ==
+            static_cast<double>(static_cast<int>(origin) / 8));
     }
-    // The left half (1/2 of the domain) holds at least its area over the bound.
-    CHECK(dense >= 1000);
   }
 }
 
@@ -238,11 +260,18 @@ TEST_CASE("refine mesh: triangles that are no triangulation are refused, naming 
   }
   CHECK(message.find("two.ele:") != std::string::npos);
   CHECK(message.find("overlaps another triangle") != std::string::npos);
-  // A vertex inside a triangle that does not use it.
-  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}};
+  // A vertex that no triangle uses stays out of the mesh, as in Triangle
+  // (the middle nodes of a six-node mesh, here one inside and one on an edge).
+  input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}, {2, 0}};
   input.triangles = {{0, 1, 2}};
   input.triangles_source.clear();
-  CHECK_THROWS_AS(clmesh::triangulate(device(), input, "r"), clmesh::InputError);
+  const clmesh::Mesh unused = clmesh::triangulate(device(), input, "r");
+  CHECK(unused.triangles == std::vector<clmesh::Triangle>{{0, 1, 2}});
+  CHECK(unused.points.size() == 5);
+  const clmesh::Mesh refined = refine_checked(input, "rq30a0.5");
+  for (const auto &t : refined.triangles)
+    for (int32_t v : t)
+      CHECK((v < 3 || v >= 5));
   // -r needs triangles.
   input.triangles.clear();
   CHECK_THROWS_AS(clmesh::triangulate(device(), input, "rq"), clmesh::InputError);

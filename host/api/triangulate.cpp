@@ -155,8 +155,9 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
           refine_mesh(device, given, input.triangles, input.triangle_max_area, constrained, refine);
     } catch (const TriangleNotInMesh &bad) {
       throw_triangle_error(input, bad.triangle,
-                           "it overlaps another triangle, or a vertex lies inside it: the "
-                           "triangles are no triangulation");
+                           "it overlaps another triangle, a vertex lies inside it or a "
+                           "segment crosses it: the triangles are no triangulation of the "
+                           "vertices and segments");
     }
     take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments), {},
               result.constraints);

@@ -42,7 +42,8 @@ long MeshReconstruction::label() {
   found.fill(device_, 0, triangle_count_);
   matched.fill(device_, 0, 1);
   set_args(match_, mesh_.tri_vertex.buffer(), row_start_.buffer(), row_entry_.buffer(),
-           label_.buffer(), found.buffer(), matched.buffer(), static_cast<cl_int>(slots));
+           label_.buffer(), found.buffer(), matched.buffer(),
+           static_cast<cl_int>(row_start_.size() - 1), static_cast<cl_int>(slots));
   launch(device_, match_, slots, kPhase);
   if (static_cast<std::size_t>(matched.read(device_, 0)) == triangle_count_)
     return -1;

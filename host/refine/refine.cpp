@@ -256,10 +256,10 @@ public:
     if (pslg_)
       set_segments();
     scheduler_.flipping().set_fixed_boundary(true);
-    if (options_.size_field || options_.unsuitable) {
+    if (options_.size_field || options_.unsuitable || triangle_areas_) {
       device_.program("size_bound.cl", "setup");
-      size_bound_ =
-          std::make_unique<SizeBound>(device_, mesh(), options_.size_field, options_.unsuitable);
+      size_bound_ = std::make_unique<SizeBound>(device_, mesh(), options_.size_field,
+                                                triangle_areas_.get(), options_.unsuitable);
     }
     make_steps();
     acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
@@ -366,15 +366,23 @@ private:
   // its triangles are triangles of the CDT; they are found (and labelled
   // with their input triangle), every other triangle and those the holes
   // reach are removed, the inner edges cease to be constraints, and flips
-  // make the mesh constrained Delaunay.
+  // make the mesh constrained Delaunay. A mesh whose triangles are all in
+  // the Delaunay triangulation of its vertices already (a Delaunay mesh of
+  // its convex hull) needs only its boundary and segments inserted.
   void reconstruct() {
-    std::vector<Segment> constraints =
-        insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     std::vector<Triangle> corners = given_->triangles;
     for (Triangle &t : corners)
       for (int32_t &v : t)
         v = scheduler_.device_point(v);
     MeshReconstruction reconstruction(device_, mesh(), corners);
+    const bool delaunay = reconstruction.label() < 0;
+    Pslg outline;
+    if (delaunay)
+      for (const Segment &s : pslg_->segments)
+        if (s.marker != kInnerEdge)
+          outline.segments.push_back(s);
+    std::vector<Segment> constraints = insert_constraints(
+        device_, scheduler_, delaunay ? outline : *pslg_, result_.constraints, crossings_);
     const long missing = reconstruction.label();
     scheduler_.timer().charge(MeshReconstruction::kPhase);
     if (missing >= 0)
@@ -398,16 +406,20 @@ private:
       result_.constraints.ignored_holes = removal.seeds_on_segments();
     }
     scheduler_.timer().charge(ExteriorRemoval::kPhase);
-    // Each triangle's input triangle: for its area bound, and for the
-    // attributes it inherits.
+    // Each triangle's input triangle, whose attributes it inherits (the
+    // labels diffuse with flips, as Triangle's attributes do), and where a
+    // .area bound's lookup starts.
     const bool areas = options_.regional_areas && !given_->max_area.empty();
-    if (areas || options_.attributes) {
+    if (options_.attributes || areas) {
       m.tri_region = reconstruction.labels();
       m.has_regions = true;
       region_areas_.assign(given_->triangles.size(), -1);
-      if (areas)
-        region_areas_ = given_->max_area;
     }
+    // The .area bounds (-a alone) bound the triangles by where they lie:
+    // each input triangle those whose centroid it holds (SizeBound).
+    if (areas)
+      triangle_areas_ =
+          std::make_unique<SizeField>(SizeField{points_, given_->max_area, given_->triangles});
     DomainBoundary boundary(device_, m, scheduler_.scan());
     close_domain(boundary, removal);
   }
@@ -679,12 +691,13 @@ private:
   const ConstrainedOptions *constrained_;
   const GivenMesh *given_;
   DelaunayScheduler scheduler_;
-  std::vector<Segment> constraints_;      // a PSLG's segments as they stand (device numbering)
-  std::vector<Point> crossings_;          // vertices added where segments cross
-  std::vector<double> region_areas_;      // with regions: each one's area bound (<= 0: none)
-  std::size_t first_steiner_ = 0;         // slot of the first Steiner point
-  std::unique_ptr<SizeBound> size_bound_; // with a sizing field or callback
-  bool sizes_stale_ = true;               // every slot's size bound is to be set again
+  std::vector<Segment> constraints_;          // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;              // vertices added where segments cross
+  std::vector<double> region_areas_;          // with regions: each one's area bound (<= 0: none)
+  std::size_t first_steiner_ = 0;             // slot of the first Steiner point
+  std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
+  std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback
+  bool sizes_stale_ = true;                   // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   std::size_t acute_hull_vertices_ = 0;
@@ -758,16 +771,63 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
 RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
                          const std::vector<double> &max_area, const ConstrainedOptions &constrained,
                          const RefineOptions &options) {
+  // Vertices that no triangle or segment uses (the middle nodes of a six-node
+  // mesh, points left over) stay out of the mesh, as in Triangle. `kept`
+  // numbers the others in order, so the renumbering keeps every order.
+  const std::size_t n = pslg.points.size();
+  std::vector<char> used(n, 0);
+  for (const Triangle &t : triangles)
+    for (int32_t v : t)
+      used[static_cast<std::size_t>(v)] = 1;
+  for (const Segment &s : pslg.segments)
+    used[static_cast<std::size_t>(s.a)] = used[static_cast<std::size_t>(s.b)] = 1;
+  std::vector<int32_t> kept, index_of(n, -1);
+  for (std::size_t i = 0; i < n; ++i)
+    if (used[i]) {
+      index_of[i] = static_cast<int32_t>(kept.size());
+      kept.push_back(static_cast<int32_t>(i));
+    }
+  Pslg subset{{}, {}, pslg.holes, {}};
+  for (int32_t i : kept)
+    subset.points.push_back(pslg.points[static_cast<std::size_t>(i)]);
+  std::vector<Triangle> corners = triangles;
+  for (Triangle &t : corners)
+    for (int32_t &v : t)
+      v = index_of[static_cast<std::size_t>(v)];
+  std::vector<Segment> segments = pslg.segments;
+  for (Segment &s : segments) {
+    s.a = index_of[static_cast<std::size_t>(s.a)];
+    s.b = index_of[static_cast<std::size_t>(s.b)];
+  }
+  subset.segments = mesh_constraints(corners, segments);
+
   RefineResult result;
-  check_area_bound(device, pslg.points, options, result.stats);
-  Pslg with_edges{pslg.points, mesh_constraints(triangles, pslg.segments), pslg.holes, {}};
-  const GivenMesh given{triangles, max_area};
-  Refinement refinement(device, with_edges.points, options, result, &with_edges, &constrained,
-                        &given);
-  if (!refinement.triangulate())
+  check_area_bound(device, subset.points, options, result.stats);
+  const GivenMesh given{corners, max_area};
+  Refinement refinement(device, subset.points, options, result, &subset, &constrained, &given);
+  if (refinement.triangulate()) {
+    refinement.iterate();
+    refinement.finish();
+  }
+  if (kept.size() == n)
     return result;
-  refinement.iterate();
-  refinement.finish();
+  // Back to the input's numbering; the added points follow all its points.
+  const auto m = static_cast<int32_t>(kept.size());
+  auto original = [&](int32_t v) {
+    return v < 0 ? v : v < m ? kept[static_cast<std::size_t>(v)] : v - m + static_cast<int32_t>(n);
+  };
+  for (Triangle &t : result.mesh.triangles)
+    for (int32_t &v : t)
+      v = original(v);
+  for (Segment &s : result.segments) {
+    s.a = original(s.a);
+    s.b = original(s.b);
+  }
+  std::vector<int32_t> duplicate_of(n + result.added_points.size(), -1);
+  for (std::size_t v = 0; v < result.mesh.duplicate_of.size(); ++v)
+    duplicate_of[static_cast<std::size_t>(original(static_cast<int32_t>(v)))] =
+        original(result.mesh.duplicate_of[v]);
+  result.mesh.duplicate_of = std::move(duplicate_of);
   return result;
 }
 

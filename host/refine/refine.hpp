@@ -78,8 +78,10 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
 // (marker 1) and the segments are constraints; its vertices and every edge
 // go through GPU-CDT, the input triangles are found in it (the rest is
 // outside the mesh), the inner edges cease to be constraints and flips make
-// the mesh constrained Delaunay; then GPU-QM/QM-V refines it, each new
-// triangle inheriting its input triangle's area bound. Throws
+// the mesh constrained Delaunay; then GPU-QM/QM-V refines it, every
+// triangle within the bound of the input triangle that holds its centroid,
+// each inheriting the input triangle it descends from (triangle_origin,
+// with options.attributes). Throws
 // TriangleNotInMesh when the triangles overlap.
 RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
                          const std::vector<double> &max_area, const ConstrainedOptions &constrained,

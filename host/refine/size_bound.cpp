@@ -11,18 +11,21 @@ const char *kFile = "size_bound.cl";
 }
 
 SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
-                     const Unsuitable *unsuitable)
-    : device_(device), mesh_(mesh), field_(field), unsuitable_(unsuitable),
+                     const SizeField *areas, const Unsuitable *unsuitable)
+    : device_(device), mesh_(mesh), unsuitable_(unsuitable),
       evaluate_(device.kernel(kFile, "evaluate_size_field", kPhase)),
       gather_(device.kernel(kFile, "gather_corners", kPhase)),
       scatter_(device.kernel(kFile, "scatter_bounds", kPhase)),
       bound_(device, mesh.triangle_capacity), no_list_(device, 1) {
   bound_.fill(device_, -1, mesh.triangle_capacity);
-  if (field_)
-    build_grid(*field_);
+  if (field)
+    backgrounds_.emplace_back(device_, *field, false);
+  if (areas)
+    backgrounds_.emplace_back(device_, *areas, true);
 }
 
-void SizeBound::build_grid(const SizeField &field) {
+SizeBound::Background::Background(Device &device, const SizeField &field, bool per_triangle)
+    : per_triangle(per_triangle) {
   std::vector<cl_double2> points;
   double low_x = HUGE_VAL, low_y = HUGE_VAL, high_x = -HUGE_VAL, high_y = -HUGE_VAL;
   for (const Point &p : field.points) {
@@ -35,18 +38,18 @@ void SizeBound::build_grid(const SizeField &field) {
   // About one cell per background triangle.
   const auto side = static_cast<int>(
       std::clamp(std::ceil(std::sqrt(static_cast<double>(field.triangles.size()))), 1.0, 2048.0));
-  columns_ = rows_ = side;
+  columns = rows = side;
   const double width = high_x > low_x ? high_x - low_x : 1,
                height = high_y > low_y ? high_y - low_y : 1;
-  grid_ = {{low_x, low_y, columns_ / width, rows_ / height}};
+  grid = {{low_x, low_y, columns / width, rows / height}};
   auto column = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x - low_x) * grid_.s[2])), 0, columns_ - 1);
+    return std::clamp(static_cast<int>(std::floor((x - low_x) * grid.s[2])), 0, columns - 1);
   };
   auto row = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - low_y) * grid_.s[3])), 0, rows_ - 1);
+    return std::clamp(static_cast<int>(std::floor((y - low_y) * grid.s[3])), 0, rows - 1);
   };
   // Each cell's triangles: those whose box meets it.
-  const std::size_t cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  const std::size_t cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
   std::vector<std::vector<cl_int>> listed(cells);
   std::vector<cl_int> corners;
   for (std::size_t k = 0; k < field.triangles.size(); ++k) {
@@ -61,7 +64,7 @@ void SizeBound::build_grid(const SizeField &field) {
     }
     for (int r = row(y0); r <= row(y1); ++r)
       for (int c = column(x0); c <= column(x1); ++c)
-        listed[static_cast<std::size_t>(r * columns_ + c)].push_back(static_cast<cl_int>(k));
+        listed[static_cast<std::size_t>(r * columns + c)].push_back(static_cast<cl_int>(k));
   }
   // An empty cell takes the triangles of the nearest cell that has some
   // (breadth first over the grid, in cell order).
@@ -75,11 +78,11 @@ void SizeBound::build_grid(const SizeField &field) {
   while (!queue.empty()) {
     const long c = queue.front();
     queue.pop_front();
-    const long r = c / columns_, k = c % columns_;
+    const long r = c / columns, k = c % columns;
     const long around[4][2] = {{r - 1, k}, {r + 1, k}, {r, k - 1}, {r, k + 1}};
     for (const auto &[rr, kk] : around)
-      if (rr >= 0 && rr < rows_ && kk >= 0 && kk < columns_) {
-        const long next = rr * columns_ + kk;
+      if (rr >= 0 && rr < rows && kk >= 0 && kk < columns) {
+        const long next = rr * columns + kk;
         if (source[static_cast<std::size_t>(next)] < 0) {
           source[static_cast<std::size_t>(next)] = source[static_cast<std::size_t>(c)];
           queue.push_back(next);
@@ -92,16 +95,17 @@ void SizeBound::build_grid(const SizeField &field) {
     entries.insert(entries.end(), own.begin(), own.end());
     start[c + 1] = static_cast<cl_int>(entries.size());
   }
-  field_points_ = DeviceArray<cl_double2>(device_, points.size());
-  field_points_.upload(device_, points);
-  field_area_ = DeviceArray<cl_double>(device_, field.area.size());
-  field_area_.upload(device_, std::vector<cl_double>(field.area.begin(), field.area.end()));
-  field_triangles_ = DeviceArray<cl_int>(device_, corners.size());
-  field_triangles_.upload(device_, corners);
-  cell_start_ = DeviceArray<cl_int>(device_, start.size());
-  cell_start_.upload(device_, start);
-  cell_entry_ = DeviceArray<cl_int>(device_, entries.size());
-  cell_entry_.upload(device_, entries);
+  const std::vector<double> &values = field.area;
+  this->points = DeviceArray<cl_double2>(device, points.size());
+  this->points.upload(device, points);
+  value = DeviceArray<cl_double>(device, values.size());
+  value.upload(device, std::vector<cl_double>(values.begin(), values.end()));
+  triangles = DeviceArray<cl_int>(device, corners.size());
+  triangles.upload(device, corners);
+  cell_start = DeviceArray<cl_int>(device, start.size());
+  cell_start.upload(device, start);
+  cell_entry = DeviceArray<cl_int>(device, entries.size());
+  cell_entry.upload(device, entries);
 }
 
 void SizeBound::fit() {
@@ -115,14 +119,8 @@ void SizeBound::update(const DeviceList<cl_int> *changed) {
   if (n == 0)
     return;
   const cl::Buffer &list = use_list ? changed->items.buffer() : no_list_.buffer();
-  if (field_) {
-    set_args(evaluate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), list,
-             static_cast<cl_int>(use_list), field_points_.buffer(), field_area_.buffer(),
-             field_triangles_.buffer(), cell_start_.buffer(), cell_entry_.buffer(), grid_,
-             static_cast<cl_int>(columns_), static_cast<cl_int>(rows_), bound_.buffer(),
-             static_cast<cl_int>(n));
-    launch(device_, evaluate_, n, kPhase);
-  }
+  for (std::size_t b = 0; b < backgrounds_.size(); ++b)
+    evaluate(backgrounds_[b], list, use_list, n, b > 0);
   if (!unsuitable_)
     return;
   DeviceArray<cl_double2> corners(device_, 3 * n);
@@ -143,8 +141,21 @@ void SizeBound::update(const DeviceList<cl_int> *changed) {
   DeviceArray<cl_double> values(device_, n);
   values.upload(device_, value);
   set_args(scatter_, list, static_cast<cl_int>(use_list), values.buffer(),
-           static_cast<cl_int>(field_ != nullptr), bound_.buffer(), static_cast<cl_int>(n));
+           static_cast<cl_int>(!backgrounds_.empty()), bound_.buffer(), static_cast<cl_int>(n));
   launch(device_, scatter_, n, kPhase);
+}
+
+void SizeBound::evaluate(const Background &background, const cl::Buffer &list, bool use_list,
+                         std::size_t n, bool combine) {
+  set_args(evaluate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), list,
+           static_cast<cl_int>(use_list), background.points.buffer(), background.value.buffer(),
+           static_cast<cl_int>(background.per_triangle), background.triangles.buffer(),
+           background.cell_start.buffer(), background.cell_entry.buffer(), background.grid,
+           static_cast<cl_int>(background.columns), static_cast<cl_int>(background.rows),
+           mesh_.tri_region.buffer(),
+           static_cast<cl_int>(background.per_triangle && mesh_.has_regions),
+           static_cast<cl_int>(combine), bound_.buffer(), static_cast<cl_int>(n));
+  launch(device_, evaluate_, n, kPhase);
 }
 
 } // namespace clmesh

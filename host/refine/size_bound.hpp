@@ -1,6 +1,8 @@
 // clmesh — each triangle slot's own area bound, from a sizing field the
-// device evaluates or a user's callback the host runs (Options::size_field,
-// Options::unsuitable). Kernels: cl/size_bound.cl.
+// device evaluates (Options::size_field), the maximum areas of a refined
+// mesh's triangles (-r's .area file: each bounds the triangles whose
+// centroid it holds), or a user's callback the host runs
+// (Options::unsuitable); the tightest. Kernels: cl/size_bound.cl.
 #pragma once
 
 #include "runtime/device_mesh.hpp"
@@ -13,8 +15,12 @@ class SizeBound {
 public:
   static constexpr const char *kPhase = "size_bound";
 
-  // field, unsuitable: either may be null, not both.
-  SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field, const Unsuitable *unsuitable);
+  // Any of them may be null, not all; `areas`: a mesh with one maximum area
+  // per triangle (<= 0: none), in SizeField's shape. With `areas`, the
+  // mesh's regions (DeviceMesh::tri_region), when it has them, are the
+  // triangles of `areas` its slots descend from: tried first.
+  SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field, const SizeField *areas,
+            const Unsuitable *unsuitable);
 
   // Room for every triangle slot of the mesh (after it grew).
   void fit();
@@ -25,21 +31,29 @@ public:
   const DeviceArray<cl_double> &bounds() const { return bound_; }
 
 private:
-  // The background mesh's grid of cells (see cl/size_bound.cl).
-  void build_grid(const SizeField &field);
+  // A background mesh on the device, with its grid of cells (see
+  // cl/size_bound.cl): values per vertex (interpolated) or per triangle.
+  struct Background {
+    Background(Device &device, const SizeField &mesh, bool per_triangle);
+    bool per_triangle;
+    DeviceArray<cl_double2> points;
+    DeviceArray<cl_double> value;
+    DeviceArray<cl_int> triangles, cell_start, cell_entry;
+    cl_double4 grid{};
+    int columns = 1, rows = 1;
+  };
+  // bound[t] of the listed slots from `background`, the tighter of it and
+  // the bound already there when `combine`.
+  void evaluate(const Background &background, const cl::Buffer &list, bool use_list, std::size_t n,
+                bool combine);
 
   Device &device_;
   DeviceMesh &mesh_;
-  const SizeField *field_;
   const Unsuitable *unsuitable_;
+  std::vector<Background> backgrounds_;
   cl::Kernel evaluate_, gather_, scatter_;
   DeviceArray<cl_double> bound_;
   DeviceArray<cl_int> no_list_; // the list argument when every slot is updated
-  DeviceArray<cl_double2> field_points_;
-  DeviceArray<cl_double> field_area_;
-  DeviceArray<cl_int> field_triangles_, cell_start_, cell_entry_;
-  cl_double4 grid_{};
-  int columns_ = 1, rows_ = 1;
 };
 
 } // namespace clmesh

@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""Refining an existing mesh (-r): clmesh against the native Triangle, side by
+side on the same inputs, in one run (ratios are what to quote: absolute times
+drift on a shared machine).
+
+The input is a Delaunay mesh of N uniform points in the unit square (about
+2N triangles; N = 500000 by default, a mesh of 1M triangles), made once by
+Triangle (-Q, or clmesh when no Triangle binary exists) and cached in
+BUILD/bench/refine-N/, with an .area file that asks for four times the
+density in the lower-left quarter of the domain (a quarter of the mean
+triangle area there, no bound elsewhere). Each case runs each tool in a
+fresh process:
+
+  clmesh    build/clmesh -Q --stats-json F.json -rSWITCHES u.1
+            time = seconds.compute (upload to download: the reconstruction of
+            the mesh and the refinement; file reading and writing excluded)
+  Triangle  triangle-native -VrSWITCHES u.1, time = its report's "Mesh
+            reconstruction" + "Quality" milliseconds (file reading and
+            writing excluded)
+
+Cases: -ra (the .area bounds), -rq30 (quality only), -rq30a (both). Peak
+memory is each process's maximum resident set size (GNU time's %M). CGAL has
+no refinement of a given mesh by per-triangle areas, so it is not run.
+
+Usage: python3 scripts/bench_refine.py [--points 500000] [--build-dir build]
+           [--triangle PATH] [--clmesh PATH] [--repeat K]
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench import ROOT, ToolFailure, run_measured  # noqa: E402
+
+CASES = ("ra", "rq30", "rq30a")
+
+
+def read_rows(path):
+    rows = []
+    with open(path) as f:
+        for line in f:
+            fields = line.split("#", 1)[0].split()
+            if fields:
+                rows.append(fields)
+    return rows
+
+
+def write_area_file(stem):
+    """stem.area: a quarter of the mean triangle area for the triangles whose
+    centroid lies in the lower-left quarter of the bounding box, -1 elsewhere."""
+    nodes = read_rows(stem + ".node")
+    count = int(nodes[0][0])
+    first = int(nodes[1][0])
+    xy = [(float(r[1]), float(r[2])) for r in nodes[1:count + 1]]
+    eles = read_rows(stem + ".ele")
+    triangles = [[int(v) - first for v in r[1:4]] for r in eles[1:int(eles[0][0]) + 1]]
+    xs = [p[0] for p in xy]
+    ys = [p[1] for p in xy]
+    mid_x, mid_y = (min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2
+    total = 0.0
+    centroids = []
+    for a, b, c in triangles:
+        (ax, ay), (bx, by), (cx, cy) = xy[a], xy[b], xy[c]
+        total += abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax)) / 2
+        centroids.append(((ax + bx + cx) / 3, (ay + by + cy) / 3))
+    bound = total / len(triangles) / 4
+    with open(stem + ".area", "w") as f:
+        f.write(f"{len(triangles)}\n")
+        for i, (x, y) in enumerate(centroids):
+            f.write(f"{i + first} {bound!r}\n" if x < mid_x and y < mid_y else f"{i + first} -1\n")
+    return len(triangles)
+
+
+def make_input(directory, points, triangle, clmesh):
+    stem = os.path.join(directory, "u.1")
+    if os.path.exists(stem + ".area"):
+        return stem
+    os.makedirs(directory, exist_ok=True)
+    node = os.path.join(directory, "u.node")
+    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "gen_points.py"), "uniform",
+                    str(points), node], check=True)
+    tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
+    subprocess.run([tool, "-Q", node], check=True)
+    write_area_file(stem)
+    return stem
+
+
+def clean(stem):
+    for path in glob.glob(glob.escape(stem[:-2]) + ".2.*"):
+        os.unlink(path)
+
+
+def run_clmesh(exe, stem, switches, timeout):
+    stats = stem + ".stats.json"
+    try:
+        _, peak, _ = run_measured([exe, "-Q", "--stats-json", stats, "-" + switches, stem], timeout)
+        with open(stats) as f:
+            data = json.load(f)
+        vertices = int(read_rows(stem[:-2] + ".2.node")[0][0])
+    finally:
+        clean(stem)
+    return {"seconds": data["seconds"]["compute"], "vertices": vertices, "peak_mb": peak}
+
+
+def run_triangle(exe, stem, switches, timeout):
+    try:
+        stdout, peak, _ = run_measured([exe, "-V" + switches, stem], timeout)
+    finally:
+        clean(stem)
+    ms = {}
+    vertices = None
+    for line in stdout.splitlines():
+        m = re.match(r"\s*(Mesh reconstruction|Quality) milliseconds:\s*(\d+)", line)
+        if m:
+            ms[m.group(1)] = int(m.group(2))
+        m = re.match(r"\s*Mesh vertices:\s*(\d+)", line)
+        if m:
+            vertices = int(m.group(1))
+    if "Mesh reconstruction" not in ms:
+        raise ToolFailure("no 'Mesh reconstruction milliseconds' in Triangle's report")
+    return {"seconds": sum(ms.values()) / 1000.0, "vertices": vertices, "peak_mb": peak}
+
+
+def best(k, fn, *args):
+    results = [fn(*args) for _ in range(k)]
+    out = min(results, key=lambda r: r["seconds"])
+    out["peak_mb"] = max(r["peak_mb"] for r in results)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--points", type=int, default=500000)
+    ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--clmesh")
+    ap.add_argument("--triangle")
+    ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--timeout", type=float, default=1800)
+    a = ap.parse_args()
+    clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
+    triangle = a.triangle or os.path.join(a.build_dir, "triangle-native")
+    stem = make_input(os.path.join(a.build_dir, "bench", f"refine-{a.points}"), a.points, triangle,
+                      clmesh)
+    triangles = int(read_rows(stem + ".ele")[0][0])
+    print(f"Refining a mesh of {a.points} uniform points, {triangles} triangles ({stem}); "
+          f".area: 4x the density in the lower-left quarter")
+    run_clmesh(clmesh, stem, "rq30a", a.timeout)  # untimed: PoCL builds its kernel variants
+    header = (f"{'case':8} {'clmesh s':>9} {'Triangle s':>10} {'ratio':>6}  {'clmesh V':>9} "
+              f"{'Triangle V':>10} {'ratio':>6}  {'clmesh MB':>9} {'Triangle MB':>11} {'ratio':>6}")
+    print(header)
+    for case in CASES:
+        row = {}
+        for name, fn, exe in (("clmesh", run_clmesh, clmesh), ("triangle", run_triangle, triangle)):
+            try:
+                row[name] = best(a.repeat, fn, exe, stem, case, a.timeout)
+            except ToolFailure as e:
+                print(f"  {name} -{case}: {e}")
+        c, t = row.get("clmesh"), row.get("triangle")
+        if not c or not t:
+            continue
+        print(f"-{case:7} {c['seconds']:9.2f} {t['seconds']:10.2f} {c['seconds'] / t['seconds']:6.2f}"
+              f"  {c['vertices']:9d} {t['vertices']:10d} {c['vertices'] / t['vertices']:6.3f}"
+              f"  {c['peak_mb']:9.0f} {t['peak_mb']:11.0f} {c['peak_mb'] / t['peak_mb']:6.2f}")
+
+
+if __name__ == "__main__":
+    main()

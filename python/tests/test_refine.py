@@ -70,6 +70,19 @@ def _areas(vertices, triangles):
                   - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
 
 
+def _holder(vertices, triangles, points):
+    """For each point, an input triangle holding it (edges included), or -1."""
+    corners = vertices[triangles]  # (T, 3, 2)
+    holder = np.full(len(points), -1)
+    for t, (a, b, c) in enumerate(corners):
+        inside = np.ones(len(points), bool)
+        for p, q in ((a, b), (b, c), (c, a)):
+            inside &= ((q[0] - p[0]) * (points[:, 1] - p[1])
+                       - (q[1] - p[1]) * (points[:, 0] - p[0])) >= 0
+        holder[(holder < 0) & inside] = t
+    return holder
+
+
 def _ring_mesh():
     """A square with a square hole, meshed by clmesh -pq: the mesh to refine."""
     outer = np.array([[0, 0], [4, 0], [4, 4], [0, 4]], float)
@@ -92,12 +105,16 @@ def test_refined_mesh_keeps_domain_attributes_and_bounds():
     assert np.array_equal(out["vertices"][:len(given["vertices"])], given["vertices"])
     assert np.isclose(_areas(out["vertices"], out["triangles"]).sum(), 15.0, rtol=1e-12)
     assert "segments" in out and np.array_equal(out["holes"], [[2, 2]])
-    # Every column inherited from one input triangle, whose bound holds.
+    # Every attribute row is one input triangle's.
     attributes = out["triangle_attributes"]
     assert attributes.shape == (len(out["triangles"]), 2)
     parent = attributes[:, 0].astype(int)
     assert np.array_equal(attributes[:, 1], -2 * parent)
-    bound = given["triangle_max_area"][parent]
+    # The bound of the input triangle holding a triangle's centroid holds.
+    centroids = out["vertices"][out["triangles"]].mean(axis=1)
+    holder = _holder(given["vertices"], given["triangles"], centroids)
+    assert (holder >= 0).all()
+    bound = given["triangle_max_area"][holder]
     areas = _areas(out["vertices"], out["triangles"])
     assert (areas[bound > 0] <= bound[bound > 0] * (1 + 1e-9)).all()
     assert (bound > 0).sum() > (bound < 0).sum()  # the bounded half got the points

@@ -19,8 +19,8 @@ Used by triangle_files.sh; each command prints one line per problem and exits
       vertices come first, with their numbers and coordinates; the domain has
       INPUT's area; each triangle's attributes are those of an INPUT triangle;
       with MAX_AREA no triangle is larger; with INPUT.area, no triangle is
-      larger than the bound of the INPUT triangle that its first attribute
-      names (the test numbers INPUT's triangles in that column).
+      larger than the bound of the INPUT triangle holding its centroid (of one
+      of them, when it lies on their edge).
   boundary BASE  BASE.poly's segments are exactly the boundary edges of
       BASE.ele (-rc without -p).
 """
@@ -289,15 +289,30 @@ def check_refined(base, given, max_area):
     if max_area is not None and largest > max_area * (1 + 1e-9):
         problem(f"{base}: a triangle of area {largest!r} exceeds -a{max_area!r}")
     try:
-        bounds = {int(w[0]): float(w[1]) for w in list(rows(given + ".area"))[1:]}
+        bounds = [float(w[1]) for w in list(rows(given + ".area"))[1:]]
     except FileNotFoundError:
         return
-    for number, (corners, attributes) in enumerate(triangles):
-        bound = bounds[int(attributes[0])]
-        if bound > 0 and triangle_area(nodes, corners) > bound * (1 + 1e-9):
-            problem(f"{base}.ele: triangle {number} of area {triangle_area(nodes, corners)!r} "
-                    f"exceeds the bound {bound!r} of input triangle {int(attributes[0])}")
+    given_corners = [[given_nodes[v][:2] for v in t[:3]] for t, _ in given_triangles]
+    for number, (corners, _) in enumerate(triangles):
+        centroid = tuple(sum(nodes[v][k] for v in corners[:3]) / 3 for k in range(2))
+        holders = [i for i, g in enumerate(given_corners) if holds(g, centroid)]
+        loosest = max((bounds[i] if bounds[i] > 0 else math.inf for i in holders), default=None)
+        if loosest is None:
+            problem(f"{base}.ele: triangle {number}'s centroid lies in no input triangle")
             break
+        if triangle_area(nodes, corners) > loosest * (1 + 1e-9):
+            problem(f"{base}.ele: triangle {number} of area {triangle_area(nodes, corners)!r} "
+                    f"exceeds the bound {loosest!r} of the input triangle holding its centroid")
+            break
+
+
+def holds(corners, point):
+    """Whether the counter-clockwise triangle `corners` holds `point` (its edges included)."""
+    (x, y) = point
+    for (ax, ay), (bx, by) in zip(corners, corners[1:] + corners[:1]):
+        if (bx - ax) * (y - ay) - (by - ay) * (x - ax) < 0:
+            return False
+    return True
 
 
 def check_boundary(base):

@@ -91,7 +91,9 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
   } catch (const InputError &error) {
     // The phases name an item of the input ("point 7") or "input": in the
     // input's file when it came from one, as validate() does.
-    if (input.source.empty())
+    // An error about a triangle to refine names its own file already.
+    if (input.source.empty() ||
+        (!input.triangles_source.empty() && error.file() == input.triangles_source))
       throw;
     const std::string &item = error.file();
     throw InputError(item == "input" ? input.source : input.source + ": " + item, error.line(),

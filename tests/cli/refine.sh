@@ -137,7 +137,7 @@ expect "overlapping triangles" 1 "overlap.ele:3:" "triangle 2" "overlaps triangl
 # one of the triangles.
 cp sq.node crossing.node
 printf '2 3 0\n1 1 2 3\n2 1 5 4\n' > crossing.ele
-expect "overlapping triangles sharing no edge" 1 "crossing.ele:" "overlaps" -- -rq crossing
+expect "overlapping triangles sharing no edge" 1 "clmesh: crossing.ele:2: triangle 1: it overlaps" -- -rq crossing
 expect "missing attribute" 1 "short.ele:3:" "expected 5" -- -r short.ele
 expect "triangle ids out of sequence" 1 "sequence.ele:3:" "out of sequence" -- -r sequence
 expect ".area count differs from the .ele's" 1 "count.area:1:" "3 triangles" "has 4" \

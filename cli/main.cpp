@@ -41,6 +41,7 @@ struct CommandLine {
   std::vector<InputSource> sources; // as given
   bool version = false, list_devices = false;
   std::string stats_json, voronoi_image, svg, vtk;
+  std::string size_field; // --size-field: the background mesh's base name
   Shard shard;
   bool sharded = false;
   // Triangle's switches, the refinement algorithm and the file name, written
@@ -57,7 +58,8 @@ struct CommandLine {
 
 const char *const kLongOptions =
     "--device SPEC, --list-devices, --grid N, --construction voronoi|fan, --work-group N, "
-    "--refine qm|qmv, --stats-json FILE, --voronoi-image FILE.pgm, --svg FILE, --vtk FILE.vtu, "
+    "--refine qm|qmv, --size-field BG, --stats-json FILE, --voronoi-image FILE.pgm, --svg FILE, "
+    "--vtk FILE.vtu, "
     "--batch LIST, --shard K/N, --help, --version";
 
 void print_help() {
@@ -135,8 +137,9 @@ void print_help() {
       "      algorithms are GPU-DT, GPU-CDT and GPU-QM(-V): the mesh is the same\n"
       "      (with -s Triangle would split segments; clmesh recovers them by flips).\n"
       "\n"
-      "Triangle switch refused with an error: -u (a user-defined sizing function: it\n"
-      "needs a library callback, which clmesh does not offer yet).\n"
+      "Triangle switch refused with an error: -u (a sizing function compiled into\n"
+      "Triangle; clmesh takes one from the library, Options::unsuitable, or as a\n"
+      "field, --size-field).\n"
       "\n"
       "Long options (each a separate argument, value after it or after '='):\n"
       "  --device SPEC         OpenCL device: \"P:D\" (platform:device), \"N\" (N-th in\n"
@@ -150,6 +153,11 @@ void print_help() {
       "  --work-group N        Work-group size of every kernel (default 64).\n"
       "  --refine qm|qmv       Refinement algorithm (-q, -a): the thesis's GPU-QM, or\n"
       "                        GPU-QM-V (default: faster, slightly more points).\n"
+      "  --size-field BG       A sizing field: BG.node's first vertex attribute is the\n"
+      "                        largest triangle area wanted at the vertex, interpolated\n"
+      "                        linearly over BG.ele's triangles (beyond them, from the\n"
+      "                        nearest); a triangle whose area exceeds the field at its\n"
+      "                        centroid is refined, with -p, -r, -q, -a or alone.\n"
       "  --stats-json FILE     Write timings and counts as JSON.\n"
       "  --voronoi-image FILE  Write the digital Voronoi diagram as a binary PGM.\n"
       "  --svg FILE            Write an SVG picture of the mesh.\n"
@@ -213,6 +221,11 @@ Shard parse_shard(const std::string &value) {
   return shard;
 }
 
+bool ends_with(const std::string &text, const std::string &suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 // One long option, "--name VALUE" or "--name=VALUE", at argv[i]; returns the
 // index of the last argument it used.
 int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
@@ -255,6 +268,12 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
       throw clmesh::OptionError("--refine takes qm or qmv, not " + clmesh::quote(algorithm));
     tuning.use(algorithm == "qm" ? clmesh::RefineAlgorithm::qm : clmesh::RefineAlgorithm::qmv);
     command.generated_by += " --refine " + algorithm; // it changes the mesh
+  } else if (name == "--size-field") {
+    command.size_field = take_value();
+    for (const char *extension : {".node", ".ele"})
+      if (ends_with(command.size_field, extension))
+        command.size_field.resize(command.size_field.size() - std::strlen(extension));
+    command.generated_by += " --size-field " + command.size_field; // it changes the mesh
   } else if (name == "--stats-json") {
     command.stats_json = take_value();
   } else if (name == "--voronoi-image") {
@@ -280,11 +299,6 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
                               kLongOptions + "; switches: " + clmesh::supported_switches());
   }
   return i;
-}
-
-bool ends_with(const std::string &text, const std::string &suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Triangle's rule: every argument starting with '-' holds switch letters, the
@@ -316,6 +330,10 @@ CommandLine parse(int argc, char **argv) {
         throw clmesh::OptionError(clmesh::quote(*single) +
                                   ": --stats-json, --svg, --vtk and --voronoi-image take a "
                                   "single input, not several, --batch or --shard");
+  // Read once, for every input of the run.
+  if (!command.size_field.empty())
+    command.options.size_field =
+        std::make_shared<const clmesh::SizeField>(clmesh::read_size_field(command.size_field));
   return command;
 }
 

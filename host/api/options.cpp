@@ -19,8 +19,9 @@ const char *const kSupported =
 const char *unsupported_switch(char letter) {
   switch (letter) {
   case 'u':
-    return "a user-defined triangle sizing function: it needs a callback from the library "
-           "(Triangle's triunsuitable()), which clmesh does not offer yet";
+    return "a user-defined triangle sizing function compiled into Triangle "
+           "(triunsuitable()); clmesh takes it from the library (Options::unsuitable) or as "
+           "a sizing field (--size-field)";
   default:
     return nullptr;
   }

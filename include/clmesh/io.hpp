@@ -13,6 +13,7 @@
 #include "clmesh/geometry.hpp"
 #include "clmesh/input.hpp"
 #include "clmesh/mesh.hpp"
+#include "clmesh/size_field.hpp"
 
 #include <array>
 #include <cstdint>
@@ -91,6 +92,13 @@ std::vector<double> read_area(const std::string &path, std::size_t triangle_coun
 // Throws InputError as the readers above do.
 Input read_mesh(const std::string &base, bool pslg, bool areas,
                 std::vector<std::string> *opened = nullptr);
+
+// Reads a sizing field (--size-field): base.node, whose first vertex
+// attribute is the target area at the vertex, and base.ele, its triangles.
+// Throws InputError naming the file and line (no attribute, a target area
+// that is not positive, a triangle not counter-clockwise, no triangle), or
+// those of read_node() and read_ele().
+SizeField read_size_field(const std::string &base);
 
 // What the writers need of the mesh.
 struct MeshView {

@@ -18,6 +18,7 @@ from ._errors import (CheckError, DeviceError, Error, InputError, InternalError,
                       OptionError)
 from ._input import arrays as _arrays
 from ._output import mesh_dict as _mesh_dict
+from ._size_field import size_field as _size_field
 
 __version__ = _clmesh.version
 
@@ -72,11 +73,20 @@ class Result:
         return list(self._run.check())
 
 
-def run(tri, opts="", device=None):
+def _unsuitable(function):
+    if function is not None and not callable(function):
+        raise OptionError("unsuitable: expected a function f(a, b, c, area) -> bool, "
+                          f"got {function!r}")
+    return function
+
+
+def run(tri, opts="", device=None, *, size_field=None, unsuitable=None):
     """triangulate() that also keeps what the run counted: a Result."""
     switches = _switches(opts)
     given = _arrays(tri)
-    core = _clmesh.triangulate(**given, switches=switches, device=_device_spec(device))
+    field = None if size_field is None else _size_field(size_field)
+    core = _clmesh.triangulate(**given, switches=switches, device=_device_spec(device),
+                               size_field=field, unsuitable=_unsuitable(unsuitable))
     result = Result(core, _mesh_dict(core, tri))
     if core.options["check"]:
         problems = result.check()
@@ -85,14 +95,23 @@ def run(tri, opts="", device=None):
     return result
 
 
-def triangulate(tri, opts="", device=None):
+def triangulate(tri, opts="", device=None, *, size_field=None, unsuitable=None):
     """The mesh of `tri` (a dict with vertices, and optionally vertex_markers,
     vertex_attributes, segments, segment_markers, holes, regions; with -r the
     mesh to refine: triangles, triangle_attributes, and with -a alone
     triangle_max_area) with Triangle's switches `opts`, as a dict of NumPy
     arrays as the triangle package returns it. Raises InputError,
-    OptionError, DeviceError."""
-    return run(tri, opts, device).mesh
+    OptionError, DeviceError.
+
+    Size control beyond -a, each refining alone or with -q and -a (a
+    triangle is refined when any bound asks): `size_field`, a background
+    mesh dict with vertices (N, 2), triangles (M, 3, counter-clockwise) and
+    area (N), the largest area wanted at each vertex, interpolated linearly
+    and met at every triangle's centroid; `unsuitable`, a function
+    f(a, b, c, area) -> bool (Triangle's triunsuitable), called with the
+    corners of every triangle refinement creates as (x, y) tuples and its
+    area, true to refine it. What f raises reaches the caller unchanged."""
+    return run(tri, opts, device, size_field=size_field, unsuitable=unsuitable).mesh
 
 
 def delaunay(pts, device=None):

@@ -2,7 +2,9 @@
 // and typed by clmesh/_input.py (this side checks the shapes again, so that no
 // call can read out of bounds); a Run keeps the input, options and mesh of
 // one triangulate() call, run with the GIL released on the process's shared
-// device, and hands its parts out as new NumPy arrays.
+// device, and hands its parts out as new NumPy arrays. A SizeField is a
+// checked sizing field (clmesh/_size_field.py builds it from a dict); an
+// `unsuitable` callable runs with the GIL taken back.
 #include <clmesh/clmesh.hpp>
 
 #include <nanobind/nanobind.h>
@@ -95,6 +97,45 @@ std::vector<clmesh::Point> points_of(const In<double> &xy, const char *name) {
   return points;
 }
 
+// A sizing field from the arrays of clmesh/_size_field.py: points (N, 2),
+// their target areas (N, 1), triangles (M, 3); checked by the library
+// (InputError naming the point or triangle at fault).
+clmesh::SizeField size_field(const In<double> &vertices, const In<double> &area,
+                             const In<int32_t> &triangles) {
+  clmesh::SizeField field;
+  field.points = points_of(vertices, "size_field vertices");
+  require_shape(area, "size_field area", 1, static_cast<long>(field.points.size()));
+  field.area.assign(area.data(), area.data() + area.shape(0));
+  require_shape(triangles, "size_field triangles", 3);
+  field.triangles.resize(triangles.shape(0));
+  for (std::size_t t = 0; t < field.triangles.size(); ++t)
+    field.triangles[t] = {triangles(t, 0), triangles(t, 1), triangles(t, 2)};
+  clmesh::validate(field);
+  return field;
+}
+
+// A Python callable f(a, b, c, area) -> bool as the library's Unsuitable,
+// the corners as (x, y) tuples of floats. The library calls it on the thread
+// that released the GIL to mesh: each call takes the GIL back. What f raises
+// (or the truth test of its answer) leaves as nb::python_error, through the
+// library, and nanobind raises it again unchanged in the caller. `callable`
+// is borrowed: it must outlive the run (it is an argument of triangulate()).
+clmesh::Unsuitable unsuitable_of(nb::handle callable) {
+  return [callable](clmesh::Point a, clmesh::Point b, clmesh::Point c, double area) {
+    nb::gil_scoped_acquire locked;
+    const nb::object answer = callable(nb::make_tuple(a.x, a.y), nb::make_tuple(b.x, b.y),
+                                       nb::make_tuple(c.x, c.y), area);
+    const int truth = PyObject_IsTrue(answer.ptr());
+    if (truth < 0)
+      throw nb::python_error();
+    return truth == 1;
+  };
+}
+
+// True while this thread meshes: an unsuitable function that calls
+// triangulate() again would wait forever for the device its caller holds.
+thread_local bool meshing = false;
+
 // One triangulate() call: what went in, and what came out.
 struct Run {
   clmesh::Input input;
@@ -139,7 +180,11 @@ std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &
                                  const In<double> &regions, const In<int32_t> &triangles,
                                  bool has_triangles, const In<double> &triangle_attributes,
                                  const In<double> &triangle_max_area, bool has_triangle_max_area,
-                                 const std::string &switches, const std::string &device) {
+                                 const std::string &switches, const std::string &device,
+                                 const clmesh::SizeField *field, nb::handle unsuitable) {
+  if (meshing)
+    throw clmesh::Error("triangulate() called from an unsuitable function: the device is "
+                        "meshing for its caller, one call at a time");
   auto run = std::make_unique<Run>();
   clmesh::Input &input = run->input;
   input.points = points_of(vertices, "vertices");
@@ -171,10 +216,19 @@ std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &
   run->options.device = device;
   take_mesh(input, run->options, triangles, has_triangles, triangle_attributes, triangle_max_area,
             has_triangle_max_area);
+  if (field)
+    run->options.size_field = std::make_shared<const clmesh::SizeField>(*field);
+  if (!unsuitable.is_none())
+    run->options.unsuitable = unsuitable_of(unsuitable);
   {
+    struct Meshing {
+      Meshing() { meshing = true; }
+      ~Meshing() { meshing = false; }
+    } on_this_thread;
     nb::gil_scoped_release unlocked;
     run->mesh = clmesh::triangulate(run->input, run->options);
   }
+  run->options.unsuitable = nullptr; // it borrows `unsuitable`, which the Run does not keep
   return run;
 }
 
@@ -278,6 +332,10 @@ NB_MODULE(_clmesh, m) {
   nb::register_exception_translator(translate_error);
   m.attr("version") = CLMESH_VERSION_STRING;
 
+  nb::class_<clmesh::SizeField>(m, "SizeField",
+                                "A checked sizing field (clmesh.triangulate's size_field).");
+  m.def("size_field", &size_field, nb::arg("vertices"), nb::arg("area"), nb::arg("triangles"));
+
   nb::class_<Run>(m, "Run")
       .def_prop_ro("options", [](const Run &r) { return options_dict(r.options); })
       .def("points", [](const Run &r) { return xy_rows(r.mesh.points); })
@@ -361,7 +419,8 @@ NB_MODULE(_clmesh, m) {
         nb::arg("vertex_attributes"), nb::arg("segments"), nb::arg("segment_markers"),
         nb::arg("holes"), nb::arg("regions"), nb::arg("triangles"), nb::arg("has_triangles"),
         nb::arg("triangle_attributes"), nb::arg("triangle_max_area"),
-        nb::arg("has_triangle_max_area"), nb::arg("switches"), nb::arg("device"));
+        nb::arg("has_triangle_max_area"), nb::arg("switches"), nb::arg("device"),
+        nb::arg("size_field").none() = nb::none(), nb::arg("unsuitable").none() = nb::none());
   m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
   m.def("devices", &devices);
   m.def(

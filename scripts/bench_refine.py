@@ -23,7 +23,10 @@ memory is each process's maximum resident set size (GNU time's %M). CGAL has
 no refinement of a given mesh by per-triangle areas, so it is not run.
 
 Usage: python3 scripts/bench_refine.py [--points 500000] [--build-dir build]
-           [--triangle PATH] [--clmesh PATH] [--repeat K]
+           [--triangle PATH] [--clmesh PATH] [--repeat K] [--markdown FILE.md]
+
+--markdown FILE also writes the table as the refining section of FILE (the
+other sections, written by scripts/bench.py, are kept).
 """
 import argparse
 import glob
@@ -34,7 +37,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench import ROOT, ToolFailure, run_measured  # noqa: E402
+from bench import ROOT, ToolFailure, machine_line, run_measured, write_markdown  # noqa: E402
 
 CASES = ("ra", "rq30", "rq30a")
 
@@ -103,7 +106,8 @@ def run_clmesh(exe, stem, switches, timeout):
         vertices = int(read_rows(stem[:-2] + ".2.node")[0][0])
     finally:
         clean(stem)
-    return {"seconds": data["seconds"]["compute"], "vertices": vertices, "peak_mb": peak}
+    return {"seconds": data["seconds"]["compute"], "vertices": vertices, "peak_mb": peak,
+            "device": data.get("device")}
 
 
 def run_triangle(exe, stem, switches, timeout):
@@ -140,6 +144,7 @@ def main():
     ap.add_argument("--triangle")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--timeout", type=float, default=1800)
+    ap.add_argument("--markdown", metavar="FILE")
     a = ap.parse_args()
     clmesh = a.clmesh or os.path.join(a.build_dir, "clmesh")
     triangle = a.triangle or os.path.join(a.build_dir, "triangle-native")
@@ -148,10 +153,11 @@ def main():
     triangles = int(read_rows(stem + ".ele")[0][0])
     print(f"Refining a mesh of {a.points} uniform points, {triangles} triangles ({stem}); "
           f".area: 4x the density in the lower-left quarter")
-    run_clmesh(clmesh, stem, "rq30a", a.timeout)  # untimed: PoCL builds its kernel variants
-    header = (f"{'case':8} {'clmesh s':>9} {'Triangle s':>10} {'ratio':>6}  {'clmesh V':>9} "
-              f"{'Triangle V':>10} {'ratio':>6}  {'clmesh MB':>9} {'Triangle MB':>11} {'ratio':>6}")
-    print(header)
+    warm = run_clmesh(clmesh, stem, "rq30a", a.timeout)  # untimed: PoCL builds its kernel variants
+    columns = ["case", "clmesh s", "Triangle s", "time ratio", "clmesh vertices",
+               "Triangle vertices", "vertex ratio", "clmesh MB", "Triangle MB", "memory ratio"]
+    print("  ".join(f"{c:>12}" for c in columns))
+    table = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     for case in CASES:
         row = {}
         for name, fn, exe in (("clmesh", run_clmesh, clmesh), ("triangle", run_triangle, triangle)):
@@ -162,9 +168,29 @@ def main():
         c, t = row.get("clmesh"), row.get("triangle")
         if not c or not t:
             continue
-        print(f"-{case:7} {c['seconds']:9.2f} {t['seconds']:10.2f} {c['seconds'] / t['seconds']:6.2f}"
-              f"  {c['vertices']:9d} {t['vertices']:10d} {c['vertices'] / t['vertices']:6.3f}"
-              f"  {c['peak_mb']:9.0f} {t['peak_mb']:11.0f} {c['peak_mb'] / t['peak_mb']:6.2f}")
+        cells = [f"-{case}", f"{c['seconds']:.2f}", f"{t['seconds']:.2f}",
+                 f"{c['seconds'] / t['seconds']:.2f}", str(c["vertices"]), str(t["vertices"]),
+                 f"{c['vertices'] / t['vertices']:.3f}", f"{c['peak_mb']:.0f}",
+                 f"{t['peak_mb']:.0f}", f"{c['peak_mb'] / t['peak_mb']:.2f}"]
+        print("  ".join(f"{cell:>12}" for cell in cells))
+        table.append("| " + " | ".join(cells) + " |")
+    if a.markdown:
+        notes = [machine_line(warm.get("device")),
+                 f"Input: a Delaunay mesh of {a.points} uniform points in the unit square "
+                 f"({triangles} triangles, made by Triangle -Q), and an .area file asking for a "
+                 "quarter of the mean triangle area in the lower-left quarter of the domain "
+                 "(four times the density), no bound elsewhere.",
+                 "clmesh: build/clmesh -Q --stats-json -rSWITCHES u.1, time = seconds.compute "
+                 "(the mesh's reconstruction and its refinement; no file reading or writing); "
+                 "an untimed run comes first.  Triangle: the native binary (-O3 -march=native, "
+                 "build-triangle.sh) with -VrSWITCHES, time = its Mesh reconstruction + Quality "
+                 "milliseconds.  CGAL has no refinement of a given mesh by per-triangle areas.",
+                 f"Best of {a.repeat} run(s); ratios are clmesh / Triangle.  Peak MB: each "
+                 "process's maximum resident set.  With .area bounds clmesh bounds every "
+                 "triangle by the given triangle that holds its centroid; Triangle by descent, "
+                 "which leaves some triangles above their region's bound."]
+        write_markdown(a.markdown, "refine", "Refining a mesh (-r)", table, notes,
+                       warm.get("device"))
 
 
 if __name__ == "__main__":

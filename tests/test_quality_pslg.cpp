@@ -16,7 +16,6 @@ using clmesh::Segment;
 using test_support::area;
 using test_support::device;
 using test_support::problems;
-using test_support::smallest_angle_degrees;
 
 namespace {
 
@@ -100,15 +99,7 @@ clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switch
   CHECK(std::fabs(static_cast<double>(total_area(mesh) - domain)) <=
         1e-9 * static_cast<double>(domain));
   CHECK(segments_are_chains(cdt, mesh));
-  long below = 0;
-  double largest = 0;
-  for (const auto &t : mesh.triangles) {
-    below += options.quality && smallest_angle_degrees(mesh.points, t) < options.min_angle - 1e-6;
-    largest = std::max(largest, area(mesh.points, t));
-  }
-  CHECK(below <= mesh.statistics.refinement.remaining_bad);
-  if (options.max_area)
-    CHECK(largest <= *options.max_area * (1 + 1e-9));
+  test_support::check_refined_bounds(mesh, options);
   return mesh;
 }
 

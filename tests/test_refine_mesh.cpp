@@ -20,7 +20,6 @@ using clmesh::Segment;
 using test_support::area;
 using test_support::device;
 using test_support::problems;
-using test_support::smallest_angle_degrees;
 
 namespace {
 
@@ -92,15 +91,7 @@ clmesh::Mesh refine_checked(const clmesh::Input &given, const std::string &switc
         1e-9 * static_cast<double>(domain));
   if (options.pslg)
     CHECK(segments_kept(given, mesh));
-  long below = 0;
-  double largest = 0;
-  for (const auto &t : mesh.triangles) {
-    below += options.quality && smallest_angle_degrees(mesh.points, t) < options.min_angle - 1e-6;
-    largest = std::max(largest, area(mesh.points, t));
-  }
-  CHECK(below <= mesh.statistics.refinement.remaining_bad);
-  if (options.max_area)
-    CHECK(largest <= *options.max_area * (1 + 1e-9));
+  test_support::check_refined_bounds(mesh, options);
   return mesh;
 }
 

@@ -82,4 +82,19 @@ inline double area(const std::vector<clmesh::Point> &p, const clmesh::Triangle &
   return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
 }
 
+// A refined mesh's bounds: no angle below -q's beyond the triangles the
+// refinement reports it could not mend (remaining_bad), no triangle larger
+// than -a's bound.
+inline void check_refined_bounds(const clmesh::Mesh &mesh, const clmesh::Options &options) {
+  long below = 0;
+  double largest = 0;
+  for (const auto &t : mesh.triangles) {
+    below += options.quality && smallest_angle_degrees(mesh.points, t) < options.min_angle - 1e-6;
+    largest = std::max(largest, area(mesh.points, t));
+  }
+  CHECK(below <= mesh.statistics.refinement.remaining_bad);
+  if (options.max_area)
+    CHECK(largest <= *options.max_area * (1 + 1e-9));
+}
+
 } // namespace test_support

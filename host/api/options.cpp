@@ -20,8 +20,8 @@ const char *unsupported_switch(char letter) {
   switch (letter) {
   case 'u':
     return "a user-defined triangle sizing function compiled into Triangle "
-           "(triunsuitable()); clmesh takes it from the library (Options::unsuitable) or as "
-           "a sizing field (--size-field)";
+           "(triunsuitable()); clmesh takes it as a library callback (Options::unsuitable) or "
+           "as a sizing field (--size-field)";
   default:
     return nullptr;
   }

@@ -1,0 +1,175 @@
+#!/usr/bin/env python3
+"""Batches of small meshes: one clmesh process against the native Triangle run
+once per file (as shell batch jobs do) and a loop over the Python `triangle`
+package, side by side on the same inputs in one run (quote the ratios:
+absolute times drift on a shared machine).
+
+Two batches, each of --count files (default 2000), generated once and cached
+in BUILD/bench/batch-*/:
+  points  uniform point sets of --points points (default 2000), Delaunay
+          triangulation (no switches)
+  pslgs   coastlines of about --vertices vertices (default 500; an outline and
+          small islands as holes, scripts/gen_pslg.py coast), -pq30
+
+Timed, as wall time from start to exit of everything the batch needs:
+  clmesh --batch   build/clmesh -Q SWITCHES --batch LIST: one process, the
+                   device, context and kernels set up once
+  Triangle x N     the native binary (build-triangle.sh), one process per
+                   file, started one after the other
+  Python loop      in one Python process: triangle.triangulate(dict, SWITCHES)
+                   for every file, with the reading of each file (numpy) and
+                   no writing; only when numpy and triangle import
+
+Also reported: the wall time of one small clmesh run (1000 points) from
+process start to exit, with its parts from --stats-json (reading, compute,
+writing) and what remains (process start, OpenCL set-up, built kernels).
+
+Usage: python3 scripts/bench_batch.py [--count 2000] [--points 2000]
+           [--vertices 500] [--build-dir build] [--triangle PATH] [--clmesh PATH]
+           [--python PATH]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench import ROOT  # noqa: E402
+
+PYTHON_LOOP = r"""
+import sys, time
+import numpy as np
+import triangle
+
+def rows(path):
+    out = []
+    for line in open(path):
+        fields = line.split('#', 1)[0].split()
+        if fields:
+            out.append(fields)
+    return out
+
+def read(path):
+    r = rows(path)
+    n = int(r[0][0])
+    first = int(r[1][0]) if n else 0
+    tri = {'vertices': np.array([[float(x[1]), float(x[2])] for x in r[1:n + 1]])}
+    if path.endswith('.poly'):
+        m = int(r[n + 1][0])
+        tri['segments'] = np.array([[int(x[1]) - first, int(x[2]) - first]
+                                    for x in r[n + 2:n + 2 + m]])
+        h = int(r[n + 2 + m][0])
+        if h:
+            tri['holes'] = np.array([[float(x[1]), float(x[2])]
+                                     for x in r[n + 3 + m:n + 3 + m + h]])
+    return tri
+
+switches, paths = sys.argv[1], sys.argv[2:]
+start = time.perf_counter()
+for path in paths:
+    triangle.triangulate(read(path), switches)
+print(time.perf_counter() - start)
+"""
+
+
+def generate(directory, kind, count, size):
+    os.makedirs(directory, exist_ok=True)
+    paths = []
+    for i in range(count):
+        ext = ".node" if kind == "points" else ".poly"
+        path = os.path.join(directory, f"in{i:05d}{ext}")
+        if not os.path.exists(path):
+            if kind == "points":
+                cmd = ["gen_points.py", "uniform", str(size), path, "--seed", str(i + 1)]
+            else:
+                cmd = ["gen_pslg.py", "coast", str(size), path, "--seed", str(i + 1)]
+            subprocess.run([sys.executable, os.path.join(ROOT, "scripts", cmd[0])] + cmd[1:],
+                           check=True, stdout=subprocess.DEVNULL)
+        paths.append(path)
+    return paths
+
+
+def clean(directory):
+    for name in os.listdir(directory):
+        if ".1." in name:
+            os.unlink(os.path.join(directory, name))
+
+
+def wall(cmd, **kwargs):
+    start = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, **kwargs)
+    return time.perf_counter() - start
+
+
+def python_loop(python, switches, paths):
+    probe = subprocess.run([python, "-c", "import numpy, triangle"], capture_output=True)
+    if probe.returncode:
+        return None
+    out = subprocess.run([python, "-c", PYTHON_LOOP, switches] + paths, check=True,
+                         capture_output=True, text=True)
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--count", type=int, default=2000)
+    ap.add_argument("--points", type=int, default=2000)
+    ap.add_argument("--vertices", type=int, default=500)
+    ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--clmesh")
+    ap.add_argument("--triangle")
+    ap.add_argument("--python", help="a Python with numpy and triangle (default: "
+                    "BUILD/venv/bin/python when it exists, else this one)")
+    a = ap.parse_args()
+    venv = os.path.join(a.build_dir, "venv", "bin", "python")
+    python = a.python or (venv if os.access(venv, os.X_OK) else sys.executable)
+    clmesh = os.path.abspath(a.clmesh or os.path.join(a.build_dir, "clmesh"))
+    triangle = os.path.abspath(a.triangle or os.path.join(a.build_dir, "triangle-native"))
+    bench = os.path.join(a.build_dir, "bench")
+    print(f"{'batch':8} {'files':>6} {'switches':>9} {'clmesh --batch s':>17} "
+          f"{'Triangle x N s':>15} {'ratio':>6} {'Python loop s':>14} {'ratio':>6}")
+    for kind, size, switches in (("points", a.points, ""), ("pslgs", a.vertices, "pq30")):
+        directory = os.path.join(bench, f"batch-{kind}-{a.count}x{size}")
+        paths = generate(directory, kind, a.count, size)
+        listing = os.path.join(directory, "list.txt")
+        with open(listing, "w") as f:
+            f.write("\n".join(os.path.basename(p) for p in paths) + "\n")
+        clean(directory)
+        ours = wall([clmesh, "-Q" + switches, "--batch", "list.txt"], cwd=directory)
+        clean(directory)
+        start = time.perf_counter()
+        for p in paths:
+            subprocess.run([triangle, "-Q" + switches, os.path.basename(p)], check=True,
+                           cwd=directory, stdout=subprocess.DEVNULL)
+        theirs = time.perf_counter() - start
+        clean(directory)
+        loop = python_loop(python, switches, paths)
+        loop_text = f"{loop:14.2f} {ours / loop:6.2f}" if loop else f"{'n/a':>14} {'':>6}"
+        print(f"{kind:8} {a.count:6d} {'-' + switches if switches else '(none)':>9} {ours:17.2f} "
+              f"{theirs:15.2f} {ours / theirs:6.2f} {loop_text}")
+
+    # One small run, start to exit, and where its time goes.
+    one = os.path.join(bench, "batch-single")
+    node = generate(one, "points", 1, 1000)[0]
+    clean(one)
+    stats = os.path.join(one, "stats.json")
+    wall([clmesh, "-Q", "--stats-json", stats, node])  # untimed: the kernel cache
+    clean(one)
+    total = wall([clmesh, "-Q", "--stats-json", stats, node])
+    clean(one)
+    with open(stats) as f:
+        data = json.load(f)
+    seconds = data["seconds"]
+    parts = {k: seconds.get(k, 0.0) for k in ("read", "compute", "write")}
+    rest = total - sum(parts.values())
+    print(f"\nOne run of 1000 points: {total * 1000:.1f} ms from start to exit: read "
+          f"{parts['read'] * 1000:.1f} ms, compute (upload to download) "
+          f"{parts['compute'] * 1000:.1f} ms, write {parts['write'] * 1000:.1f} ms; the rest "
+          f"(process start, the OpenCL platform and device, loading the built kernels) "
+          f"{rest * 1000:.1f} ms")
+
+
+if __name__ == "__main__":
+    main()

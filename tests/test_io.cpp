@@ -59,28 +59,32 @@ std::string read_file(const std::string &path) {
   return text.str();
 }
 
-// read_node on `text` must fail on `line` with a message containing `words`.
-void expect_input_error(const std::string &text, long line, const std::string &words) {
-  TempDir dir;
-  const std::string path = dir.file("bad.node");
-  write_file(path, text);
-  CAPTURE(text);
+// `call` must throw an InputError naming `path` and `line`, with `words` in its message.
+template <typename Call>
+void expect_file_error(Call call, const std::string &path, long line, const std::string &words) {
   bool thrown = false;
   try {
-    read_node(path);
+    call();
   } catch (const InputError &error) {
     thrown = true;
     const std::string message = error.what();
     CAPTURE(message);
     CHECK(error.file() == path);
     CHECK(error.line() == line);
-    CHECK(message.find(path) == 0);
-    if (line > 0)
-      CHECK(message.find(":" + std::to_string(line) + ": ") != std::string::npos);
+    CHECK(message.find(path + (line > 0 ? ":" + std::to_string(line) + ": " : ": ")) == 0);
     CHECK(message.find(words) != std::string::npos);
     CHECK(message.find('\n') == std::string::npos);
   }
   CHECK(thrown);
+}
+
+// read_node on `text` must fail on `line` with a message containing `words`.
+void expect_input_error(const std::string &text, long line, const std::string &words) {
+  TempDir dir;
+  const std::string path = dir.file("bad.node");
+  write_file(path, text);
+  CAPTURE(text);
+  expect_file_error([&] { read_node(path); }, path, line, words);
 }
 
 PointSet read_text(const std::string &text) {
@@ -649,25 +653,6 @@ TEST_CASE("read_poly errors name the file and the line") {
 // ---------------------------------------------------------------------------
 // Meshes to refine (-r): .ele and .area files
 // ---------------------------------------------------------------------------
-
-// `call` must throw an InputError naming `path` and `line`, with `words` in its message.
-template <typename Call>
-void expect_file_error(Call call, const std::string &path, long line, const std::string &words) {
-  bool thrown = false;
-  try {
-    call();
-  } catch (const InputError &error) {
-    thrown = true;
-    const std::string message = error.what();
-    CAPTURE(message);
-    CHECK(error.file() == path);
-    CHECK(error.line() == line);
-    CHECK(message.find(path + (line > 0 ? ":" + std::to_string(line) + ": " : ": ")) == 0);
-    CHECK(message.find(words) != std::string::npos);
-    CHECK(message.find('\n') == std::string::npos);
-  }
-  CHECK(thrown);
-}
 
 TEST_CASE("read_ele reads Triangle's meshes: corners, six nodes, attributes, numbering") {
   const fs::path inputs = kExamples / "inputs";

@@ -6,6 +6,13 @@ test; needs clmesh, numpy and triangle installed (bash scripts/test-python.sh
 puts them in build/venv).
 
     build/venv/bin/python scripts/bench_python.py --calls 1000 --points 1000 --large 1000000
+    build/venv/bin/python scripts/bench_python.py --many 2000 --points 2000 --pslg 500
+
+--many N times batches instead: clmesh.triangulate_many on N point sets of
+--points uniform random points (with --switches), then on N coastline PSLGs
+of --pslg vertices (scripts/gen_pslg.py's coast, seeds 1 to N; -pq30),
+against a Python loop of clmesh.triangulate and a loop of
+triangle.triangulate on the same inputs (each after one warm-up call).
 
 Per small call, clmesh's time is split into its parts: the Python layer
 (clmesh/_input.py checking and converting the dict, clmesh/_output.py
@@ -44,7 +51,8 @@ def clmesh_parts(inputs, switches):
         t0 = time.perf_counter()
         given = arrays(tri)
         t1 = time.perf_counter()
-        run = _clmesh.triangulate(**given, switches=switches, device="")
+        run = _clmesh.triangulate(_clmesh.input(**given, switches=switches),
+                                  switches=switches, device="")
         t2 = time.perf_counter()
         mesh_dict(run, tri)
         t3 = time.perf_counter()
@@ -61,6 +69,52 @@ def one_call(triangulate, tri, switches):
     return time.perf_counter() - start, len(mesh["triangles"])
 
 
+def coast_pslgs(count, vertices):
+    """`count` coastline PSLGs of about `vertices` vertices (gen_pslg.py's
+    coast with seeds 1 to count) as the triangle package's dicts."""
+    import pathlib
+    import random
+    import sys
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    from gen_pslg import coast
+
+    pslgs = []
+    for seed in range(1, count + 1):
+        points, segments, holes = coast(vertices, random.Random(seed))
+        pslg = {"vertices": np.array(points), "segments": np.array(segments, dtype=np.int32)}
+        if holes:
+            pslg["holes"] = np.array(holes)
+        pslgs.append(pslg)
+    return pslgs
+
+
+def many(inputs, switches, what):
+    """clmesh.triangulate_many against loops of clmesh.triangulate and
+    triangle.triangulate on `inputs`."""
+    import clmesh
+    import triangle
+
+    def timed(mesh_all):
+        start = time.perf_counter()
+        meshes = mesh_all()
+        return time.perf_counter() - start, sum(len(m["triangles"]) for m in meshes)
+
+    for warm_up in (clmesh.triangulate, triangle.triangulate):
+        warm_up(inputs[0], switches)
+    batch, triangles = timed(lambda: clmesh.triangulate_many(inputs, switches))
+    loop, loop_triangles = timed(lambda: [clmesh.triangulate(tri, switches) for tri in inputs])
+    theirs, their_triangles = timed(lambda: [triangle.triangulate(tri, switches)
+                                             for tri in inputs])
+    assert triangles == loop_triangles, "the batch and the loop differ"
+    n = len(inputs)
+    print(f"{n} {what}, switches {switches!r}: {triangles} triangles "
+          f"(Triangle {their_triangles})")
+    for name, seconds in (("clmesh.triangulate_many", batch), ("loop of clmesh.triangulate", loop),
+                          ("loop of triangle.triangulate", theirs)):
+        print(f"{name:29}{seconds:8.3f} s ({seconds / n * 1e3:.3f} ms per input)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--calls", type=int, default=1000)
@@ -68,12 +122,24 @@ def main():
     parser.add_argument("--large", type=int, default=1000000,
                         help="points of the single large call (0: none)")
     parser.add_argument("--switches", default="", help="Triangle's switches, e.g. q30")
+    parser.add_argument("--many", type=int, default=0,
+                        help="time batches of this many inputs instead (triangulate_many)")
+    parser.add_argument("--pslg", type=int, default=500,
+                        help="with --many: vertices of each coastline PSLG (0: none)")
     args = parser.parse_args()
 
     import clmesh
     import triangle
 
     rng = np.random.default_rng(1)
+    if args.many:
+        print(f"device {clmesh.run({'vertices': rng.random((3, 2))}).statistics()['device']}")
+        many([{"vertices": rng.random((args.points, 2))} for _ in range(args.many)],
+             args.switches, f"point sets of {args.points} points")
+        if args.pslg:
+            many(coast_pslgs(args.many, args.pslg), "pq30",
+                 f"coastline PSLGs of {args.pslg} vertices")
+        return
     inputs = [{"vertices": rng.random((args.points, 2))} for _ in range(args.calls)]
     parts = clmesh_parts(inputs, args.switches)
     ours = parts["python_input"] + parts["compiled"] + parts["python_output"]

@@ -1,8 +1,9 @@
 // triangulate_many(): many inputs on one device give, input by input, the
 // meshes of separate triangulate() calls, and a bad input its own error while
-// the others are meshed.
+// the others are meshed; without a device, on the shared one.
 #include <doctest/doctest.h>
 
+#include "api/shared_device.hpp"
 #include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
 #include "test_support.hpp"
@@ -161,4 +162,54 @@ TEST_CASE("batch: invalid options are the whole batch's error, thrown before mes
   CHECK_THROWS_AS(
       clmesh::triangulate_many(device(), {points_input(fixtures::uniform(10, 1))}, "qx"),
       clmesh::OptionError);
+}
+
+TEST_CASE("batch: without a device, on the shared device of triangulate(input, options)") {
+  clmesh::Input not_finite = points_input(fixtures::uniform(30, 4));
+  not_finite.points[3].y = std::numeric_limits<double>::infinity();
+  const std::vector<clmesh::Input> inputs = {points_input(fixtures::uniform(300, 8)), not_finite,
+                                             square_with_hole()};
+  clmesh::Options options = clmesh::parse_switches("q30e");
+  const std::vector<clmesh::BatchResult> results = clmesh::triangulate_many(inputs, options);
+  REQUIRE(results.size() == 3);
+  for (std::size_t i : {0, 2}) {
+    CAPTURE(i);
+    REQUIRE(results[i].ok());
+    const clmesh::Mesh alone = clmesh::triangulate(inputs[i], options);
+    check_same_mesh(results[i].mesh, alone);
+    CHECK(same_edges(results[i].mesh.edges, alone.edges));
+  }
+  CHECK(!input_error(results[1]).empty());
+
+  // The streaming form holds that device from the first input to the last.
+  const std::shared_ptr<clmesh::SharedDevice> shared = clmesh::shared_device(options.device);
+  std::vector<bool> free_while_meshing;
+  clmesh::triangulate_many(
+      2, [&](std::size_t i) { return inputs[2 * i]; }, options, // the two good ones
+      [&](std::size_t, clmesh::BatchResult &&result) {
+        CHECK(result.ok());
+        const bool free = shared->busy.try_lock();
+        if (free)
+          shared->busy.unlock();
+        free_while_meshing.push_back(free);
+      });
+  CHECK(free_while_meshing == std::vector<bool>{false, false});
+  REQUIRE(shared->busy.try_lock());
+  shared->busy.unlock();
+
+  std::size_t asked = 0;
+  const auto count_asked = [&](std::size_t i) {
+    ++asked;
+    return inputs[i];
+  };
+  options.device = "no such device anywhere";
+  CHECK_THROWS_AS(
+      clmesh::triangulate_many(1, count_asked, options, [](std::size_t, clmesh::BatchResult &&) {}),
+      clmesh::DeviceError);
+  options = clmesh::parse_switches("a");
+  CHECK_THROWS_AS(clmesh::triangulate_many(inputs, options), clmesh::OptionError);
+  CHECK_THROWS_AS(
+      clmesh::triangulate_many(1, count_asked, options, [](std::size_t, clmesh::BatchResult &&) {}),
+      clmesh::OptionError);
+  CHECK(asked == 0);
 }

@@ -3,6 +3,7 @@
 // comes back as one Mesh with every point, marker and attribute in place.
 #include "clmesh/triangulate.hpp"
 
+#include "api/shared_device.hpp"
 #include "api/triangle_error.hpp"
 #include "cdt/constrained.hpp"
 #include "clmesh/errors.hpp"
@@ -13,7 +14,6 @@
 #include "refine/refine.hpp"
 
 #include <algorithm>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <utility>
@@ -206,32 +206,7 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 }
 
 Mesh triangulate(const Input &input, const Options &options) {
-  // One device per process: its context and built programs serve every later
-  // call, one call at a time, whichever spec names it.
-  struct Shared {
-    std::shared_ptr<Device> device;
-    std::mutex busy;
-  };
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<Shared>> by_spec;
-  static std::map<std::pair<int, int>, std::shared_ptr<Shared>> by_device;
-  std::shared_ptr<Shared> shared;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    std::shared_ptr<Shared> &slot = by_spec[options.device];
-    if (!slot) {
-      const DeviceDescription found = find_device(options.device);
-      std::shared_ptr<Shared> &device = by_device[{found.platform_index, found.device_index}];
-      if (!device) {
-        auto opened = std::make_shared<Shared>();
-        opened->device = open_device(std::to_string(found.platform_index) + ":" +
-                                     std::to_string(found.device_index));
-        device = opened;
-      }
-      slot = device;
-    }
-    shared = slot;
-  }
+  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
   std::lock_guard<std::mutex> lock(shared->busy);
   return triangulate(*shared->device, input, options);
 }

@@ -1,8 +1,11 @@
 // clmesh — many inputs, one device: triangulate() on each, every input's
 // error kept in its own result instead of ending the batch.
+#include "api/shared_device.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/triangulate.hpp"
 
+#include <memory>
+#include <mutex>
 #include <utility>
 
 namespace clmesh {
@@ -47,6 +50,23 @@ std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Inpu
 std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Input> &inputs,
                                           const std::string &switches) {
   return triangulate_many(device, inputs, parse_switches(switches));
+}
+
+void triangulate_many(std::size_t count, const std::function<Input(std::size_t)> &input,
+                      const Options &options,
+                      const std::function<void(std::size_t, BatchResult &&)> &done) {
+  validate(options);
+  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
+  std::lock_guard<std::mutex> lock(shared->busy);
+  triangulate_many(*shared->device, count, input, options, done);
+}
+
+std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs,
+                                          const Options &options) {
+  validate(options);
+  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
+  std::lock_guard<std::mutex> lock(shared->busy);
+  return triangulate_many(*shared->device, inputs, options);
 }
 
 } // namespace clmesh

@@ -54,5 +54,13 @@ std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Inpu
 void triangulate_many(Device &device, std::size_t count,
                       const std::function<Input(std::size_t)> &input, const Options &options,
                       const std::function<void(std::size_t, BatchResult &&)> &done);
+// Both forms on the device options.device names, the one triangulate(input,
+// options) shares: set up once per process, and held for the whole batch
+// (calls from other threads wait for its end). Throw OptionError, then
+// DeviceError when no device matches, before meshing anything.
+std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs, const Options &options);
+void triangulate_many(std::size_t count, const std::function<Input(std::size_t)> &input,
+                      const Options &options,
+                      const std::function<void(std::size_t, BatchResult &&)> &done);
 
 } // namespace clmesh

@@ -4,11 +4,13 @@ A drop-in for the triangle package (``import clmesh as triangle``)::
 
     import clmesh
     mesh = clmesh.triangulate(dict(vertices=points, segments=segments), "pq30")
+    meshes = clmesh.triangulate_many([tri_a, tri_b, tri_c], "pq30")
 
 Dictionaries, keys, dtypes and zero-based indices are the triangle
 package's; the switches are Triangle's letters as the clmesh command line
 takes them (``z`` is implied, as there). Meshing runs with the GIL released, on one
-OpenCL context per process and device whose built kernels serve every call.
+OpenCL context per process and device whose built kernels serve every call
+(and every input of a batch).
 """
 
 import json
@@ -23,7 +25,7 @@ from ._size_field import size_field as _size_field
 __version__ = _clmesh.version
 
 __all__ = [
-    "triangulate", "delaunay", "convex_hull", "voronoi", "run", "Result", "devices",
+    "triangulate", "triangulate_many", "delaunay", "convex_hull", "voronoi", "run", "Result", "devices",
     "statistics", "quality_statistics", "check_mesh", "Error", "InputError", "OptionError",
     "DeviceError", "OpenCLError", "InternalError", "CheckError",
 ]
@@ -80,19 +82,30 @@ def _unsuitable(function):
     return function
 
 
-def run(tri, opts="", device=None, *, size_field=None, unsuitable=None):
-    """triangulate() that also keeps what the run counted: a Result."""
-    switches = _switches(opts)
-    given = _arrays(tri)
-    field = None if size_field is None else _size_field(size_field)
-    core = _clmesh.triangulate(**given, switches=switches, device=_device_spec(device),
-                               size_field=field, unsuitable=_unsuitable(unsuitable))
+def _input(tri, switches):
+    """The compiled Input of a triangle-style dict."""
+    return _clmesh.input(**_arrays(tri), switches=switches)
+
+
+def _result(core, tri):
+    """The Result of a compiled Run of the dict `tri`; with -C, CheckError
+    when the exact check fails."""
     result = Result(core, _mesh_dict(core, tri))
     if core.options["check"]:
         problems = result.check()
         if problems:
             raise CheckError("the mesh fails the exact check: " + "; ".join(problems))
     return result
+
+
+def run(tri, opts="", device=None, *, size_field=None, unsuitable=None):
+    """triangulate() that also keeps what the run counted: a Result."""
+    switches = _switches(opts)
+    given = _input(tri, switches)
+    field = None if size_field is None else _size_field(size_field)
+    core = _clmesh.triangulate(given, switches=switches, device=_device_spec(device),
+                               size_field=field, unsuitable=_unsuitable(unsuitable))
+    return _result(core, tri)
 
 
 def triangulate(tri, opts="", device=None, *, size_field=None, unsuitable=None):
@@ -114,6 +127,72 @@ def triangulate(tri, opts="", device=None, *, size_field=None, unsuitable=None):
     return run(tri, opts, device, size_field=size_field, unsuitable=unsuitable).mesh
 
 
+def _failed(error, index):
+    """`error` as the error of input `index` of a batch: with an `index`
+    attribute, and clmesh's errors with "input <index>: " before the message
+    (what an unsuitable function raised stays the same object)."""
+    if isinstance(error, Error):
+        error = type(error)(f"input {index}: {error}")
+    error.index = index
+    return error
+
+
+def triangulate_many(inputs, opts="", device=None, *, size_field=None, unsuitable=None,
+                     errors="raise"):
+    """The meshes of many dicts with the same switches, field and function:
+    the list of what triangulate() returns for each, in order, meshed through
+    the library's batch (the device set up once, the GIL released once).
+
+    Every dict is checked before anything is meshed. errors="raise" (the
+    default) raises the first failing input's error, as a loop of
+    triangulate() would, and meshes no input after it: a dict that cannot be
+    converted raises before any meshing. errors="return" meshes every input
+    and puts the exception object in place of a failed input's dict. clmesh's
+    errors name the input ("input 3: ..."), and every error has the input's
+    position as its `index`; what `unsuitable` raises is the same object (a
+    KeyboardInterrupt or other BaseException that is no Exception ends the
+    batch at once, in both modes). Switches that are invalid, or a device
+    that cannot be opened, raise OptionError or DeviceError for the batch."""
+    if errors not in ("raise", "return"):
+        raise OptionError(f"errors: expected 'raise' or 'return', got {errors!r}")
+    if isinstance(inputs, dict):
+        raise InputError("triangulate_many: expected a list of dicts, got a dict "
+                         "(triangulate() meshes one)")
+    tris = list(inputs)
+    switches = _switches(opts)
+    _clmesh.parse_switches(switches)  # OptionError before the inputs' errors
+    field = None if size_field is None else _size_field(size_field)
+    unsuitable = _unsuitable(unsuitable)
+    meshes = [None] * len(tris)
+    meshed = []  # the positions of the inputs converted, in order
+    converted = []
+    for index, tri in enumerate(tris):
+        try:
+            converted.append(_input(tri, switches))
+            meshed.append(index)
+        except Error as error:
+            failure = _failed(error, index)
+            if errors == "raise":
+                raise failure from None
+            meshes[index] = failure
+    outcomes = _clmesh.triangulate_many(converted, switches=switches,
+                                        device=_device_spec(device), size_field=field,
+                                        unsuitable=unsuitable, stop_at_error=errors == "raise")
+    for index, outcome in zip(meshed, outcomes):
+        if isinstance(outcome, BaseException):
+            if not isinstance(outcome, Exception):
+                raise outcome
+            meshes[index] = _failed(outcome, index)
+        else:
+            try:
+                meshes[index] = _result(outcome, tris[index]).mesh
+            except CheckError as error:
+                meshes[index] = _failed(error, index)
+        if errors == "raise" and isinstance(meshes[index], Exception):
+            raise meshes[index]
+    return meshes
+
+
 def delaunay(pts, device=None):
     """The Delaunay triangles of the points (int32, (M, 3))."""
     return triangulate({"vertices": pts}, "", device)["triangles"]
@@ -132,7 +211,7 @@ def voronoi(pts, device=None):
     points[ray_origin[i]] (int32, (R,)) and runs along ray_direct[i]
     (float64, (R, 2)): the hull edge it crosses turned a quarter clockwise,
     outwards, as long as that edge."""
-    core = _clmesh.triangulate(**_arrays({"vertices": pts}), switches="v",
+    core = _clmesh.triangulate(_input({"vertices": pts}, "v"), switches="v",
                                device=_device_spec(device))
     ends, directions = core.voronoi_edges()
     ray = ends[:, 1] < 0

@@ -1,21 +1,26 @@
 // clmesh._clmesh — the library for Python. Arrays come in already shaped
 // and typed by clmesh/_input.py (this side checks the shapes again, so that no
-// call can read out of bounds); a Run keeps the input, options and mesh of
-// one triangulate() call, run with the GIL released on the process's shared
-// device, and hands its parts out as new NumPy arrays. A SizeField is a
-// checked sizing field (clmesh/_size_field.py builds it from a dict); an
-// `unsuitable` callable runs with the GIL taken back.
+// call can read out of bounds) and become an Input; a Run keeps the input,
+// options and mesh of one triangulate() call, run with the GIL released on
+// the process's shared device, and hands its parts out as new NumPy arrays.
+// triangulate_many() meshes many Inputs through the library's batch, with the
+// GIL released once, and returns a Run or an exception object for each. A
+// SizeField is a checked sizing field (clmesh/_size_field.py builds it from a
+// dict); an `unsuitable` callable runs with the GIL taken back.
 #include <clmesh/clmesh.hpp>
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/shared_ptr.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/unique_ptr.h>
 #include <nanobind/stl/vector.h>
 
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -136,9 +141,22 @@ clmesh::Unsuitable unsuitable_of(nb::handle callable) {
 // triangulate() again would wait forever for the device its caller holds.
 thread_local bool meshing = false;
 
+// Marks this thread as meshing while it lives; refuses a nested call.
+struct Meshing {
+  Meshing() {
+    if (meshing)
+      throw clmesh::Error("triangulate() called from an unsuitable function: the device is "
+                          "meshing for its caller, one call at a time");
+    meshing = true;
+  }
+  ~Meshing() { meshing = false; }
+  Meshing(const Meshing &) = delete;
+  Meshing &operator=(const Meshing &) = delete;
+};
+
 // One triangulate() call: what went in, and what came out.
 struct Run {
-  clmesh::Input input;
+  std::shared_ptr<const clmesh::Input> input;
   clmesh::Options options;
   clmesh::Mesh mesh;
 
@@ -174,19 +192,17 @@ void take_mesh(clmesh::Input &input, const clmesh::Options &options, const In<in
   input.triangle_max_area.assign(triangle_max_area.data(), triangle_max_area.data() + t);
 }
 
-std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &vertex_markers,
-                                 const In<double> &vertex_attributes, const In<int32_t> &segments,
-                                 const In<int32_t> &segment_markers, const In<double> &holes,
-                                 const In<double> &regions, const In<int32_t> &triangles,
-                                 bool has_triangles, const In<double> &triangle_attributes,
-                                 const In<double> &triangle_max_area, bool has_triangle_max_area,
-                                 const std::string &switches, const std::string &device,
-                                 const clmesh::SizeField *field, nb::handle unsuitable) {
-  if (meshing)
-    throw clmesh::Error("triangulate() called from an unsuitable function: the device is "
-                        "meshing for its caller, one call at a time");
-  auto run = std::make_unique<Run>();
-  clmesh::Input &input = run->input;
+// The Input of the arrays of clmesh/_input.py; `switches` say whether the
+// triangles to refine (-r) and their maximum areas (-ra) are taken.
+std::shared_ptr<clmesh::Input>
+input_of(const In<double> &vertices, const In<int32_t> &vertex_markers,
+         const In<double> &vertex_attributes, const In<int32_t> &segments,
+         const In<int32_t> &segment_markers, const In<double> &holes, const In<double> &regions,
+         const In<int32_t> &triangles, bool has_triangles, const In<double> &triangle_attributes,
+         const In<double> &triangle_max_area, bool has_triangle_max_area,
+         const std::string &switches) {
+  auto made = std::make_shared<clmesh::Input>();
+  clmesh::Input &input = *made;
   input.points = points_of(vertices, "vertices");
   const long n = static_cast<long>(input.points.size());
   if (vertex_markers.shape(0) != 0) {
@@ -211,25 +227,135 @@ std::unique_ptr<Run> triangulate(const In<double> &vertices, const In<int32_t> &
   require_shape(regions, "regions", 4);
   for (std::size_t r = 0; r < regions.shape(0); ++r)
     input.regions.push_back({{regions(r, 0), regions(r, 1)}, regions(r, 2), regions(r, 3)});
-  run->options = clmesh::parse_switches(switches);
-  run->options.zero_based = true; // as the triangle package, which always adds -z
-  run->options.device = device;
-  take_mesh(input, run->options, triangles, has_triangles, triangle_attributes, triangle_max_area,
-            has_triangle_max_area);
+  take_mesh(input, clmesh::parse_switches(switches), triangles, has_triangles, triangle_attributes,
+            triangle_max_area, has_triangle_max_area);
+  return made;
+}
+
+// The options of a call: the switches, zero-based numbering (as the triangle
+// package, which always adds -z), the device, the field and the function.
+clmesh::Options options_of(const std::string &switches, const std::string &device,
+                           const clmesh::SizeField *field, nb::handle unsuitable) {
+  clmesh::Options options = clmesh::parse_switches(switches);
+  options.zero_based = true;
+  options.device = device;
   if (field)
-    run->options.size_field = std::make_shared<const clmesh::SizeField>(*field);
+    options.size_field = std::make_shared<const clmesh::SizeField>(*field);
   if (!unsuitable.is_none())
-    run->options.unsuitable = unsuitable_of(unsuitable);
-  {
-    struct Meshing {
-      Meshing() { meshing = true; }
-      ~Meshing() { meshing = false; }
-    } on_this_thread;
-    nb::gil_scoped_release unlocked;
-    run->mesh = clmesh::triangulate(run->input, run->options);
-  }
-  run->options.unsuitable = nullptr; // it borrows `unsuitable`, which the Run does not keep
+    options.unsuitable = unsuitable_of(unsuitable);
+  return options;
+}
+
+// The Run of a meshed input. The options' unsuitable function borrows a
+// Python callable that the Run does not keep: it is left out.
+std::unique_ptr<Run> run_of(std::shared_ptr<const clmesh::Input> input,
+                            const clmesh::Options &options, clmesh::Mesh &&mesh) {
+  auto run = std::make_unique<Run>();
+  run->input = std::move(input);
+  run->options = options;
+  run->options.unsuitable = nullptr;
+  run->mesh = std::move(mesh);
   return run;
+}
+
+std::unique_ptr<Run> triangulate(std::shared_ptr<clmesh::Input> input, const std::string &switches,
+                                 const std::string &device, const clmesh::SizeField *field,
+                                 nb::handle unsuitable) {
+  const clmesh::Options options = options_of(switches, device, field, unsuitable);
+  clmesh::Mesh mesh;
+  {
+    Meshing on_this_thread;
+    nb::gil_scoped_release unlocked;
+    mesh = clmesh::triangulate(*input, options);
+  }
+  return run_of(std::move(input), options, std::move(mesh));
+}
+
+// The class of clmesh/_errors.py for a library error (nullptr for another).
+const char *error_class_name(const std::exception &e) {
+  if (dynamic_cast<const clmesh::InputError *>(&e))
+    return "InputError";
+  if (dynamic_cast<const clmesh::OptionError *>(&e))
+    return "OptionError";
+  if (dynamic_cast<const clmesh::DeviceError *>(&e))
+    return "DeviceError";
+  if (dynamic_cast<const clmesh::OpenCLError *>(&e))
+    return "OpenCLError";
+  if (dynamic_cast<const clmesh::InternalError *>(&e))
+    return "InternalError";
+  if (dynamic_cast<const clmesh::Error *>(&e))
+    return "Error";
+  return nullptr;
+}
+
+nb::object error_class(const char *name) {
+  return nb::module_::import_("clmesh._errors").attr(name);
+}
+
+// An input's error in a batch as a Python exception object: the library's
+// errors as the classes of clmesh/_errors.py; what an unsuitable function
+// raised, the same object.
+nb::object error_object(const std::exception_ptr &error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const nb::python_error &e) {
+    return nb::borrow(e.value());
+  } catch (const std::bad_alloc &e) {
+    return nb::borrow(PyExc_MemoryError)(e.what());
+  } catch (const std::exception &e) {
+    const char *name = error_class_name(e);
+    return name ? error_class(name)(e.what()) : nb::borrow(PyExc_RuntimeError)(e.what());
+  }
+}
+
+// Whether an input's error ends a batch: what Python raises that is no
+// Exception (KeyboardInterrupt from Ctrl-C in an unsuitable function,
+// SystemExit). Called without the GIL.
+bool ends_batch(const std::exception_ptr &error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const nb::python_error &e) {
+    nb::gil_scoped_acquire locked;
+    return !e.matches(PyExc_Exception);
+  } catch (...) {
+    return false;
+  }
+}
+
+// Every input meshed through the library's triangulate_many on the shared
+// device, in order, with the GIL released once: for each a Run, or the
+// exception object of its error. The list ends early, after the failed
+// input, with stop_at_error and when an input's error ends the batch.
+nb::list triangulate_many(const std::vector<std::shared_ptr<clmesh::Input>> &inputs,
+                          const std::string &switches, const std::string &device,
+                          const clmesh::SizeField *field, nb::handle unsuitable,
+                          bool stop_at_error) {
+  const clmesh::Options options = options_of(switches, device, field, unsuitable);
+  struct Stop {};
+  std::vector<clmesh::BatchResult> results;
+  results.reserve(inputs.size());
+  {
+    Meshing on_this_thread;
+    nb::gil_scoped_release unlocked;
+    try {
+      clmesh::triangulate_many(
+          inputs.size(), [&](std::size_t i) { return *inputs[i]; }, options,
+          [&](std::size_t, clmesh::BatchResult &&result) {
+            results.push_back(std::move(result));
+            const std::exception_ptr &error = results.back().error;
+            if (error && (stop_at_error || ends_batch(error)))
+              throw Stop{};
+          });
+    } catch (const Stop &) {
+    }
+  }
+  nb::list outcomes;
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (results[i].ok())
+      outcomes.append(nb::cast(run_of(inputs[i], options, std::move(results[i].mesh))));
+    else
+      outcomes.append(error_object(results[i].error));
+  return outcomes;
 }
 
 nb::dict quality_dict(const clmesh::QualityStatistics &q) {
@@ -304,24 +430,13 @@ nb::list devices() {
 
 // The library's errors as the Python classes of clmesh/_errors.py.
 void translate_error(const std::exception_ptr &error, void *) {
-  const auto raise = [](const char *name, const std::exception &e) {
-    nb::object type = nb::module_::import_("clmesh._errors").attr(name);
-    PyErr_SetString(type.ptr(), e.what());
-  };
   try {
     std::rethrow_exception(error);
-  } catch (const clmesh::InputError &e) {
-    raise("InputError", e);
-  } catch (const clmesh::OptionError &e) {
-    raise("OptionError", e);
-  } catch (const clmesh::DeviceError &e) {
-    raise("DeviceError", e);
-  } catch (const clmesh::OpenCLError &e) {
-    raise("OpenCLError", e);
-  } catch (const clmesh::InternalError &e) {
-    raise("InternalError", e);
-  } catch (const clmesh::Error &e) {
-    raise("Error", e);
+  } catch (const std::exception &e) {
+    const char *name = error_class_name(e);
+    if (!name)
+      throw; // nanobind's own translation
+    PyErr_SetString(error_class(name).ptr(), e.what());
   }
 }
 
@@ -411,16 +526,21 @@ NB_MODULE(_clmesh, m) {
           "check",
           [](const Run &r) {
             nb::gil_scoped_release unlocked;
-            return clmesh::check_mesh(r.input, r.mesh, r.options).problems;
+            return clmesh::check_mesh(*r.input, r.mesh, r.options).problems;
           },
           "The problems the exact check (-C) finds; empty for a valid mesh.");
 
-  m.def("triangulate", &triangulate, nb::arg("vertices"), nb::arg("vertex_markers"),
+  nb::class_<clmesh::Input>(m, "Input", "One input, checked and copied from its arrays.");
+  m.def("input", &input_of, nb::arg("vertices"), nb::arg("vertex_markers"),
         nb::arg("vertex_attributes"), nb::arg("segments"), nb::arg("segment_markers"),
         nb::arg("holes"), nb::arg("regions"), nb::arg("triangles"), nb::arg("has_triangles"),
         nb::arg("triangle_attributes"), nb::arg("triangle_max_area"),
-        nb::arg("has_triangle_max_area"), nb::arg("switches"), nb::arg("device"),
+        nb::arg("has_triangle_max_area"), nb::arg("switches"));
+  m.def("triangulate", &triangulate, nb::arg("input"), nb::arg("switches"), nb::arg("device"),
         nb::arg("size_field").none() = nb::none(), nb::arg("unsuitable").none() = nb::none());
+  m.def("triangulate_many", &triangulate_many, nb::arg("inputs"), nb::arg("switches"),
+        nb::arg("device"), nb::arg("size_field").none(), nb::arg("unsuitable").none(),
+        nb::arg("stop_at_error"));
   m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
   m.def("devices", &devices);
   m.def(

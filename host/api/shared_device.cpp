@@ -1,0 +1,29 @@
+// clmesh — the process's shared devices (see shared_device.hpp).
+#include "api/shared_device.hpp"
+
+#include <map>
+#include <utility>
+
+namespace clmesh {
+
+std::shared_ptr<SharedDevice> shared_device(const std::string &spec) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<SharedDevice>> by_spec;
+  static std::map<std::pair<int, int>, std::shared_ptr<SharedDevice>> by_device;
+  std::lock_guard<std::mutex> lock(mutex);
+  std::shared_ptr<SharedDevice> &slot = by_spec[spec];
+  if (!slot) {
+    const DeviceDescription found = find_device(spec);
+    std::shared_ptr<SharedDevice> &device = by_device[{found.platform_index, found.device_index}];
+    if (!device) {
+      auto opened = std::make_shared<SharedDevice>();
+      opened->device = open_device(std::to_string(found.platform_index) + ":" +
+                                   std::to_string(found.device_index));
+      device = opened;
+    }
+    slot = device;
+  }
+  return slot;
+}
+
+} // namespace clmesh

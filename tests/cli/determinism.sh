@@ -77,5 +77,28 @@ for index in "${!refinements[@]}"; do
   done
 done
 
+# Refining a mesh (-r, with an .area file) under a sizing field: the same
+# files whatever the work-group size.
+"$bin" -Q lattice.node
+python3 - <<'PY'
+rows = [l.split() for l in open("lattice.1.ele") if l.strip() and not l.startswith("#")]
+with open("lattice.1.area", "w") as out:
+    out.write(f"{int(rows[0][0])}\n")
+    for r in rows[1:]:
+        out.write(f"{r[0]} {0.02 if int(r[0]) % 3 == 0 else -1}\n")
+PY
+printf '4 2 1 0\n1 -1 -1 0.3\n2 20 -1 0.05\n3 20 20 0.05\n4 -1 20 0.3\n' > bg.node
+printf '2 3 0\n1 1 2 3\n2 1 3 4\n' > bg.ele
+for group in 1 128; do
+  mkdir "refined.$group"
+  cp lattice.1.node lattice.1.ele lattice.1.area bg.node bg.ele "refined.$group/"
+  (cd "refined.$group" && "$bin" -nQC -rq30a --size-field bg --work-group "$group" lattice.1) \
+    > "refined.$group.log" 2>&1 || fail "-rq30a --size-field: $(cat "refined.$group.log")"
+done
+for ext in node ele neigh; do
+  cmp -s "refined.1/lattice.2.$ext" "refined.128/lattice.2.$ext" ||
+    fail "lattice.2.$ext of -rq30a --size-field differs between work-group sizes 1 and 128"
+done
+
 finish determinism.sh
 echo "determinism.sh: all checks passed"

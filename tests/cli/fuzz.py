@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Fuzz test of clmesh's input handling (called by fuzz.sh).
 
-Mutates the small bundled inputs (datasets/*.node, datasets/*.poly) from a
-fixed seed: truncation at a random byte, byte flips, duplicated, deleted and
+Mutates the small bundled inputs (datasets/*.node, datasets/*.poly, and the
+meshes to refine: one of the .node, .ele and .area files of bbox.1 and ell)
+from a fixed seed: truncation at a random byte, byte flips, duplicated, deleted and
 swapped lines, odd numbers (1e308, 1e-320, -0, nan, inf, ...), negative and
 huge counts, CR/LF changes. Runs clmesh -QC with a few switch sets on each
 mutant, under a timeout. Each run must either exit 0 (the mesh passed -C) or
@@ -108,6 +109,9 @@ MUTATIONS = [truncate, flip_bytes, duplicate_line, delete_line, swap_lines, odd_
 NODE_SWITCHES = ["", "-qS3000", "-zen", "-jN", "-q25eS3000", "-Ie"]
 POLY_SWITCHES = ["-p", "-pc", "-pzen", "-pAO", "-pj", "-pq30S3000", "-pcq25aS3000",
                  "-pAq20DS3000", "-pq30YS3000"]
+# Meshes to refine (-r): every sixth mutant is one of their files.
+MESHES = ["bbox.1", "ell"]
+MESH_SWITCHES = ["-r", "-rq30S3000", "-raS3000", "-rq25a0.05S3000", "-rzenS3000", "-rcDS3000"]
 
 def mutate(rng, data):
     descriptions = []
@@ -137,26 +141,39 @@ def main():
     rng = random.Random(seed)
     failures = 0
     for number in range(runs):
-        name = rng.choice(inputs)
+        if number % 6 == 5:
+            base = rng.choice(MESHES)
+            files = {base + ext: None for ext in (".node", ".ele", ".area")
+                     if os.path.exists(os.path.join(datasets, base + ext))}
+            name = rng.choice(sorted(files))
+            switches = rng.choice(MESH_SWITCHES)
+            target = base
+        else:
+            name = rng.choice(inputs)
+            poly = name.endswith(".poly")
+            base = os.path.splitext(name)[0]
+            files = {name: None}
+            if poly and os.path.exists(os.path.join(datasets, base + ".node")):
+                files[base + ".node"] = None  # a .poly without vertices reads it
+            switches = None
+            target = name
         with open(os.path.join(datasets, name), "rb") as f:
-            original = f.read()
-        mutant, what = mutate(rng, original)
-        poly = name.endswith(".poly")
-        switches = rng.choice(POLY_SWITCHES if poly else NODE_SWITCHES)
+            mutant, what = mutate(rng, f.read())
+        if switches is None:
+            switches = rng.choice(POLY_SWITCHES if name.endswith(".poly") else NODE_SWITCHES)
         if only is not None and int(only) != number:
             continue
         folder = os.path.join(work, f"m{number}")
         os.mkdir(folder)
-        base = os.path.splitext(name)[0]
-        path = os.path.join(folder, name)
-        with open(path, "wb") as f:
-            f.write(mutant)
-        companion = os.path.join(datasets, base + ".node")
-        if poly and os.path.exists(companion):  # a .poly without vertices reads it
-            with open(companion, "rb") as f, open(os.path.join(folder, base + ".node"), "wb") as g:
-                g.write(f.read())
+        for file in files:
+            with open(os.path.join(folder, file), "wb") as g:
+                if file == name:
+                    g.write(mutant)
+                else:
+                    with open(os.path.join(datasets, file), "rb") as f:
+                        g.write(f.read())
         before = files_in(folder)
-        command = [binary, "-QC" + switches.lstrip("-"), name]
+        command = [binary, "-QC" + switches.lstrip("-"), target]
         problem = None
         try:
             done = subprocess.run(command, cwd=folder, stdout=subprocess.PIPE,

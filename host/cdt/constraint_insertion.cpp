@@ -17,10 +17,12 @@ constexpr std::size_t kCounters = 3;    // see mark_constraint_triangles
 constexpr std::size_t kRunCounters = 3; // see find_run_starts
 // Where segments a-b and p-q cross: a + t (b - a) on line p-q, in extended
 // precision, rounded once. A segment far longer than the crossing's distance
-// from its nearer endpoint (a coordinate of 1e20 among ones near 1) loses
-// the crossing in the rounding of t (b - a), and the point lands off both
-// segments; it is then taken from the endpoint, of either segment, whose
-// offset to it is the smallest, the best conditioned of the four.
+// from its nearer endpoint (a coordinate of 1e16 among ones near 1) loses
+// the crossing in the rounding of t (b - a): the point lands off the other
+// segment, or off both. It is then taken from the endpoint, of either
+// segment, whose offset to it is the smallest, the best conditioned of the
+// four: whenever a + t (b - a) lands outside either segment's box, or its
+// offset is over 1024 times the best one (ten bits lost).
 Point crossing_point(const Point &a, const Point &b, const Point &p, const Point &q) {
   using Real = long double;
   auto cross = [](Real ux, Real uy, Real vx, Real vy) { return ux * vy - uy * vx; };
@@ -34,8 +36,6 @@ Point crossing_point(const Point &a, const Point &b, const Point &p, const Point
     return point.x >= std::min(u.x, w.x) && point.x <= std::max(u.x, w.x) &&
            point.y >= std::min(u.y, w.y) && point.y <= std::max(u.y, w.y);
   };
-  if (in_box(a, b) && in_box(p, q))
-    return point;
   struct From {
     Point base;
     Real along, ux, uy; // the point is base + along (ux, uy)
@@ -52,6 +52,8 @@ Point crossing_point(const Point &a, const Point &b, const Point &p, const Point
   const From &best =
       *std::min_element(std::begin(from), std::end(from),
                         [&](const From &u, const From &w) { return offset(u) < offset(w); });
+  if (in_box(a, b) && in_box(p, q) && offset(from[0]) <= 1024 * offset(best))
+    return point;
   return {static_cast<double>(best.base.x + best.along * best.ux),
           static_cast<double>(best.base.y + best.along * best.uy)};
 }
@@ -256,7 +258,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   std::vector<char> busy(m, 0);
   std::vector<std::pair<std::size_t, std::size_t>> crossings; // (s, piece)
   std::vector<Point> where;
-  std::vector<int32_t> near;
+  std::vector<int32_t> near, at_vertex; // at_vertex: the endpoint a crossing is, or -1
   for (std::size_t s = 0; s < m; ++s) {
     if (state[s] != kCrossing)
       continue;
@@ -271,9 +273,22 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
     busy[s] = busy[piece] = 1;
     const Point a = coordinates(segments_[s].a), b = coordinates(segments_[s].b);
     const Point p = coordinates(segments_[piece].a), q = coordinates(segments_[piece].b);
-    where.push_back(crossing_point(a, b, p, q));
-    near.push_back(triangle[s]);
+    const Point point = crossing_point(a, b, p, q);
+    // A crossing that rounds onto an endpoint of either segment (one passes
+    // within rounding of the other's end) is that vertex: no new point.
+    int32_t endpoint = -1;
+    for (const int32_t v :
+         {segments_[s].a, segments_[s].b, segments_[piece].a, segments_[piece].b}) {
+      const Point at = coordinates(v);
+      if (at.x == point.x && at.y == point.y)
+        endpoint = v;
+    }
+    if (endpoint < 0) {
+      where.push_back(point);
+      near.push_back(triangle[s]);
+    }
     crossings.emplace_back(s, piece);
+    at_vertex.push_back(endpoint);
   }
   const std::vector<int32_t> added = insert_points(where, near);
   vertex_triangles_recorded_ = false;
@@ -283,8 +298,9 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   std::vector<Segment> pieces;
   std::vector<int32_t> origin;
   std::vector<int32_t> split_at(m, -1);
-  for (std::size_t k = 0; k < crossings.size(); ++k)
-    split_at[crossings[k].first] = split_at[crossings[k].second] = added[k];
+  for (std::size_t k = 0, next = 0; k < crossings.size(); ++k)
+    split_at[crossings[k].first] = split_at[crossings[k].second] =
+        at_vertex[k] >= 0 ? at_vertex[k] : added[next++];
   for (std::size_t i = 0; i < m; ++i) {
     const Segment &s = segments_[i];
     if (split_at[i] < 0) {

@@ -366,24 +366,29 @@ private:
   // its triangles are triangles of the CDT; they are found (and labelled
   // with their input triangle), every other triangle and those the holes
   // reach are removed, the inner edges cease to be constraints, and flips
-  // make the mesh constrained Delaunay. A mesh whose triangles are all in
-  // the Delaunay triangulation of its vertices already (a Delaunay mesh of
-  // its convex hull) needs only its boundary and segments inserted.
+  // make the mesh constrained Delaunay. The boundary and segments go in
+  // first: a mesh that is constrained Delaunay already (as a mesh of clmesh
+  // or Triangle is) then has all its triangles, and only another one needs
+  // its inner edges inserted too.
   void reconstruct() {
     std::vector<Triangle> corners = given_->triangles;
     for (Triangle &t : corners)
       for (int32_t &v : t)
         v = scheduler_.device_point(v);
     MeshReconstruction reconstruction(device_, mesh(), corners);
-    const bool delaunay = reconstruction.label() < 0;
     Pslg outline;
-    if (delaunay)
-      for (const Segment &s : pslg_->segments)
-        if (s.marker != kInnerEdge)
-          outline.segments.push_back(s);
-    std::vector<Segment> constraints = insert_constraints(
-        device_, scheduler_, delaunay ? outline : *pslg_, result_.constraints, crossings_);
-    const long missing = reconstruction.label();
+    for (const Segment &s : pslg_->segments)
+      if (s.marker != kInnerEdge)
+        outline.segments.push_back(s);
+    std::vector<Segment> constraints =
+        insert_constraints(device_, scheduler_, outline, result_.constraints, crossings_);
+    long missing = reconstruction.label();
+    if (missing >= 0) {
+      std::vector<Point> more;
+      constraints = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, more);
+      crossings_.insert(crossings_.end(), more.begin(), more.end());
+      missing = reconstruction.label();
+    }
     scheduler_.timer().charge(MeshReconstruction::kPhase);
     if (missing >= 0)
       throw TriangleNotInMesh{static_cast<std::size_t>(missing)};

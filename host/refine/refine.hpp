@@ -75,10 +75,11 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
 // not used); `triangles` (counter-clockwise, input numbering) its
 // triangles, and `max_area` (empty, or one per triangle; <= 0: none) their
 // area bounds, used with options.regional_areas. The mesh's boundary edges
-// (marker 1) and the segments are constraints; its vertices and every edge
-// go through GPU-CDT, the input triangles are found in it (the rest is
-// outside the mesh), the inner edges cease to be constraints and flips make
-// the mesh constrained Delaunay; then GPU-QM/QM-V refines it, every
+// (marker 1) and the segments are constraints; its vertices, these and
+// (unless the mesh is constrained Delaunay already) its inner edges go
+// through GPU-CDT, the input triangles are found in it (the rest is outside
+// the mesh), the inner edges cease to be constraints and flips make the mesh
+// constrained Delaunay; then GPU-QM/QM-V refines it, every
 // triangle within the bound of the input triangle that holds its centroid,
 // each inheriting the input triangle it descends from (triangle_origin,
 // with options.attributes). Throws

@@ -383,7 +383,8 @@ private:
     std::vector<Segment> constraints =
         insert_constraints(device_, scheduler_, outline, result_.constraints, crossings_);
     long missing = reconstruction.label();
-    if (missing >= 0) {
+    const bool inner_edges = missing >= 0; // inserted too: the mesh is not CDT
+    if (inner_edges) {
       std::vector<Point> more;
       constraints = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, more);
       crossings_.insert(crossings_.end(), more.begin(), more.end());
@@ -397,12 +398,17 @@ private:
         constraints_.push_back(s);
     result_.constraints.segments = static_cast<long>(constraints_.size());
     DeviceMesh &m = mesh();
-    m.set_constraint_rows(device_, constraints_);
-    DeviceArray<cl_int> every_slot(device_, m.triangle_count);
-    every_slot.fill(device_, 1, m.triangle_count);
-    FlipCounts flips;
-    scheduler_.flip_flagged(every_slot, flips, "constrained_flipping");
-    result_.constraints.delaunay_flips += flips.flips;
+    if (inner_edges) {
+      // They cease to be constraints; the flips that they blocked go ahead.
+      // (Otherwise the insertion's own flips left the mesh constrained
+      // Delaunay with these very constraints.)
+      m.set_constraint_rows(device_, constraints_);
+      DeviceArray<cl_int> every_slot(device_, m.triangle_count);
+      every_slot.fill(device_, 1, m.triangle_count);
+      FlipCounts flips;
+      scheduler_.flip_flagged(every_slot, flips, "constrained_flipping");
+      result_.constraints.delaunay_flips += flips.flips;
+    }
 
     ExteriorRemoval removal(device_, m);
     removal.remove_unlabelled(reconstruction.labels());

@@ -212,6 +212,69 @@ if command -v script > /dev/null; then
   [[ ! -s "$work/log/tty" ]] || fail "-Q: output on a terminal: $(cat -v "$work/log/tty")"
 fi
 
+# --jobs: any number of worker processes writes the files and prints the
+# messages (in input order) of one worker; so do PoCL's multi-threaded device
+# and the in-thread one that small inputs get by default.
+fresh jobs.1
+printf '%s\n' "${all[@]}" > list.txt
+run -en -q30 --jobs 1 --batch list.txt
+grep -v milliseconds stdout.txt > "$work/log/jobs.1.out"
+rm list.txt stdout.txt stderr.txt
+for jobs in 2 3 8; do
+  fresh "jobs.$jobs"
+  printf '%s\n' "${all[@]}" > list.txt
+  run -en -q30 --jobs "$jobs" --batch list.txt
+  grep -v milliseconds stdout.txt > "$work/log/jobs.$jobs.out"
+  cmp -s "$work/log/jobs.1.out" "$work/log/jobs.$jobs.out" ||
+    fail "--jobs $jobs: other messages: $(diff "$work/log/jobs.1.out" "$work/log/jobs.$jobs.out" | head -5)"
+  rm list.txt stdout.txt stderr.txt
+  same_outputs "--jobs $jobs" "$work/jobs.1" "$work/jobs.$jobs"
+done
+fresh jobs.pthread
+printf '%s\n' "${all[@]}" > list.txt
+POCL_DEVICES=pthread run -en -q30 --jobs 1 --batch list.txt
+rm list.txt stdout.txt stderr.txt
+same_outputs "POCL_DEVICES=pthread" "$work/jobs.1" "$work/jobs.pthread"
+if "$bin" --list-devices | grep -q '^0 .*Portable Computing Language'; then
+  run -V spiral.node
+  grep -q "on basic-" stdout.txt || fail "a small input did not get PoCL's in-thread device: $(grep GPU-DT stdout.txt)"
+fi
+# Inputs with the same output names: the later one's files are left, as when
+# meshed in turn, however many workers.
+fresh same.1
+cp dots.node A.node
+run -e --jobs 1 A.poly A.node spiral.node A.node A.poly
+for jobs in 2 5; do
+  fresh "same.$jobs"
+  cp dots.node A.node
+  run -e --jobs "$jobs" A.poly A.node spiral.node A.node A.poly
+  same_outputs "same output names, --jobs $jobs" "$work/same.1" "$work/same.$jobs"
+done
+# A device that fails fails the run once, whatever the workers.
+cd "$work/same.2"
+rm -f ./*.1.*
+expect "--device nosuch --jobs 2" 1 "nosuch" -- --device nosuch --jobs 2 spiral.node dots.node A.poly
+expect "--jobs 0" 2 "--jobs" -- --jobs 0 spiral.node dots.node
+# A worker that dies fails the input it held; the others are meshed. The
+# small inputs are done long before big.node (-q30 on 200,000 points): then
+# the only worker left holds it.
+python3 "$source_dir/scripts/gen_points.py" uniform 200000 big.node > /dev/null
+"$bin" -Qq30 --jobs 2 big.node spiral.node dots.node ell.node diamond_02_00009.node \
+  > "$work/log/out" 2> "$work/log/err" &
+batch=$!
+for _ in $(seq 200); do
+  [[ -e diamond_02_00009.1.ele ]] && break
+  sleep 0.05
+done
+pkill -KILL -P "$batch" || true
+status=0
+wait "$batch" || status=$?
+[[ "$status" -eq 1 ]] || fail "a killed worker: exit status $status, wanted 1"
+grep -q '^clmesh: big.node: the worker process meshing it died (signal 9' "$work/log/err" ||
+  fail "a killed worker: $(cat "$work/log/err")"
+[[ ! -e big.1.node && -e diamond_02_00009.1.ele ]] ||
+  fail "a killed worker: outputs $(outputs . | tr '\n' ' ')"
+
 # Usage errors: exit 2, one line, nothing written.
 cd "$work/summary"
 expect "--shard 0/3" 2 "--shard" "'0/3'" -- -z --shard 0/3 spiral.node dots.node

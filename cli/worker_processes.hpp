@@ -1,0 +1,46 @@
+// clmesh CLI — a batch meshed by several worker processes at once.
+//
+// Each worker is a process of its own, forked before the parent makes any
+// OpenCL call, with its own devices (OpenCL implementations share state
+// between the devices of one process: PoCL's cache of built kernels is not
+// safe for two of its CPU devices running at once). A worker takes the next
+// input that no worker took (a counter in shared memory), meshes it with its
+// messages captured, and sends its exit status and messages to the parent,
+// which hands them on in input order. An input whose outputs have the names
+// of an earlier input's waits until that one is written, so that the later
+// files are left, as when meshed in turn. A worker that dies fails the input
+// it held (the message names the signal) and a new worker takes its place.
+#pragma once
+
+#include "messages.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace cli {
+
+struct WorkerBatch {
+  std::size_t count = 0; // inputs 0 .. count-1
+  unsigned workers = 2;
+  // For each input, an earlier input with the same output names (the
+  // nearest), or npos.
+  std::vector<std::size_t> follows;
+  // In each worker before its first input: false (after saying why) fails
+  // the run.
+  std::function<bool()> start;
+  // In a worker: meshes input i and returns its exit status; says and warns
+  // into the captured messages.
+  std::function<int(std::size_t)> mesh;
+  // In the parent, in input order: input i's exit status and messages.
+  std::function<void(std::size_t, int, const Messages &)> done;
+  // The input's name, for the message when its worker dies.
+  std::function<std::string(std::size_t)> name;
+};
+
+// Runs the batch; returns 0, or 1 when a worker's start failed (its
+// messages printed, the other workers stopped).
+int run_worker_processes(const WorkerBatch &batch);
+
+} // namespace cli

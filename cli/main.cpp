@@ -6,6 +6,7 @@
 // switches are parsed by clmesh::parse_switches() and the mesh comes from
 // clmesh::triangulate(). Several inputs (files, --batch lists, --shard) are
 // meshed one after the other on one device, each as if meshed alone.
+#include "api/device_choice.hpp"
 #include "clmesh/clmesh.hpp"
 #include "clmesh/version.hpp"
 #include "device_pool.hpp"
@@ -671,22 +672,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// An input's size as the device pool weighs it: points, segments and
-// triangles read, and with -a about the points the area bound asks for.
-std::size_t input_size(const clmesh::Input &input, const clmesh::Options &options) {
-  double size =
-      static_cast<double>(input.points.size() + input.segments.size() + input.triangles.size());
-  if (options.max_area && *options.max_area > 0 && !input.points.empty()) {
-    clmesh::Point low = input.points[0], high = input.points[0];
-    for (const clmesh::Point &p : input.points) {
-      low = {std::min(low.x, p.x), std::min(low.y, p.y)};
-      high = {std::max(high.x, p.x), std::max(high.y, p.y)};
-    }
-    size += (high.x - low.x) * (high.y - low.y) / *options.max_area;
-  }
-  return size < 1e18 ? static_cast<std::size_t>(size) : static_cast<std::size_t>(1e18);
-}
-
 // Reads one input: the .node or .poly file, or with -r the mesh's files
 // (read_mesh), naming each file it opens unless quiet.
 clmesh::Input read(const clmesh::Options &options, const FileNames &names, bool talk) {
@@ -730,7 +715,7 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
   clmesh::validate(input);
   seconds.read = seconds_since(phase);
 
-  const cli::DevicePool::Lease lease = devices.lease(input_size(input, options));
+  const cli::DevicePool::Lease lease = devices.lease(clmesh::input_size(input, options));
   clmesh::Device &device = lease.device;
   if (talk)
     say(options.refine ? "Refining the mesh on %s.\n"

@@ -181,8 +181,10 @@ TEST_CASE("batch: without a device, on the shared device of triangulate(input, o
   }
   CHECK(!input_error(results[1]).empty());
 
-  // The streaming form holds that device from the first input to the last.
-  const std::shared_ptr<clmesh::SharedDevice> shared = clmesh::shared_device(options.device);
+  // The streaming form holds each input's device until done() returns.
+  const std::shared_ptr<clmesh::SharedDevice> shared =
+      clmesh::shared_device_for(inputs[0], options);
+  REQUIRE(shared == clmesh::shared_device_for(inputs[2], options));
   std::vector<bool> free_while_meshing;
   clmesh::triangulate_many(
       2, [&](std::size_t i) { return inputs[2 * i]; }, options, // the two good ones

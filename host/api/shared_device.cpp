@@ -1,6 +1,8 @@
 // clmesh — the process's shared devices (see shared_device.hpp).
 #include "api/shared_device.hpp"
 
+#include "api/device_choice.hpp"
+
 #include <map>
 #include <utility>
 
@@ -24,6 +26,23 @@ std::shared_ptr<SharedDevice> shared_device(const std::string &spec) {
     slot = device;
   }
   return slot;
+}
+
+std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options) {
+  static std::mutex mutex;
+  static std::map<std::string, DeviceSpecs> specs_of;
+  DeviceSpecs specs;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto found = specs_of.find(options.device);
+    if (found == specs_of.end()) {
+      offer_pocl_drivers(options.device);
+      found = specs_of.emplace(options.device, device_specs(options.device)).first;
+    }
+    specs = found->second;
+  }
+  return shared_device(input_size(input, options) < kLargeInput ? specs.small_inputs
+                                                                : specs.large_inputs);
 }
 
 } // namespace clmesh

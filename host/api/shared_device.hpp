@@ -3,6 +3,8 @@
 #pragma once
 
 #include "clmesh/device.hpp"
+#include "clmesh/input.hpp"
+#include "clmesh/options.hpp"
 
 #include <memory>
 #include <mutex>
@@ -19,5 +21,10 @@ struct SharedDevice {
 // The shared device `spec` names (as open_device(spec) would find it), opened
 // on first use; two specs naming the same device share it. Throws DeviceError.
 std::shared_ptr<SharedDevice> shared_device(const std::string &spec);
+
+// The shared device for `input` meshed with `options`: of the devices
+// device_specs(options.device) gives, the one for its size
+// (device_choice.hpp). The process's first call asks PoCL for its drivers.
+std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options);
 
 } // namespace clmesh

@@ -206,7 +206,7 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 }
 
 Mesh triangulate(const Input &input, const Options &options) {
-  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
+  const std::shared_ptr<SharedDevice> shared = shared_device_for(input, options);
   std::lock_guard<std::mutex> lock(shared->busy);
   return triangulate(*shared->device, input, options);
 }

@@ -1,6 +1,8 @@
 // clmesh — many inputs, one device: triangulate() on each, every input's
 // error kept in its own result instead of ending the batch.
+#include "api/device_choice.hpp"
 #include "api/shared_device.hpp"
+#include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/triangulate.hpp"
 
@@ -56,17 +58,32 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
                       const Options &options,
                       const std::function<void(std::size_t, BatchResult &&)> &done) {
   validate(options);
-  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
-  std::lock_guard<std::mutex> lock(shared->busy);
-  triangulate_many(*shared->device, count, input, options, done);
+  offer_pocl_drivers(options.device); // before OpenCL starts (device_choice.hpp)
+  find_device(options.device);        // no such device: the batch's error
+  for (std::size_t i = 0; i < count; ++i) {
+    BatchResult result;
+    std::unique_lock<std::mutex> held; // input i's device (the process keeps it)
+    try {
+      const Input given = input(i);
+      const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
+      held = std::unique_lock<std::mutex>(shared->busy);
+      result = attempt(
+          *shared->device, [&]() -> const Input & { return given; }, options);
+    } catch (const std::exception &error) { // from input(i) or the device's opening
+      result.error = std::current_exception();
+      result.message = error.what();
+    }
+    done(i, std::move(result)); // the device still held
+  }
 }
 
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs,
                                           const Options &options) {
-  validate(options);
-  const std::shared_ptr<SharedDevice> shared = shared_device(options.device);
-  std::lock_guard<std::mutex> lock(shared->busy);
-  return triangulate_many(*shared->device, inputs, options);
+  std::vector<BatchResult> results(inputs.size());
+  triangulate_many(
+      inputs.size(), [&](std::size_t i) { return inputs[i]; }, options,
+      [&](std::size_t i, BatchResult &&result) { results[i] = std::move(result); });
+  return results;
 }
 
 } // namespace clmesh

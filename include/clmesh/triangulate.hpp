@@ -26,6 +26,11 @@ Mesh triangulate(Device &device, const Input &input, const Options &options);
 Mesh triangulate(Device &device, const Input &input, const std::string &switches);
 // On the device options.device names, opened once per process (whichever
 // spec names it); calls from several threads take the device one at a time.
+// When nothing names a device (options.device "", CLMESH_DEVICE and
+// POCL_DEVICES unset), the first such call asks PoCL for its in-thread
+// driver beside its multi-threaded one; on PoCL, inputs below 100,000
+// points, segments and triangles then run on the in-thread device (the same
+// mesh, fewer costs per kernel launch).
 Mesh triangulate(const Input &input, const Options &options);
 
 // One input's outcome in triangulate_many(): its mesh, or the error that
@@ -54,10 +59,10 @@ std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Inpu
 void triangulate_many(Device &device, std::size_t count,
                       const std::function<Input(std::size_t)> &input, const Options &options,
                       const std::function<void(std::size_t, BatchResult &&)> &done);
-// Both forms on the device options.device names, the one triangulate(input,
-// options) shares: set up once per process, and held for the whole batch
-// (calls from other threads wait for its end). Throw OptionError, then
-// DeviceError when no device matches, before meshing anything.
+// Both forms on the device triangulate(input, options) would take for each
+// input: set up once per process, and held input by input (calls from other
+// threads may go between two inputs). Throw OptionError, then DeviceError
+// when no device matches, before meshing anything.
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs, const Options &options);
 void triangulate_many(std::size_t count, const std::function<Input(std::size_t)> &input,
                       const Options &options,

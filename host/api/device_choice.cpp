@@ -1,0 +1,70 @@
+// clmesh — the device for an input when the caller chose none
+// (device_choice.hpp).
+#include "api/device_choice.hpp"
+
+#include "clmesh/device.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+
+namespace clmesh {
+namespace {
+
+constexpr const char *kPoclDrivers = "pthread basic";
+
+bool device_chosen(const std::string &spec) {
+  const char *chosen = std::getenv("CLMESH_DEVICE");
+  return !spec.empty() || (chosen && *chosen);
+}
+
+bool starts_with(const std::string &text, const char *prefix) { return text.rfind(prefix, 0) == 0; }
+
+std::string platform_and_device(const DeviceDescription &description) {
+  return std::to_string(description.platform_index) + ":" +
+         std::to_string(description.device_index);
+}
+
+} // namespace
+
+std::size_t input_size(const Input &input, const Options &options) {
+  double size =
+      static_cast<double>(input.points.size() + input.segments.size() + input.triangles.size());
+  if (options.max_area && *options.max_area > 0 && !input.points.empty()) {
+    Point low = input.points[0], high = input.points[0];
+    for (const Point &p : input.points) {
+      low = {std::min(low.x, p.x), std::min(low.y, p.y)};
+      high = {std::max(high.x, p.x), std::max(high.y, p.y)};
+    }
+    size += (high.x - low.x) * (high.y - low.y) / *options.max_area;
+  }
+  return size < 1e18 ? static_cast<std::size_t>(size) : static_cast<std::size_t>(1e18);
+}
+
+void offer_pocl_drivers(const std::string &spec) {
+  if (!device_chosen(spec) && !std::getenv("POCL_DEVICES"))
+    ::setenv("POCL_DEVICES", kPoclDrivers, 0);
+}
+
+DeviceSpecs device_specs(const std::string &spec) {
+  const char *drivers = std::getenv("POCL_DEVICES");
+  if (device_chosen(spec) || !drivers || std::strcmp(drivers, kPoclDrivers) != 0)
+    return {spec, spec};
+  const DeviceDescription chosen = find_device(spec);
+  if (chosen.platform_name != "Portable Computing Language")
+    return {spec, spec}; // a GPU (or another CPU platform) comes first: it serves every input
+  std::string in_thread, multi_threaded;
+  for (const DeviceDescription &device : list_devices()) {
+    if (device.platform_index != chosen.platform_index || !device.has_fp64)
+      continue;
+    if (starts_with(device.device_name, "basic") && in_thread.empty())
+      in_thread = platform_and_device(device);
+    else if (starts_with(device.device_name, "pthread") && multi_threaded.empty())
+      multi_threaded = platform_and_device(device);
+  }
+  if (in_thread.empty() || multi_threaded.empty())
+    return {spec, spec}; // OpenCL started before the request
+  return {in_thread, multi_threaded};
+}
+
+} // namespace clmesh

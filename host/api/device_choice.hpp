@@ -1,0 +1,46 @@
+// clmesh — which device meshes an input when the caller chose none.
+//
+// When nothing chose the device (no spec, neither CLMESH_DEVICE nor
+// POCL_DEVICES set), clmesh asks PoCL, before the process's first OpenCL
+// call, for its multi-threaded CPU driver ("pthread") and its in-thread
+// driver ("basic"). If PoCL then gives the default device, inputs smaller
+// than kLargeInput run on the in-thread device: the kernels run in the
+// thread that launches them, so the hundreds of launches of a small mesh
+// cost no hand-offs to PoCL's threads (a 500-vertex coastline with -pq30
+// meshes about 5x faster). Larger inputs run on the multi-threaded device.
+// Every device gives the same mesh. Otherwise (a GPU first, a device or
+// POCL_DEVICES chosen, or OpenCL already started without the request) the
+// default device serves every input.
+#pragma once
+
+#include "clmesh/input.hpp"
+#include "clmesh/options.hpp"
+
+#include <cstddef>
+#include <string>
+
+namespace clmesh {
+
+// Inputs of at least this size run on the multi-threaded device.
+constexpr std::size_t kLargeInput = 100000;
+
+// An input's size as the choice weighs it: points, segments and triangles,
+// and with -a about the points the area bound asks for (the bounding box's
+// area over the bound).
+std::size_t input_size(const Input &input, const Options &options);
+
+// Sets POCL_DEVICES to "pthread basic" when `spec` is "" and neither
+// CLMESH_DEVICE nor POCL_DEVICES is set. PoCL reads it at the process's first
+// OpenCL call: afterwards it changes nothing.
+void offer_pocl_drivers(const std::string &spec);
+
+// The specs (as open_device() takes them) of the devices for small and large
+// inputs: PoCL's in-thread and multi-threaded devices when `spec` is "",
+// CLMESH_DEVICE is unset, POCL_DEVICES is "pthread basic" and PoCL gives the
+// default device; else `spec` for both. Throws DeviceError as find_device().
+struct DeviceSpecs {
+  std::string small_inputs, large_inputs;
+};
+DeviceSpecs device_specs(const std::string &spec);
+
+} // namespace clmesh

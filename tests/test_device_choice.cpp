@@ -1,0 +1,66 @@
+// The device for calls that name none (api/device_choice.hpp): how inputs are
+// weighed, which devices PoCL offers after the request, and that the
+// in-thread and multi-threaded devices give the same meshes.
+#include <doctest/doctest.h>
+
+#include "api/device_choice.hpp"
+#include "clmesh/clmesh.hpp"
+#include "mesh_fixtures.hpp"
+#include "test_support.hpp"
+
+#include <cstdlib>
+#include <string>
+
+using test_support::check_same_mesh;
+
+TEST_CASE("device choice: an input's size counts points, segments, triangles and the area bound") {
+  clmesh::Input input;
+  input.points = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  input.segments = {{0, 1, 1}, {1, 2, 1}};
+  input.triangles = {{0, 1, 2}};
+  clmesh::Options options;
+  CHECK(clmesh::input_size(input, options) == 7);
+  options.max_area = 0.001; // the 2 x 1 box over the bound: 2000 more
+  CHECK(clmesh::input_size(input, options) == 2007);
+  options.max_area = 1e-300;
+  CHECK(clmesh::input_size(input, options) == static_cast<std::size_t>(1e18));
+}
+
+TEST_CASE("device choice: a named device serves every input") {
+  const clmesh::DeviceSpecs specs = clmesh::device_specs("0");
+  CHECK(specs.small_inputs == "0");
+  CHECK(specs.large_inputs == "0");
+}
+
+// Its own process (each test case is its own CTest test): the request comes
+// before OpenCL starts, unless the environment already chose.
+TEST_CASE("device choice: on PoCL, small inputs on the in-thread device, the same meshes") {
+  const bool chosen = std::getenv("CLMESH_DEVICE") || std::getenv("POCL_DEVICES");
+  clmesh::offer_pocl_drivers("");
+  const clmesh::DeviceSpecs specs = clmesh::device_specs("");
+  const clmesh::DeviceDescription first = clmesh::find_device("");
+  if (chosen || first.platform_name != "Portable Computing Language") {
+    CHECK(specs.small_inputs == specs.large_inputs); // the default device serves all
+    return;
+  }
+  REQUIRE(specs.small_inputs != specs.large_inputs);
+  const clmesh::DeviceDescription in_thread = clmesh::find_device(specs.small_inputs);
+  const clmesh::DeviceDescription multi_threaded = clmesh::find_device(specs.large_inputs);
+  CHECK(in_thread.device_name.rfind("basic", 0) == 0);
+  CHECK(multi_threaded.device_name.rfind("pthread", 0) == 0);
+
+  clmesh::Input input;
+  input.points = fixtures::uniform(2000, 3);
+  for (const char *switches : {"", "q30", "q25a0.0005"}) {
+    CAPTURE(switches);
+    const clmesh::Options options = clmesh::parse_switches(switches);
+    auto small = clmesh::open_device(specs.small_inputs);
+    auto large = clmesh::open_device(specs.large_inputs);
+    check_same_mesh(clmesh::triangulate(*small, input, options),
+                    clmesh::triangulate(*large, input, options));
+    // triangulate(input, options) takes the in-thread device for it.
+    const clmesh::Mesh shared = clmesh::triangulate(input, options);
+    CHECK(shared.statistics.delaunay.device.find(in_thread.device_name) != std::string::npos);
+    check_same_mesh(shared, clmesh::triangulate(*large, input, options));
+  }
+}

@@ -1117,13 +1117,14 @@ def report(a, header, rows, description, device, warnings, failures, mode, title
 
 # ---- the --markdown file --------------------------------------------------
 
-MARKDOWN_MODES = ("dt", "cdt", "quality", "pslg", "refine")  # section order in the file
+MARKDOWN_MODES = ("dt", "cdt", "quality", "pslg", "refine", "batch")  # section order in the file
 MARKDOWN_HEAD = """# Benchmarks
 
 This file is written by `scripts/bench.py --markdown docs/benchmarks.md` (and
-`scripts/bench_refine.py --markdown docs/benchmarks.md` for `-r`): each run
+`scripts/bench_refine.py --markdown docs/benchmarks.md` for `-r`,
+`scripts/bench_batch.py --markdown docs/benchmarks.md` for batches): each run
 replaces the section of its mode (Delaunay, `--cdt`, `--quality`, `--pslg`,
-refining) and keeps the others. Do not edit it by hand.
+refining, batches) and keeps the others. Do not edit it by hand.
 
 clmesh, Shewchuk's Triangle and CGAL run side by side on the same inputs, each
 in a fresh process, timing the meshing alone (no file reading or writing). The

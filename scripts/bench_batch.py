@@ -12,8 +12,10 @@ in BUILD/bench/batch-*/:
           small islands as holes, scripts/gen_pslg.py coast), -pq30
 
 Timed, as wall time from start to exit of everything the batch needs:
-  clmesh --batch   build/clmesh -Q SWITCHES --batch LIST: one process, the
-                   device, context and kernels set up once
+  clmesh --batch   build/clmesh -Q SWITCHES --batch LIST: one run, its worker
+                   processes (--jobs, by default one a hardware thread) each
+                   setting the device, context and kernels up once
+  --jobs 1         the same with one worker
   Triangle x N     the native binary (build-triangle.sh), one process per
                    file, started one after the other
   Python loop      in one Python process: triangle.triangulate(dict, SWITCHES)
@@ -26,7 +28,10 @@ writing) and what remains (process start, OpenCL set-up, built kernels).
 
 Usage: python3 scripts/bench_batch.py [--count 2000] [--points 2000]
            [--vertices 500] [--build-dir build] [--triangle PATH] [--clmesh PATH]
-           [--python PATH]
+           [--python PATH] [--markdown FILE.md]
+
+--markdown FILE also writes the table as the batch section of FILE (the
+other sections are kept).
 """
 import argparse
 import json
@@ -36,7 +41,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench import ROOT  # noqa: E402
+from bench import ROOT, write_markdown  # noqa: E402
 
 PYTHON_LOOP = r"""
 import sys, time
@@ -122,14 +127,17 @@ def main():
     ap.add_argument("--triangle")
     ap.add_argument("--python", help="a Python with numpy and triangle (default: "
                     "BUILD/venv/bin/python when it exists, else this one)")
+    ap.add_argument("--markdown", metavar="FILE")
     a = ap.parse_args()
     venv = os.path.join(a.build_dir, "venv", "bin", "python")
     python = a.python or (venv if os.access(venv, os.X_OK) else sys.executable)
     clmesh = os.path.abspath(a.clmesh or os.path.join(a.build_dir, "clmesh"))
     triangle = os.path.abspath(a.triangle or os.path.join(a.build_dir, "triangle-native"))
     bench = os.path.join(a.build_dir, "bench")
-    print(f"{'batch':8} {'files':>6} {'switches':>9} {'clmesh --batch s':>17} "
-          f"{'Triangle x N s':>15} {'ratio':>6} {'Python loop s':>14} {'ratio':>6}")
+    columns = ["batch", "files", "switches", "clmesh --batch s", "--jobs 1 s", "Triangle x N s",
+               "ratio", "Python loop s", "ratio to loop"]
+    print("  ".join(f"{c:>16}" for c in columns))
+    table = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     for kind, size, switches in (("points", a.points, ""), ("pslgs", a.vertices, "pq30")):
         directory = os.path.join(bench, f"batch-{kind}-{a.count}x{size}")
         paths = generate(directory, kind, a.count, size)
@@ -139,6 +147,9 @@ def main():
         clean(directory)
         ours = wall([clmesh, "-Q" + switches, "--batch", "list.txt"], cwd=directory)
         clean(directory)
+        one_worker = wall([clmesh, "-Q" + switches, "--jobs", "1", "--batch", "list.txt"],
+                          cwd=directory)
+        clean(directory)
         start = time.perf_counter()
         for p in paths:
             subprocess.run([triangle, "-Q" + switches, os.path.basename(p)], check=True,
@@ -146,9 +157,11 @@ def main():
         theirs = time.perf_counter() - start
         clean(directory)
         loop = python_loop(python, switches, paths)
-        loop_text = f"{loop:14.2f} {ours / loop:6.2f}" if loop else f"{'n/a':>14} {'':>6}"
-        print(f"{kind:8} {a.count:6d} {'-' + switches if switches else '(none)':>9} {ours:17.2f} "
-              f"{theirs:15.2f} {ours / theirs:6.2f} {loop_text}")
+        row = [kind, str(a.count), "-" + switches if switches else "(none)", f"{ours:.2f}",
+               f"{one_worker:.2f}", f"{theirs:.2f}", f"{ours / theirs:.2f}",
+               f"{loop:.2f}" if loop else "n/a", f"{ours / loop:.2f}" if loop else ""]
+        print("  ".join(f"{c:>16}" for c in row))
+        table.append("| " + " | ".join(row) + " |")
 
     # One small run, start to exit, and where its time goes.
     one = os.path.join(bench, "batch-single")
@@ -164,11 +177,28 @@ def main():
     seconds = data["seconds"]
     parts = {k: seconds.get(k, 0.0) for k in ("read", "compute", "write")}
     rest = total - sum(parts.values())
-    print(f"\nOne run of 1000 points: {total * 1000:.1f} ms from start to exit: read "
-          f"{parts['read'] * 1000:.1f} ms, compute (upload to download) "
-          f"{parts['compute'] * 1000:.1f} ms, write {parts['write'] * 1000:.1f} ms; the rest "
-          f"(process start, the OpenCL platform and device, loading the built kernels) "
-          f"{rest * 1000:.1f} ms")
+    single = (f"One run of 1000 points: {total * 1000:.1f} ms from start to exit: read "
+              f"{parts['read'] * 1000:.1f} ms, compute (upload to download) "
+              f"{parts['compute'] * 1000:.1f} ms, write {parts['write'] * 1000:.1f} ms; the "
+              f"rest (process start, the OpenCL platform and devices, loading the built "
+              f"kernels) {rest * 1000:.1f} ms.")
+    print("\n" + single)
+    if a.markdown:
+        notes = [None,
+                 f"Inputs: {a.count} uniform point sets of {a.points} points (Delaunay, no "
+                 f"switches) and {a.count} coastlines of about {a.vertices} vertices "
+                 f"(scripts/gen_pslg.py coast: an outline and islands as holes, -pq30).",
+                 "Wall time from start to exit of everything the batch needs, reading and "
+                 "writing the files included.  clmesh: one run of build/clmesh -Q SWITCHES "
+                 "--batch LIST with its default workers (one process a hardware thread), and "
+                 "with --jobs 1.  Triangle x N: the native binary (-O3 -march=native, "
+                 "build-triangle.sh) run once per file, one after the other.  Python loop: "
+                 "triangle.triangulate (the PyPI wheel) on each file's arrays in one Python "
+                 "process, reading included, no writing.  Ratios: clmesh --batch over the "
+                 "other.",
+                 single]
+        write_markdown(a.markdown, "batch", "Batches of small meshes", table, notes,
+                       data.get("device"))
 
 
 if __name__ == "__main__":

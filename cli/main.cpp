@@ -24,6 +24,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sched.h>
 #include <string>
 #include <thread>
 #include <unistd.h>
@@ -66,15 +67,20 @@ struct CommandLine {
   bool batch() const {
     return sources.size() > 1 || sharded || (!sources.empty() && sources[0].list);
   }
-  // Worker threads: --jobs, else for a batch one a hardware thread (at most
-  // 8), for a single input one.
+  // Worker processes: --jobs, else for a batch one an allowed CPU (at most
+  // 8), for a single input none but this process.
   unsigned workers() const {
     if (jobs > 0)
       return jobs;
     if (!batch())
       return 1;
-    const unsigned threads = std::thread::hardware_concurrency();
-    return threads == 0 ? 1 : threads < 8 ? threads : 8;
+    // The CPUs this process may run on (a container's, a Slurm job's), not
+    // all the machine's.
+    cpu_set_t allowed;
+    const int threads = sched_getaffinity(0, sizeof allowed, &allowed) == 0
+                            ? CPU_COUNT(&allowed)
+                            : static_cast<int>(std::thread::hardware_concurrency());
+    return threads < 1 ? 1 : threads < 8 ? static_cast<unsigned>(threads) : 8;
   }
 };
 
@@ -191,7 +197,7 @@ void print_help() {
       "  --shard K/N           Mesh only the inputs at positions K, K+N, K+2N... (from 1)\n"
       "                        of the inputs and lists, in order (1 <= K <= N).\n"
       "  --jobs N              Mesh up to N inputs at once, each in a worker process\n"
-      "                        (default: one a hardware thread, at most 8); messages\n"
+      "                        (default: one a CPU it may use, at most 8); messages\n"
       "                        and files are those of the inputs meshed in turn.\n"
       "  --help                Print this help.\n"
       "  --version             Print the version.\n"

@@ -46,9 +46,11 @@ CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &opti
   std::vector<Segment> segments = input.segments;
   if (options.convex_hull)
     segments.insert(segments.end(), mesh.segments.begin(), mesh.segments.end());
-  // The points after the input's are where segments cross, rounded.
+  // The points after the input's are where segments cross, rounded; other
+  // crossings may have rounded onto vertices already there.
   return check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of, segments,
-                           whole_hull, static_cast<int32_t>(input.points.size()));
+                           whole_hull, static_cast<int32_t>(input.points.size()),
+                           mesh.statistics.constraints.crossings_at_vertices > 0);
 }
 
 } // namespace clmesh

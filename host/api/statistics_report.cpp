@@ -94,6 +94,8 @@ std::string format_statistics(const Mesh &mesh) {
     add("    Duplicate or zero-length segments dropped: %ld\n", c.dropped_segments);
     add("    Input segments split: %ld\n", c.split_segments);
     add("    Segment crossings (new vertices): %ld\n", c.crossings);
+    if (c.crossings_at_vertices > 0)
+      add("    Segment crossings rounded onto vertices: %ld\n", c.crossings_at_vertices);
     add("    Segment-triangle intersections: %ld\n", c.intersections);
     add("    Constraint flips: %ld\n", c.constraint_flips);
     add("    Outer iterations / runs flipped along: %ld / %ld\n", c.outer_iterations,
@@ -152,6 +154,7 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
     json += count("dropped_segments", c.dropped_segments);
     json += count("split_segments", c.split_segments);
     json += count("crossings", c.crossings);
+    json += count("crossings_at_vertices", c.crossings_at_vertices);
     json += count("intersections", c.intersections);
     json += count("constraint_flips", c.constraint_flips);
     json += count("outer_iterations", c.outer_iterations);

@@ -294,7 +294,8 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   vertex_triangles_recorded_ = false;
   fit_to_mesh();
   added_points_.insert(added_points_.end(), where.begin(), where.end());
-  stats.crossings += static_cast<long>(crossings.size());
+  stats.crossings += static_cast<long>(where.size());
+  stats.crossings_at_vertices += static_cast<long>(crossings.size() - where.size());
   std::vector<Segment> pieces;
   std::vector<int32_t> origin;
   std::vector<int32_t> split_at(m, -1);

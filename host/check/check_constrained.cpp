@@ -75,7 +75,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
                               const std::vector<std::array<int32_t, 3>> &neighbors,
                               const std::vector<int32_t> &duplicate_of,
                               const std::vector<Segment> &segments, bool whole_hull,
-                              int32_t first_added) {
+                              int32_t first_added, bool crossings_at_vertices) {
   CheckReport report;
   const int64_t n = static_cast<int64_t>(points.size());
   const int64_t nt = static_cast<int64_t>(triangles.size());
@@ -244,9 +244,10 @@ CheckReport check_constrained(const std::vector<Point> &points,
       adjacent[fill[to_of(e)]++] = from_of(e);
     }
   }
-  // Points from first_added on are rounded crossings: segments split at them
-  // are followed within rounding too.
-  const bool rounded = first_added < n;
+  // Points from first_added on are rounded crossings (and with
+  // crossings_at_vertices some crossings are vertices that were there):
+  // segments split at them are followed within rounding too.
+  const bool rounded = first_added < n || crossings_at_vertices;
   std::vector<int32_t> sorted; // for the search of points on a segment that left the mesh
   std::unordered_set<uint64_t> segment_edges, seen_segments;
   int64_t missing = 0;
@@ -285,7 +286,9 @@ CheckReport check_constrained(const std::vector<Point> &points,
             (next < 0 || between_on_segment(points[c], points[w], points[next])))
           next = w;
       }
-      for (const bool crossings_only : {true, false}) {
+      // Rounded crossings are preferred to vertices that were there, unless
+      // crossings rounded onto such vertices: then the nearest of all.
+      for (const bool crossings_only : {!crossings_at_vertices, false}) {
         if (next >= 0 || !rounded)
           break;
         for (int32_t q = first[c]; q < first[c + 1]; ++q) {
@@ -345,6 +348,14 @@ CheckReport check_constrained(const std::vector<Point> &points,
         report.fail("segment " + std::to_string(k) + ": internal error of the checker");
         break;
       }
+      // Rounding may put a point ahead along a nearly vertical or horizontal
+      // segment behind c in the lexicographic order: the nearest ahead of all.
+      if (rounded)
+        for (const int32_t p : sorted)
+          if (p != c && within_rounding_of(points[a], pb, points[p]) &&
+              ahead_along(points[a], pb, points[c], points[p]) &&
+              ahead_along(points[a], pb, points[p], points[next]))
+            next = p;
       c = next;
     }
   }

@@ -42,7 +42,9 @@ CheckReport check_triangulation(const std::vector<Point> &points,
 //    part of a segment.  (Local checks: two pieces overlapping without sharing a vertex are not
 //    detected; checking that the mesh is a subset of the whole-hull mesh closes that gap.)
 // Points from first_added on were computed where segments cross, and rounded: a segment's chain
-// may pass through one that lies within rounding of the segment (not exactly on it).
+// may pass through one that lies within rounding of the segment (not exactly on it). With
+// crossings_at_vertices (some crossing rounded onto a vertex already there, which then splits
+// both segments), it may pass through any vertex within rounding of it.
 // In both modes every edge between two triangles that is not part of a segment must be
 // locally Delaunay with the symbolically perturbed in-circle test (clm_incircle_sos, the rule
 // of check_triangulation and of CGAL), so the constrained Delaunay triangulation accepted is
@@ -52,6 +54,6 @@ CheckReport check_constrained(const std::vector<Point> &points,
                               const std::vector<std::array<int32_t, 3>> &neighbors,
                               const std::vector<int32_t> &duplicate_of,
                               const std::vector<Segment> &segments, bool whole_hull,
-                              int32_t first_added = INT32_MAX);
+                              int32_t first_added = INT32_MAX, bool crossings_at_vertices = false);
 
 } // namespace clmesh

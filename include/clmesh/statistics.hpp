@@ -35,13 +35,14 @@ struct DelaunayStats {
 
 // GPU-CDT (thesis chapter 4), with -p.
 struct ConstrainedStats {
-  long segments = 0;         // input segments kept (after dropping duplicates/zero length)
-  long dropped_segments = 0; // duplicate or zero-length segments
-  long split_segments = 0;   // input segments split (at a vertex on them or a crossing)
-  long crossings = 0;        // segment-segment crossings, each a new vertex
-  long intersections = 0;    // constraint-triangle intersections found by the first marking
-  long constraint_flips = 0; // flips of the constraint-insertion phase
-  long outer_iterations = 0; // markings that led to flips
+  long segments = 0;              // input segments kept (after dropping duplicates/zero length)
+  long dropped_segments = 0;      // duplicate or zero-length segments
+  long split_segments = 0;        // input segments split (at a vertex on them or a crossing)
+  long crossings = 0;             // segment-segment crossings, each a new vertex
+  long crossings_at_vertices = 0; // crossings that rounded onto a vertex already there
+  long intersections = 0;         // constraint-triangle intersections found by the first marking
+  long constraint_flips = 0;      // flips of the constraint-insertion phase
+  long outer_iterations = 0;      // markings that led to flips
   long inner_iterations = 0; // runs flipped along (the inner loop's work-items), all iterations
   long delaunay_flips = 0;   // flips of the final constrained Delaunay flipping
   long eaten_triangles = 0;  // triangles removed as exterior or hole

@@ -133,6 +133,14 @@ for switches in -pc -pcq30; do
   rm -f crossings_walk_cycle.1.*
 done
 
+# A crossing that rounds onto a vertex already there splits the segment at
+# it: the exact check (-C) follows the segment through that vertex.
+fresh onto_vertex
+cp "$source_dir/tests/data/crossing_onto_vertex.poly" .
+run -pC -Q --stats-json s.json crossing_onto_vertex.poly
+grep -q '"crossings_at_vertices": 1,' s.json ||
+  fail "crossing_onto_vertex.poly: $(grep crossings s.json | tr -d '\n')"
+
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.
 fresh zero
 awk 'BEGIN { print "0  2  0  1" } /^[ \t]*#/ || /^[ \t]*$/ { print; next } { n++ } n > 17' \
@@ -168,7 +176,8 @@ if [[ -f stats.json ]]; then
   python3 - stats.json <<'PY' || fail "--stats-json with -p: keys or values wrong: $(cat stats.json)"
 import json, sys
 stats = json.load(open(sys.argv[1]))
-keys = ["segments", "dropped_segments", "split_segments", "crossings", "intersections", "constraint_flips",
+keys = ["segments", "dropped_segments", "split_segments", "crossings", "crossings_at_vertices",
+        "intersections", "constraint_flips",
         "outer_iterations", "inner_iterations", "delaunay_flips", "eaten_triangles", "ignored_holes",
         "ignored_regions"]
 c = stats["constraints"]

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <numeric>
 #include <utility>
 
@@ -23,7 +25,13 @@ constexpr std::size_t kRunCounters = 3; // see find_run_starts
 // segment, whose offset to it is the smallest, the best conditioned of the
 // four: whenever a + t (b - a) lands outside either segment's box, or its
 // offset is over 1024 times the best one (ten bits lost).
-Point crossing_point(const Point &a, const Point &b, const Point &p, const Point &q) {
+// `noise`: how near another point is indistinguishable from the crossing.
+struct Crossing {
+  Point point;
+  double noise;
+};
+
+Crossing crossing_point(const Point &a, const Point &b, const Point &p, const Point &q) {
   using Real = long double;
   auto cross = [](Real ux, Real uy, Real vx, Real vy) { return ux * vy - uy * vx; };
   const Real dx = static_cast<Real>(b.x) - a.x, dy = static_cast<Real>(b.y) - a.y;
@@ -52,10 +60,17 @@ Point crossing_point(const Point &a, const Point &b, const Point &p, const Point
   const From &best =
       *std::min_element(std::begin(from), std::end(from),
                         [&](const From &u, const From &w) { return offset(u) < offset(w); });
-  if (in_box(a, b) && in_box(p, q) && offset(from[0]) <= 1024 * offset(best))
-    return point;
-  return {static_cast<double>(best.base.x + best.along * best.ux),
-          static_cast<double>(best.base.y + best.along * best.uy)};
+  const Point chosen = in_box(a, b) && in_box(p, q) && offset(from[0]) <= 1024 * offset(best)
+                           ? point
+                           : Point{static_cast<double>(best.base.x + best.along * best.ux),
+                                   static_cast<double>(best.base.y + best.along * best.uy)};
+  // Four units in the last place of the point, or of the shorter segment's
+  // length: the rounding of crossings earlier on these segments bent them by
+  // about that much.
+  const double shorter = static_cast<double>(
+      std::min(std::max(std::abs(dx), std::abs(dy)), std::max(std::abs(ex), std::abs(ey))));
+  return {chosen, 4 * std::numeric_limits<double>::epsilon() *
+                      std::max({std::abs(chosen.x), std::abs(chosen.y), shorter})};
 }
 
 } // namespace
@@ -258,7 +273,9 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   std::vector<char> busy(m, 0);
   std::vector<std::pair<std::size_t, std::size_t>> crossings; // (s, piece)
   std::vector<Point> where;
-  std::vector<int32_t> near, at_vertex; // at_vertex: the endpoint a crossing is, or -1
+  std::vector<int32_t> near, at_vertex; // at_vertex: see `at` below
+  std::multimap<double, std::pair<Point, int32_t>>
+      new_vertices; // this round's, as crossing_vertices_
   for (std::size_t s = 0; s < m; ++s) {
     if (state[s] != kCrossing)
       continue;
@@ -273,35 +290,52 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
     busy[s] = busy[piece] = 1;
     const Point a = coordinates(segments_[s].a), b = coordinates(segments_[s].b);
     const Point p = coordinates(segments_[piece].a), q = coordinates(segments_[piece].b);
-    const Point point = crossing_point(a, b, p, q);
-    // A crossing that rounds onto an endpoint of either segment (one passes
-    // within rounding of the other's end) is that vertex: no new point.
-    int32_t endpoint = -1;
-    for (const int32_t v :
-         {segments_[s].a, segments_[s].b, segments_[piece].a, segments_[piece].b}) {
-      const Point at = coordinates(v);
-      if (at.x == point.x && at.y == point.y)
-        endpoint = v;
-    }
-    if (endpoint < 0) {
+    const Crossing crossing = crossing_point(a, b, p, q);
+    const Point &point = crossing.point;
+    // A crossing within its rounding noise of an endpoint of either segment
+    // (one passes within rounding of the other's end), or of the vertex of an
+    // earlier crossing, is that vertex, the nearest: no new point. Crossings
+    // of many segments at one spot (a star of diameters) then meet at one
+    // vertex, instead of making a cluster of points a hair apart whose pieces
+    // cross again and again. at: a vertex, or -2 - k for the k-th new point.
+    int32_t at = -1;
+    double nearest = crossing.noise;
+    auto consider = [&](const Point &there, int32_t id) {
+      const double distance = std::max(std::abs(there.x - point.x), std::abs(there.y - point.y));
+      if (distance <= nearest) {
+        at = id;
+        nearest = distance;
+      }
+    };
+    for (const int32_t v : {segments_[s].a, segments_[s].b, segments_[piece].a, segments_[piece].b})
+      consider(coordinates(v), v);
+    for (const auto *index : {&crossing_vertices_, &new_vertices})
+      for (auto it = index->lower_bound(point.x - nearest);
+           it != index->end() && it->first <= point.x + nearest; ++it)
+        consider(it->second.first, it->second.second);
+    if (at == -1) {
+      at = -2 - static_cast<int32_t>(where.size());
+      new_vertices.emplace(point.x, std::make_pair(point, at));
       where.push_back(point);
       near.push_back(triangle[s]);
     }
     crossings.emplace_back(s, piece);
-    at_vertex.push_back(endpoint);
+    at_vertex.push_back(at);
   }
   const std::vector<int32_t> added = insert_points(where, near);
   vertex_triangles_recorded_ = false;
   fit_to_mesh();
   added_points_.insert(added_points_.end(), where.begin(), where.end());
+  for (std::size_t k = 0; k < where.size(); ++k)
+    crossing_vertices_.emplace(where[k].x, std::make_pair(where[k], added[k]));
   stats.crossings += static_cast<long>(where.size());
   stats.crossings_at_vertices += static_cast<long>(crossings.size() - where.size());
   std::vector<Segment> pieces;
   std::vector<int32_t> origin;
   std::vector<int32_t> split_at(m, -1);
-  for (std::size_t k = 0, next = 0; k < crossings.size(); ++k)
+  for (std::size_t k = 0; k < crossings.size(); ++k)
     split_at[crossings[k].first] = split_at[crossings[k].second] =
-        at_vertex[k] >= 0 ? at_vertex[k] : added[next++];
+        at_vertex[k] >= 0 ? at_vertex[k] : added[-2 - at_vertex[k]];
   for (std::size_t i = 0; i < m; ++i) {
     const Segment &s = segments_[i];
     if (split_at[i] < 0) {

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <vector>
 
 namespace clmesh {
@@ -74,10 +75,12 @@ private:
   cl::Kernel resolve_duplicates_, record_vertex_triangles_, mark_, find_run_starts_, claim_runs_,
       flip_along_runs_, relink_run_boundaries_;
   std::vector<Segment> segments_;
-  std::vector<int32_t> origin_;            // input segment each constraint comes from
-  std::vector<int32_t> priority_order_;    // device constraint d is segments_[priority_order_[d]]
-  std::vector<char> split_origin_;         // input segments already counted as split
-  std::vector<Point> added_points_;        // vertices added where segments cross
+  std::vector<int32_t> origin_;         // input segment each constraint comes from
+  std::vector<int32_t> priority_order_; // device constraint d is segments_[priority_order_[d]]
+  std::vector<char> split_origin_;      // input segments already counted as split
+  std::vector<Point> added_points_;     // vertices added where segments cross
+  // Their vertices by x, for crossings that fall within rounding of one.
+  std::multimap<double, std::pair<Point, int32_t>> crossing_vertices_;
   bool vertex_triangles_recorded_ = false; // mesh_.vertex_triangle is up to date
   DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
       crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, run_start_, run_of_,

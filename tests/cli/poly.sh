@@ -141,6 +141,33 @@ run -pC -Q --stats-json s.json crossing_onto_vertex.poly
 grep -q '"crossings_at_vertices": 1,' s.json ||
   fail "crossing_onto_vertex.poly: $(grep crossings s.json | tr -d '\n')"
 
+# Stars of n diameters (endpoints rounded): their crossings, computed a hair
+# apart, meet at one vertex, as Triangle's do: 2n + 1 vertices. Clusters of
+# crossings once made 50 diameters run until memory ran out.
+fresh stars
+for n in 30 50 60 250; do
+  python3 - "$n" > "star$n.poly" <<'PY'
+import math, sys
+n = int(sys.argv[1])
+print(2 * n, 2, 0, 0)
+for k in range(n):
+    x, y = math.cos(math.pi * k / n), math.sin(math.pi * k / n)
+    print(2 * k + 1, repr(x), repr(y))
+    print(2 * k + 2, repr(-x), repr(-y))
+print(n, 0)
+for k in range(n):
+    print(k + 1, 2 * k + 1, 2 * k + 2)
+print(0)
+PY
+  for switches in -pcC -pcq30C; do
+    status=0
+    timeout 120 "$bin" "$switches" -Q "star$n.poly" > "$work/log/out" 2> "$work/log/err" || status=$?
+    [[ "$status" -eq 0 ]] || fail "$switches star$n.poly: exit status $status: $(cat "$work/log/err")"
+    [[ "$switches" != -pcC || "$(header "star$n.1.node")" == "$((2 * n + 1)) 2 0 1" ]] ||
+      fail "$switches star$n.poly: $(header "star$n.1.node" 2>&1) vertices, wanted $((2 * n + 1))"
+  done
+done
+
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.
 fresh zero
 awk 'BEGIN { print "0  2  0  1" } /^[ \t]*#/ || /^[ \t]*$/ { print; next } { n++ } n > 17' \

@@ -26,9 +26,11 @@ constexpr std::size_t kRunCounters = 3; // see find_run_starts
 // four: whenever a + t (b - a) lands outside either segment's box, or its
 // offset is over 1024 times the best one (ten bits lost).
 // `noise`: how near another point is indistinguishable from the crossing.
+// `along`: the same along the segments, where the crossing of two segments
+// at an angle theta is uncertain by noise / sin(theta).
 struct Crossing {
   Point point;
-  double noise;
+  double noise, along;
 };
 
 Crossing crossing_point(const Point &a, const Point &b, const Point &p, const Point &q) {
@@ -69,8 +71,12 @@ Crossing crossing_point(const Point &a, const Point &b, const Point &p, const Po
   // about that much.
   const double shorter = static_cast<double>(
       std::min(std::max(std::abs(dx), std::abs(dy)), std::max(std::abs(ex), std::abs(ey))));
-  return {chosen, 4 * std::numeric_limits<double>::epsilon() *
-                      std::max({std::abs(chosen.x), std::abs(chosen.y), shorter})};
+  const double noise = 4 * std::numeric_limits<double>::epsilon() *
+                       std::max({std::abs(chosen.x), std::abs(chosen.y), shorter});
+  const Real sine = std::abs(d_cross_e) / (std::hypot(dx, dy) * std::hypot(ex, ey));
+  return {chosen, noise,
+          sine > 0 ? std::max(noise, static_cast<double>(noise / sine))
+                   : std::numeric_limits<double>::infinity()};
 }
 
 } // namespace
@@ -297,22 +303,33 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
     // earlier crossing, is that vertex, the nearest: no new point. Crossings
     // of many segments at one spot (a star of diameters) then meet at one
     // vertex, instead of making a cluster of points a hair apart whose pieces
-    // cross again and again. at: a vertex, or -2 - k for the k-th new point.
+    // cross again and again. Nearly parallel segments (overlapping ones a
+    // hair from collinear) cross where rounding decides: an endpoint within
+    // that uncertainty along them is the crossing, or their pieces would
+    // cross again without end. A vertex qualifies only within the extent of
+    // each segment it splits. at: a vertex, or -2 - k for the k-th new point.
     int32_t at = -1;
-    double nearest = crossing.noise;
-    auto consider = [&](const Point &there, int32_t id) {
+    double nearest = std::numeric_limits<double>::infinity();
+    // Strictly between u and w along u-w, each end's side measured from that
+    // end (a far end's coordinates leave the near one's digits alone).
+    auto inside = [&](const Point &v, const Point &u, const Point &w) {
+      const double ux = w.x - u.x, uy = w.y - u.y;
+      return (v.x == u.x && v.y == u.y) || (v.x == w.x && v.y == w.y) ||
+             ((v.x - u.x) * ux + (v.y - u.y) * uy > 0 && (w.x - v.x) * ux + (w.y - v.y) * uy > 0);
+    };
+    auto consider = [&](const Point &there, int32_t id, double reach) {
       const double distance = std::max(std::abs(there.x - point.x), std::abs(there.y - point.y));
-      if (distance <= nearest) {
+      if (distance <= reach && distance < nearest && inside(there, a, b) && inside(there, p, q)) {
         at = id;
         nearest = distance;
       }
     };
     for (const int32_t v : {segments_[s].a, segments_[s].b, segments_[piece].a, segments_[piece].b})
-      consider(coordinates(v), v);
+      consider(coordinates(v), v, crossing.along);
     for (const auto *index : {&crossing_vertices_, &new_vertices})
-      for (auto it = index->lower_bound(point.x - nearest);
-           it != index->end() && it->first <= point.x + nearest; ++it)
-        consider(it->second.first, it->second.second);
+      for (auto it = index->lower_bound(point.x - crossing.noise);
+           it != index->end() && it->first <= point.x + crossing.noise; ++it)
+        consider(it->second.first, it->second.second, crossing.noise);
     if (at == -1) {
       at = -2 - static_cast<int32_t>(where.size());
       new_vertices.emplace(point.x, std::make_pair(point, at));

@@ -262,58 +262,40 @@ CheckReport check_constrained(const std::vector<Point> &points,
     if (a == b || !seen_segments.insert(edge_key(a, b)).second)
       continue; // zero length or repeated
     const Point &pb = points[b];
-    int32_t c = a;
-    // Each step moves ahead along the segment, exactly or within rounding:
-    // more steps than points means the rounding turned the walk around.
-    for (int64_t steps = 0; c != b; ++steps) {
-      if (steps > n) {
-        report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
-                    point_text(points, ib) + "): the walk along it does not end");
-        break;
-      }
-      // The nearest neighbour of c along the segment towards b: exactly on it
-      // (ordered lexicographically, and ahead of c, which may be a rounded
-      // crossing a hair off the segment), else, in a mesh with rounded
-      // crossings, a point within rounding of it (a crossing, else a vertex
-      // on a piece split at one), ordered by its offset along the segment
-      // (the rounding may break the lexicographic order on a nearly vertical
-      // or horizontal one).
-      int32_t next = -1;
+    // The mesh neighbours of c that continue the segment towards b, the
+    // likeliest first: exactly on it (ordered lexicographically, and ahead of
+    // c, which may be a rounded crossing a hair off the segment), nearest
+    // first; then, in a mesh with rounded crossings, points within rounding
+    // of it (crossings before vertices that were there, unless crossings
+    // rounded onto such vertices), ordered by their offset along the segment
+    // (the rounding may break the lexicographic order on a nearly vertical
+    // or horizontal one).
+    auto continuations = [&](int32_t c) {
+      std::vector<int32_t> exact, crossings, others;
       for (int32_t q = first[c]; q < first[c + 1]; ++q) {
         const int32_t w = adjacent[q];
         if (orient(points, a, b, w) == 0 && between_on_segment(points[c], points[w], pb) &&
-            ahead_along(points[a], pb, points[c], points[w]) &&
-            (next < 0 || between_on_segment(points[c], points[w], points[next])))
-          next = w;
+            ahead_along(points[a], pb, points[c], points[w]))
+          exact.push_back(w);
+        else if (rounded && within_rounding_of(points[a], pb, points[w]) &&
+                 ahead_along(points[a], pb, points[c], points[w]) &&
+                 !ahead_along(points[a], pb, pb, points[w]))
+          (w >= first_added || crossings_at_vertices ? crossings : others).push_back(w);
       }
-      // Rounded crossings are preferred to vertices that were there, unless
-      // crossings rounded onto such vertices: then the nearest of all.
-      for (const bool crossings_only : {!crossings_at_vertices, false}) {
-        if (next >= 0 || !rounded)
-          break;
-        for (int32_t q = first[c]; q < first[c + 1]; ++q) {
-          const int32_t w = adjacent[q];
-          if ((w >= first_added || !crossings_only) &&
-              within_rounding_of(points[a], pb, points[w]) &&
-              ahead_along(points[a], pb, points[c], points[w]) &&
-              !ahead_along(points[a], pb, pb, points[w]) &&
-              (next < 0 || ahead_along(points[a], pb, points[w], points[next])))
-            next = w;
-        }
-      }
-      if (next >= 0) {
-        segment_edges.insert(edge_key(c, next));
-        c = next;
-        continue;
-      }
-      if (whole_hull) {
-        if (missing++ < 5)
-          report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
-                      point_text(points, ib) + ") is missing: no mesh edge along it from " +
-                      point_text(points, c));
-        break;
-      }
-      // The segment leaves the mesh at c: go on at the next point lying on it.
+      std::sort(exact.begin(), exact.end(), [&](int32_t u, int32_t w) {
+        return between_on_segment(points[c], points[u], points[w]) && u != w;
+      });
+      for (std::vector<int32_t> *list : {&crossings, &others})
+        std::sort(list->begin(), list->end(), [&](int32_t u, int32_t w) {
+          return ahead_along(points[a], pb, points[u], points[w]);
+        });
+      exact.insert(exact.end(), crossings.begin(), crossings.end());
+      exact.insert(exact.end(), others.begin(), others.end());
+      return exact;
+    };
+    // Where the segment leaves the mesh at c (not in whole_hull mode): the
+    // next point lying on it, where it comes back.
+    auto resumption = [&](int32_t c) {
       if (sorted.empty()) {
         for (int32_t p = 0; p < n; ++p)
           if (representative(p) == p)
@@ -331,6 +313,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
       };
       auto by_point = [&](int32_t p, const Point &q) { return lex_less(points[p], q); };
       auto point_by = [&](const Point &q, int32_t p) { return lex_less(q, points[p]); };
+      int32_t next = -1;
       if (forward) {
         auto it = std::upper_bound(sorted.begin(), sorted.end(), points[c], point_by);
         for (; it != sorted.end() && next < 0; ++it)
@@ -344,25 +327,109 @@ CheckReport check_constrained(const std::vector<Point> &points,
             next = *it;
         }
       }
-      if (next < 0) { // cannot happen: b itself is a candidate
-        report.fail("segment " + std::to_string(k) + ": internal error of the checker");
-        break;
-      }
       // Rounding may put a point ahead along a nearly vertical or horizontal
       // segment behind c in the lexicographic order: the nearest ahead of all.
-      if (rounded)
+      if (rounded && next >= 0)
         for (const int32_t p : sorted)
           if (p != c && within_rounding_of(points[a], pb, points[p]) &&
               ahead_along(points[a], pb, points[c], points[p]) &&
               ahead_along(points[a], pb, points[p], points[next]))
             next = p;
-      c = next;
+      return next; // b itself is always a candidate
+    };
+    // A depth-first search from a to b over those steps, the likeliest
+    // first: nearly collinear pieces that overlap (a hair apart) can offer a
+    // step that leads nowhere. A point found to lead nowhere is not tried
+    // again; more steps than four per point means the rounding turned the
+    // walk around.
+    struct Step {
+      int32_t at;
+      std::vector<int32_t> next; // the mesh's steps left to try from `at`
+      bool resumed;              // `at` was reached by a resumption, not a mesh edge
+      bool may_resume;           // a resumption from `at` is still to try
+    };
+    std::vector<Step> path{{a, continuations(a), false, !whole_hull}};
+    std::unordered_set<int32_t> dead;
+    int64_t steps = 0;
+    int32_t deepest = a; // where the longest attempt stopped, for the message
+    std::size_t longest = 1;
+    bool found = false, endless = false;
+    while (!path.empty()) {
+      Step &top = path.back();
+      if (top.at == b) {
+        found = true;
+        break;
+      }
+      if (++steps > 4 * n + 16) {
+        endless = true;
+        break;
+      }
+      int32_t next = -1;
+      while (!top.next.empty() && next < 0) {
+        next = top.next.front();
+        top.next.erase(top.next.begin());
+        if (dead.count(next))
+          next = -1;
+      }
+      bool resumed = false;
+      if (next < 0 && top.may_resume) {
+        top.may_resume = false;
+        next = resumption(top.at);
+        resumed = next >= 0 && !dead.count(next);
+        if (!resumed)
+          next = -1;
+      }
+      if (next < 0) {
+        dead.insert(top.at);
+        path.pop_back();
+        continue;
+      }
+      path.push_back({next, continuations(next), resumed, !whole_hull});
+      if (path.size() > longest) {
+        longest = path.size();
+        deepest = next;
+      }
     }
+    if (found) {
+      for (std::size_t i = 1; i < path.size(); ++i)
+        if (!path[i].resumed)
+          segment_edges.insert(edge_key(path[i - 1].at, path[i].at));
+      continue;
+    }
+    if (endless) {
+      report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
+                  point_text(points, ib) + "): the walk along it does not end");
+      continue;
+    }
+    if (missing++ < 5)
+      report.fail("segment " + std::to_string(k) + " (" + point_text(points, ia) + ", " +
+                  point_text(points, ib) + ") is missing: no mesh edge along it from " +
+                  point_text(points, deepest));
   }
   if (missing > 5)
     report.fail(std::to_string(missing) + " segments in all are missing");
 
   // --- Boundary edges are segments (local mode); other edges locally Delaunay ----------------
+  // In a mesh with rounded crossings, pieces of segments that overlap a hair
+  // from collinear can make several chains along one segment, of which the
+  // walk above followed one: an edge the walks left out is still a segment's
+  // when both its ends lie on one within rounding, inside its extent.
+  auto along_a_segment = [&](int32_t p, int32_t q) {
+    if (!rounded)
+      return false;
+    for (const Segment &segment : segments) {
+      if (segment.a < 0 || segment.a >= n || segment.b < 0 || segment.b >= n)
+        continue;
+      const Point &sa = points[representative(segment.a)], &sb = points[representative(segment.b)];
+      auto on = [&](const Point &w) {
+        return within_rounding_of(sa, sb, w) && !ahead_along(sa, sb, w, sa) &&
+               !ahead_along(sa, sb, sb, w);
+      };
+      if (on(points[p]) && on(points[q]))
+        return true;
+    }
+    return false;
+  };
   int64_t bad_boundary = 0, bad_delaunay = 0;
   for (int32_t t = 0; t < nt; ++t) {
     if (!valid[t])
@@ -372,7 +439,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
       const int32_t p = v[(i + 1) % 3], q = v[(i + 2) % 3];
       const int32_t u = partner[3 * t + i];
       const bool is_segment = segment_edges.count(edge_key(p, q)) != 0;
-      if (u == -1 && local && !is_segment && bad_boundary++ < 5)
+      if (u == -1 && local && !is_segment && !along_a_segment(p, q) && bad_boundary++ < 5)
         report.fail("boundary edge " + std::to_string(p) + "-" + std::to_string(q) + " of " +
                     triangle_text(triangles, t) + " is not part of a segment");
       if (u < t || is_segment) // boundary, unusable, checked from u, or constrained
@@ -380,7 +447,7 @@ CheckReport check_constrained(const std::vector<Point> &points,
       const int32_t d = triangles[u][partner_slot[3 * t + i]];
       const Point &pa = points[v[0]], &pb = points[v[1]], &pc = points[v[2]], &pd = points[d];
       if (clm_incircle_sos(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y, pd.x, pd.y) != -1 &&
-          bad_delaunay++ < 5)
+          !along_a_segment(p, q) && bad_delaunay++ < 5)
         report.fail("edge " + std::to_string(p) + "-" + std::to_string(q) +
                     " is not a segment and not locally Delaunay: point " + point_text(points, d) +
                     " is inside the circumcircle of " + triangle_text(triangles, t));

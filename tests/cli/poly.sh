@@ -168,6 +168,35 @@ PY
   done
 done
 
+# Segments overlapping a hair from collinear (on a slanted line, endpoints
+# rounded) cross at tiny angles where rounding decides: each crossing is an
+# endpoint there, so the pieces stop crossing again (Triangle does not finish
+# on these from 10 segments), and -C accepts the overlapping chains.
+fresh overlaps
+for n in 16 50 200; do
+  python3 - "$n" > "overlap$n.poly" <<'PY'
+import math, sys
+n = int(sys.argv[1])
+print(2 * n, 2, 0, 0)
+for i in range(n):
+    for k, x in enumerate((i / n, (i + n / 2) / n)):
+        print(2 * i + k + 1, repr(x), repr(x * math.pi / 3))
+print(n, 0)
+for i in range(n):
+    print(i + 1, 2 * i + 1, 2 * i + 2)
+print(0)
+PY
+  for switches in -pC -pcC; do
+    status=0
+    timeout 120 "$bin" "$switches" -Q "overlap$n.poly" > "$work/log/out" 2> "$work/log/err" ||
+      status=$?
+    [[ "$status" -eq 0 ]] ||
+      fail "$switches overlap$n.poly: exit status $status: $(cat "$work/log/err")"
+    [[ "$(count "overlap$n.1.node")" == "$((2 * n))" ]] ||
+      fail "$switches overlap$n.poly: $(count "overlap$n.1.node") vertices, wanted $((2 * n))"
+  done
+done
+
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.
 fresh zero
 awk 'BEGIN { print "0  2  0  1" } /^[ \t]*#/ || /^[ \t]*$/ { print; next } { n++ } n > 17' \

@@ -141,6 +141,13 @@ run -pC -Q --stats-json s.json crossing_onto_vertex.poly
 grep -q '"crossings_at_vertices": 1,' s.json ||
   fail "crossing_onto_vertex.poly: $(grep crossings s.json | tr -d '\n')"
 
+# finishes SWITCHES FILE: clmesh SWITCHES -Q FILE ends well within two minutes.
+finishes() {
+  local status=0
+  timeout 120 "$bin" "$1" -Q "$2" > "$work/log/out" 2> "$work/log/err" || status=$?
+  [[ "$status" -eq 0 ]] || fail "$1 $2: exit status $status: $(cat "$work/log/err")"
+}
+
 # Stars of n diameters (endpoints rounded): their crossings, computed a hair
 # apart, meet at one vertex, as Triangle's do: 2n + 1 vertices. Clusters of
 # crossings once made 50 diameters run until memory ran out.
@@ -160,9 +167,7 @@ for k in range(n):
 print(0)
 PY
   for switches in -pcC -pcq30C; do
-    status=0
-    timeout 120 "$bin" "$switches" -Q "star$n.poly" > "$work/log/out" 2> "$work/log/err" || status=$?
-    [[ "$status" -eq 0 ]] || fail "$switches star$n.poly: exit status $status: $(cat "$work/log/err")"
+    finishes "$switches" "star$n.poly"
     [[ "$switches" != -pcC || "$(header "star$n.1.node")" == "$((2 * n + 1)) 2 0 1" ]] ||
       fail "$switches star$n.poly: $(header "star$n.1.node" 2>&1) vertices, wanted $((2 * n + 1))"
   done
@@ -187,11 +192,7 @@ for i in range(n):
 print(0)
 PY
   for switches in -pC -pcC; do
-    status=0
-    timeout 120 "$bin" "$switches" -Q "overlap$n.poly" > "$work/log/out" 2> "$work/log/err" ||
-      status=$?
-    [[ "$status" -eq 0 ]] ||
-      fail "$switches overlap$n.poly: exit status $status: $(cat "$work/log/err")"
+    finishes "$switches" "overlap$n.poly"
     [[ "$(count "overlap$n.1.node")" == "$((2 * n))" ]] ||
       fail "$switches overlap$n.poly: $(count "overlap$n.1.node") vertices, wanted $((2 * n))"
   done

@@ -148,24 +148,37 @@ finishes() {
   [[ "$status" -eq 0 ]] || fail "$1 $2: exit status $status: $(cat "$work/log/err")"
 }
 
-# Stars of n diameters (endpoints rounded): their crossings, computed a hair
-# apart, meet at one vertex, as Triangle's do: 2n + 1 vertices. Clusters of
-# crossings once made 50 diameters run until memory ran out.
-fresh stars
-for n in 30 50 60 250; do
-  python3 - "$n" > "star$n.poly" <<'PY'
+# segment_pairs KIND N: a .poly of N segments, each between two vertices of
+# its own: the diameters of a star (KIND star) or pieces of a slanted line,
+# each overlapping the next (overlap); endpoints rounded to doubles.
+segment_pairs() {
+  python3 - "$1" "$2" <<'PY'
 import math, sys
-n = int(sys.argv[1])
-print(2 * n, 2, 0, 0)
+kind, n = sys.argv[1], int(sys.argv[2])
+ends = []
 for k in range(n):
-    x, y = math.cos(math.pi * k / n), math.sin(math.pi * k / n)
-    print(2 * k + 1, repr(x), repr(y))
-    print(2 * k + 2, repr(-x), repr(-y))
+    if kind == "star":
+        x, y = math.cos(math.pi * k / n), math.sin(math.pi * k / n)
+        ends.append(((x, y), (-x, -y)))
+    else:
+        ends.append(tuple((x, x * math.pi / 3) for x in (k / n, (k + n / 2) / n)))
+print(2 * n, 2, 0, 0)
+for k, pair in enumerate(ends):
+    for j, (x, y) in enumerate(pair):
+        print(2 * k + j + 1, repr(x), repr(y))
 print(n, 0)
 for k in range(n):
     print(k + 1, 2 * k + 1, 2 * k + 2)
 print(0)
 PY
+}
+
+# Stars of n diameters (endpoints rounded): their crossings, computed a hair
+# apart, meet at one vertex, as Triangle's do: 2n + 1 vertices. Clusters of
+# crossings once made 50 diameters run until memory ran out.
+fresh stars
+for n in 30 50 60 250; do
+  segment_pairs star "$n" > "star$n.poly"
   for switches in -pcC -pcq30C; do
     finishes "$switches" "star$n.poly"
     [[ "$switches" != -pcC || "$(header "star$n.1.node")" == "$((2 * n + 1)) 2 0 1" ]] ||
@@ -179,18 +192,7 @@ done
 # on these from 10 segments), and -C accepts the overlapping chains.
 fresh overlaps
 for n in 16 50 200; do
-  python3 - "$n" > "overlap$n.poly" <<'PY'
-import math, sys
-n = int(sys.argv[1])
-print(2 * n, 2, 0, 0)
-for i in range(n):
-    for k, x in enumerate((i / n, (i + n / 2) / n)):
-        print(2 * i + k + 1, repr(x), repr(x * math.pi / 3))
-print(n, 0)
-for i in range(n):
-    print(i + 1, 2 * i + 1, 2 * i + 2)
-print(0)
-PY
+  segment_pairs overlap "$n" > "overlap$n.poly"
   for switches in -pC -pcC; do
     finishes "$switches" "overlap$n.poly"
     [[ "$(count "overlap$n.1.node")" == "$((2 * n))" ]] ||

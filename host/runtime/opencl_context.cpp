@@ -294,9 +294,9 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
 
 namespace {
 
-// A mapping of its own for a large device buffer, 2 MiB aligned: released to
-// the system as the buffer goes. (From the heap, a freed buffer's pages would
-// stay in the process, raising the peak memory of every later phase.)
+// A mapping of its own for a device buffer: released to the system as the
+// buffer goes. (From the heap, a freed buffer's pages would stay in the
+// process, raising the peak memory of every later phase.)
 struct Mapping {
   void *start;
   std::size_t length;
@@ -305,23 +305,31 @@ struct Mapping {
 } // namespace
 
 cl::Buffer Device::allocate(std::size_t bytes) {
-#ifdef MADV_HUGEPAGE
-  constexpr std::size_t huge_page = std::size_t{2} << 20;
-  if (cpu_paths_ && bytes >= huge_page) {
-    // Mapped with room to align, the slack before and after unmapped again.
-    const std::size_t page = 4096, length = (bytes + page - 1) / page * page;
-    void *mapped = mmap(nullptr, length + huge_page, PROT_READ | PROT_WRITE,
+  // Smaller buffers come from the driver: a mapping each would cost more
+  // system calls than the memory it gives back.
+  constexpr std::size_t own_mapping = std::size_t{64} << 10;
+  if (cpu_paths_ && bytes >= own_mapping) {
+    constexpr std::size_t page = 4096, huge_page = std::size_t{2} << 20;
+    const std::size_t length = (bytes + page - 1) / page * page;
+    // A large one is aligned to a huge page: mapped with room to align, the
+    // slack before and after unmapped again.
+    const std::size_t align = bytes >= huge_page ? huge_page : page;
+    void *mapped = mmap(nullptr, length + align - page, PROT_READ | PROT_WRITE,
                         MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (mapped != MAP_FAILED) {
       const auto first = reinterpret_cast<std::uintptr_t>(mapped);
-      const std::uintptr_t aligned = (first + huge_page - 1) / huge_page * huge_page;
+      const std::uintptr_t aligned = (first + align - 1) / align * align;
       if (aligned > first)
         munmap(mapped, aligned - first);
-      munmap(reinterpret_cast<void *>(aligned + length), first + huge_page - aligned);
+      if (first + align - page > aligned)
+        munmap(reinterpret_cast<void *>(aligned + length), first + align - page - aligned);
       void *memory = reinterpret_cast<void *>(aligned);
+#ifdef MADV_HUGEPAGE
       // Advice only, for the whole huge pages (a partial last one would be
       // committed whole): the kernel may not follow it.
-      madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+      if (bytes >= huge_page)
+        madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+#endif
       cl_int error = CL_SUCCESS;
       cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
                                      memory, &error);
@@ -341,7 +349,6 @@ cl::Buffer Device::allocate(std::size_t bytes) {
       delete mapping; // then the driver's own memory
     }
   }
-#endif
   return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
 }
 

@@ -304,16 +304,17 @@ struct Mapping {
 
 } // namespace
 
-cl::Buffer Device::allocate(std::size_t bytes) {
+cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
   // Smaller buffers come from the driver: a mapping each would cost more
   // system calls than the memory it gives back.
   constexpr std::size_t own_mapping = std::size_t{64} << 10;
   if (cpu_paths_ && bytes >= own_mapping) {
     constexpr std::size_t page = 4096, huge_page = std::size_t{2} << 20;
     const std::size_t length = (bytes + page - 1) / page * page;
-    // A large one is aligned to a huge page: mapped with room to align, the
-    // slack before and after unmapped again.
-    const std::size_t align = bytes >= huge_page ? huge_page : page;
+    // Huge pages: aligned to one, mapped with room to align, the slack
+    // before and after unmapped again.
+    const bool huge = huge_pages && bytes >= huge_page;
+    const std::size_t align = huge ? huge_page : page;
     void *mapped = mmap(nullptr, length + align - page, PROT_READ | PROT_WRITE,
                         MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (mapped != MAP_FAILED) {
@@ -327,7 +328,7 @@ cl::Buffer Device::allocate(std::size_t bytes) {
 #ifdef MADV_HUGEPAGE
       // Advice only, for the whole huge pages (a partial last one would be
       // committed whole): the kernel may not follow it.
-      if (bytes >= huge_page)
+      if (huge)
         madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
 #endif
       cl_int error = CL_SUCCESS;

@@ -614,8 +614,10 @@ void DelaunayScheduler::flip_flagged(const DeviceArray<cl_int> &flags, FlipCount
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
                                  const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   flipping_.reset(); // its lists are not needed any more: room for the output's
-  MeshOutput output(device_, *mesh_, *scan_);
-  output.download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  MeshOutput(device_, *mesh_, *scan_)
+      .download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  // The last use of the mesh: its memory goes before the host works on the result.
+  mesh_.reset();
   result.voronoi = std::move(voronoi_);
   timer_->charge(MeshOutput::kPhase);
   stats_.triangles = static_cast<long>(result.triangles.size());

@@ -76,7 +76,8 @@ public:
   void flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts, const std::string &phase);
 
   // Downloads the real triangles not flagged in `removed` (per slot), with
-  // the per-slot `label` of each in `labels` when given.
+  // the per-slot `label` of each in `labels` when given; the device mesh is
+  // released (mesh() is not to be used after).
   void download(DelaunayResult &result, const DeviceArray<cl_int> *removed = nullptr,
                 const DeviceArray<cl_int> *label = nullptr, std::vector<int32_t> *labels = nullptr);
   void download_collinear(DelaunayResult &result);

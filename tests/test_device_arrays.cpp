@@ -1,7 +1,7 @@
 // Device arrays (host/device_mesh.hpp, Device::allocate): a large array on a
-// CPU device lives in host memory the device uses in place; its contents
-// survive kernels, growth and the release of its owner; fills set exactly
-// their range.
+// CPU device lives in host memory the device uses in place, a mapping of its
+// own that goes with it; its contents survive kernels, growth and the
+// release of its owner; fills set exactly their range.
 #include <doctest/doctest.h>
 
 #include "runtime/device_mesh.hpp"
@@ -10,8 +10,13 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <numeric>
+#include <thread>
 #include <vector>
+
+#include <sys/mman.h>
 
 using namespace clmesh;
 using test_support::device;
@@ -40,6 +45,38 @@ TEST_CASE("device arrays: large arrays keep their contents through kernels and g
   const std::vector<cl_int> grown = bigger.download(dev, n + (1 << 20) + 5);
   CHECK(std::equal(expected.begin(), expected.end(), grown.begin()));
   CHECK(std::all_of(grown.begin() + n, grown.end(), [](cl_int v) { return v == -7; }));
+}
+
+TEST_CASE("device arrays: on a CPU device one of 64 KiB or more is unmapped as it goes") {
+  // From the heap its pages would stay in the process after it went.
+  Device &dev = device();
+  if (!dev.cpu_paths())
+    return;
+  // 64 KiB, and 12 MiB: whole huge pages and a tail (with and without them).
+  for (const std::size_t n : {std::size_t{16} << 10, std::size_t{3} << 20})
+    for (const bool huge_pages : {false, true}) {
+      CAPTURE(n);
+      CAPTURE(huge_pages);
+      void *memory = nullptr;
+      unsigned char resident[1];
+      {
+        DeviceArray<cl_int> array(dev, n, huge_pages);
+        REQUIRE((array.buffer().getInfo<CL_MEM_FLAGS>() & CL_MEM_USE_HOST_PTR) != 0);
+        memory = array.buffer().getInfo<CL_MEM_HOST_PTR>();
+        array.fill(dev, 7, n);
+        CHECK(array.read(dev, n - 1) == 7);
+        CHECK(mincore(memory, 1, resident) == 0); // mapped
+      }
+      dev.queue().finish();
+      // The driver may let go of the buffer a little after the queue finished.
+      bool unmapped = false;
+      for (int tries = 0; tries < 500 && !unmapped; ++tries) {
+        unmapped = mincore(memory, 1, resident) == -1 && errno == ENOMEM;
+        if (!unmapped)
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+      CHECK(unmapped);
+    }
 }
 
 TEST_CASE("device arrays: both scan methods give the exact prefix sums at every length") {

@@ -3,9 +3,9 @@
 // download of the triangles; between kernels only small counters come back.
 #include "dt/delaunay_scheduler.hpp"
 
-#include "predicates.h"
 #include "dt/shifting.hpp"
 #include "dt/triangulation_construction.hpp"
+#include "predicates.h"
 
 #include <algorithm>
 #include <array>
@@ -367,7 +367,6 @@ bool DelaunayScheduler::triangulate() {
 
   mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.tuning.group_pass_limit);
   MissingPointInsertion insertion(device_, *mesh_, *scan_);
   Device &device = device_;
   DeviceMesh &mesh = *mesh_;
@@ -440,7 +439,7 @@ bool DelaunayScheduler::triangulate() {
     timer_->charge(MissingPointInsertion::kPhase);
     if (inserted == 0 && insertion.pending() > 0)
       throw InternalError("missing-point insertion made no progress");
-    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
     timer_->charge(Flipping::kPhase);
   }
   stats_.duplicates = static_cast<long>(insertion.duplicates());
@@ -451,7 +450,8 @@ bool DelaunayScheduler::triangulate() {
 }
 
 int DelaunayScheduler::texture_side(Point low, double span) const {
-  return options_.tuning.grid ? *options_.tuning.grid : VoronoiBanding::choose_grid(points_, low, span);
+  return options_.tuning.grid ? *options_.tuning.grid
+                              : VoronoiBanding::choose_grid(points_, low, span);
 }
 
 bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
@@ -563,7 +563,7 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
     timer_->charge(MissingPointInsertion::kPhase);
     if (inserted == 0 && insertion.pending() > 0)
       throw InternalError("point insertion made no progress");
-    flipping_->run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
     timer_->charge(Flipping::kPhase);
   }
   stats_.flips = flips_.flips;
@@ -572,11 +572,23 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
   return insertion.duplicates();
 }
 
+void DelaunayScheduler::fix_boundary() {
+  fixed_boundary_ = true;
+  if (flipping_)
+    flipping_->set_fixed_boundary(true);
+}
+
+Flipping &DelaunayScheduler::flipping() {
+  if (!flipping_) {
+    flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.tuning.group_pass_limit);
+    flipping_->set_fixed_boundary(fixed_boundary_);
+  }
+  return *flipping_;
+}
+
 void DelaunayScheduler::grow(std::size_t extra_points) {
   mesh_->grow(device_, extra_points);
-  const bool fixed = flipping_->fixed_boundary();
-  flipping_ = std::make_unique<Flipping>(device_, *mesh_, options_.tuning.group_pass_limit);
-  flipping_->set_fixed_boundary(fixed);
+  flipping_.reset(); // sized by the mesh: built again for the next flips
 }
 
 bool DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase, long max_passes) {
@@ -584,7 +596,7 @@ bool DelaunayScheduler::flip_all(FlipCounts &counts, const std::string &phase, l
   std::iota(every_triangle.begin(), every_triangle.end(), 0);
   DeviceArray<cl_int> active(device_, every_triangle.size());
   active.upload(device_, every_triangle);
-  const bool done = flipping_->run(active, every_triangle.size(), stamp_, counts, max_passes);
+  const bool done = flipping().run(active, every_triangle.size(), stamp_, counts, max_passes);
   timer_->charge(phase);
   return done;
 }
@@ -595,15 +607,17 @@ void DelaunayScheduler::flip_flagged(const DeviceArray<cl_int> &flags, FlipCount
   DeviceArray<cl_int> offsets(device_, slots), active(device_, slots);
   const auto n =
       static_cast<std::size_t>(scan_->compact_indices(flags, offsets, active, slots, phase));
-  flipping_->run(active, n, stamp_, counts);
+  flipping().run(active, n, stamp_, counts);
   timer_->charge(phase);
 }
 
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
                                  const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   flipping_.reset(); // its lists are not needed any more: room for the output's
-  MeshOutput output(device_, *mesh_, *scan_);
-  output.download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  MeshOutput(device_, *mesh_, *scan_)
+      .download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
+  // The last use of the mesh: its memory goes before the host works on the result.
+  mesh_.reset();
   result.voronoi = std::move(voronoi_);
   timer_->charge(MeshOutput::kPhase);
   stats_.triangles = static_cast<long>(result.triangles.size());

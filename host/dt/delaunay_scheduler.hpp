@@ -63,7 +63,7 @@ public:
   std::size_t insert_appended(std::size_t count);
 
   // Makes room for `extra_points` more points; the phase objects that size
-  // their lists by the mesh are rebuilt.
+  // their lists by the mesh are built again when next needed.
   void grow(std::size_t extra_points);
 
   // Flips every triangle until locally (constrained) Delaunay; false when
@@ -76,15 +76,21 @@ public:
   void flip_flagged(const DeviceArray<cl_int> &flags, FlipCounts &counts, const std::string &phase);
 
   // Downloads the real triangles not flagged in `removed` (per slot), with
-  // the per-slot `label` of each in `labels` when given.
+  // the per-slot `label` of each in `labels` when given; the device mesh is
+  // released (mesh() is not to be used after).
   void download(DelaunayResult &result, const DeviceArray<cl_int> *removed = nullptr,
                 const DeviceArray<cl_int> *label = nullptr, std::vector<int32_t> *labels = nullptr);
   void download_collinear(DelaunayResult &result);
 
+  // Later flips keep the boundary fixed (Flipping::set_fixed_boundary).
+  void fix_boundary();
+  // Phase 5's lists go until a flip needs them again (refinement flips by
+  // its own phase): memory for the phases that follow.
+  void release_flipping() { flipping_.reset(); }
+
   Device &device() { return device_; }
   DeviceMesh &mesh() { return *mesh_; }
   PrefixScan &scan() { return *scan_; }
-  Flipping &flipping() { return *flipping_; }
   PhaseTimer &timer() { return *timer_; }
   int &stamp() { return stamp_; }
   DelaunayStats &stats() { return stats_; }
@@ -105,6 +111,8 @@ private:
   // flipped to Delaunay, and the missing points given to `insertion`. False
   // (the mesh to be rebuilt from the hull fan) when that did not succeed.
   bool construct_from_voronoi(MissingPointInsertion &insertion);
+  // Phase 5, built on first use after the mesh was made or grew.
+  Flipping &flipping();
 
   Device &device_;
   const std::vector<Point> &points_;
@@ -115,7 +123,8 @@ private:
   std::unique_ptr<PhaseTimer> timer_;
   std::unique_ptr<DeviceMesh> mesh_;
   std::unique_ptr<PrefixScan> scan_;
-  std::unique_ptr<Flipping> flipping_;
+  std::unique_ptr<Flipping> flipping_; // null until needed (flipping())
+  bool fixed_boundary_ = false;
   std::vector<int32_t> device_id_;   // input index -> device point
   std::vector<int32_t> original_id_; // device point -> input index
   std::vector<int32_t> voronoi_;

@@ -19,9 +19,8 @@ Flipping::Flipping(Device &device, DeviceMesh &mesh, std::size_t group_pass_limi
       relink_and_collect_(device.kernel(kFile, "flip_relink_and_collect", kPhase)),
       passes_in_group_(device.kernel(kFile, "flip_passes_in_group", kPhase)),
       active_(device, mesh.list_capacity), next_active_(device, mesh.list_capacity),
-      flags_(device, mesh.list_capacity), exact_list_(device, mesh.list_capacity),
-      proposal_(device, mesh.list_capacity), flipped_(device, mesh.list_capacity),
-      exact_count_(device, 1), pass_counts_(device, 2),
+      exact_list_(device, mesh.list_capacity), proposal_(device, mesh.list_capacity),
+      exact_count_(device, 1), flags_(device, mesh.list_capacity), pass_counts_(device, 2),
       active_round_(device, mesh.triangle_capacity), group_result_(device, 4) {
   active_round_.fill(device_, 0, mesh.triangle_capacity);
   passes_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
@@ -71,7 +70,7 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
       set_args_from(passes_in_group_, mesh_.bind_triangulation(passes_in_group_, 0),
                     active_.buffer(), next_active_.buffer(), static_cast<cl_int>(n),
                     static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_,
-                    proposal_.buffer(), flipped_.buffer(), static_cast<cl_int>(stamp),
+                    proposal_.buffer(), flags_.buffer(), static_cast<cl_int>(stamp),
                     static_cast<cl_int>(limit), static_cast<cl_int>(left), group_result_.buffer());
       launch(device_, passes_in_group_, group, kPhase, group);
       const std::vector<cl_int> result = group_result_.download(device_, 4);
@@ -91,10 +90,10 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     pass_counts_.fill(device_, 0, 2);
     propose(n, counts);
     set_args_from(apply_, mesh_.bind_triangulation(apply_, 0), active_.buffer(), proposal_.buffer(),
-                  flipped_.buffer(), pass_counts_.buffer(), pass_stamp, items);
+                  flags_.buffer(), pass_counts_.buffer(), pass_stamp, items);
     launch(device_, apply_, n, kPhase);
     set_args_from(relink_and_collect_, mesh_.bind_triangulation(relink_and_collect_, 0),
-                  active_.buffer(), proposal_.buffer(), flipped_.buffer(), pass_stamp,
+                  active_.buffer(), proposal_.buffer(), flags_.buffer(), pass_stamp,
                   next_active_.buffer(), active_round_.buffer(), round_ + 1, pass_counts_.buffer(),
                   items);
     launch(device_, relink_and_collect_, n, kPhase);

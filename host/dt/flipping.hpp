@@ -48,7 +48,10 @@ private:
   std::size_t group_pass_limit_;
   cl::Kernel mark_active_, check_fast_, check_exact_, apply_, relink_and_collect_, passes_in_group_;
   std::size_t passes_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flip_passes_in_group
-  DeviceArray<cl_int> active_, next_active_, flags_, exact_list_, proposal_, flipped_, exact_count_;
+  DeviceArray<cl_int> active_, next_active_, exact_list_, proposal_, exact_count_;
+  // Per entry of the active list: the edge flags while proposing, then
+  // whether the entry flipped (apply, relink): one array, for less memory.
+  DeviceArray<cl_int> flags_;
   DeviceArray<cl_int> pass_counts_;  // of a pass: {flips, entries of the next list}
   DeviceArray<cl_int> active_round_; // per triangle: the last check that listed it
   DeviceArray<cl_int> group_result_; // flip_passes_in_group's passes, flips, length, uncertain

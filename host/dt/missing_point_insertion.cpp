@@ -19,9 +19,8 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
       remaining_(device, mesh.point_capacity), remaining_next_(device, mesh.point_capacity),
       status_(device, mesh.point_capacity), winner_(device, mesh.point_capacity),
-      winner_offset_(device, mesh.point_capacity), keep_(device, mesh.point_capacity),
-      keep_offset_(device, mesh.point_capacity), changed_(device, mesh.list_capacity),
-      failures_(device, 1) {
+      offset_(device, mesh.point_capacity), keep_(device, mesh.point_capacity),
+      changed_(device, mesh.list_capacity), failures_(device, 1) {
   failures_.fill(device_, 0, 1);
 }
 
@@ -65,7 +64,7 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
                 status_.buffer(), n);
   launch(device_, clear_marks_, pending_, kPhase);
 
-  const int winners = scan_.exclusive_scan(winner_, winner_offset_, pending_, kPhase);
+  const int winners = scan_.exclusive_scan(winner_, offset_, pending_, kPhase);
   const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
   DeviceMesh::FreeList &free = mesh_.free_triangles;
   const auto free_first = static_cast<cl_int>(free.first),
@@ -76,7 +75,7 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
     throw InternalError("missing-point insertion: triangle slots exhausted");
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
   set_args_from(split_, mesh_.bind_triangulation(split_, 0), remaining_.buffer(), winner_.buffer(),
-                winner_offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
+                offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
                 free_first, free_count, first_slot, n);
   launch(device_, split_, pending_, kPhase);
   mesh_.triangle_count += new_slots;
@@ -87,8 +86,7 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),
            n);
   launch(device_, count_remaining_, pending_, kPhase);
-  const int kept =
-      scan_.compact(remaining_, keep_, keep_offset_, remaining_next_, pending_, kPhase);
+  const int kept = scan_.compact(remaining_, keep_, offset_, remaining_next_, pending_, kPhase);
   if (failures_.read(device_, 0) != 0)
     throw InternalError("missing-point insertion: a point location walk did not end");
   duplicates_ += pending_ - static_cast<std::size_t>(kept) - static_cast<std::size_t>(winners);

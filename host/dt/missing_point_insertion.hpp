@@ -35,8 +35,9 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_;
-  DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_, winner_offset_, keep_,
-      keep_offset_, changed_, failures_;
+  DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_;
+  DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
+  DeviceArray<cl_int> keep_, changed_, failures_;
   std::size_t pending_ = 0;
   int located_since_ = 0; // stamp of the last walk: older triangles keep their points
   std::size_t duplicates_ = 0;

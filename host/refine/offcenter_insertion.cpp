@@ -146,7 +146,6 @@ void OffcenterInsertion::locate_candidates(int stamp) {
                 static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
-  located_slots_ = std::max(located_slots_, mesh_.triangle_count);
 }
 
 void OffcenterInsertion::filter_candidates() {
@@ -165,14 +164,6 @@ void OffcenterInsertion::filter_candidates() {
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
            mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
   launch(device_, clear_, candidates_, kPhase);
-}
-
-void OffcenterInsertion::forget_triangles() {
-  searched_ = false;
-  bad_ = 0;
-  candidates_ = 0;
-  last_container_.fill(device_, -1, located_slots_);
-  located_slots_ = 0;
 }
 
 std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &scan,

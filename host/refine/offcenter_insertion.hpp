@@ -61,9 +61,6 @@ public:
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
 
-  // After the triangles moved: the next search examines every slot again.
-  void forget_triangles();
-
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
   // triangles whose smallest angle is at one of those cannot be mended and are
@@ -108,8 +105,7 @@ private:
   const cl::Buffer &size_bound_buffer() const {
     return size_bound_ ? size_bound_->buffer() : region_area_.buffer();
   }
-  cl_int located_stamp_ = 0;      // the mesh's stamp when the last search located
-  std::size_t located_slots_ = 0; // last_container_ is -1 from here on
+  cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
 };
 
 } // namespace clmesh

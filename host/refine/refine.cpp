@@ -183,15 +183,11 @@ struct RefinementSteps {
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
-        compaction(scheduler.device(), scheduler.mesh(), scheduler.scan()),
-        renumbering(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
   FlipFlop flipflop;
   FreeSlots free_slots;
-  ZOrderCompaction compaction;
-  SteinerRenumbering renumbering;
   DeviceArray<cl_int> new_points; // the points inserted in this iteration
 };
 
@@ -255,7 +251,8 @@ public:
     scheduler_.mesh().enable_refinement(device_);
     if (pslg_)
       set_segments();
-    scheduler_.flipping().set_fixed_boundary(true);
+    scheduler_.fix_boundary();
+    scheduler_.release_flipping(); // the iterations flip by FlipFlop
     if (options_.size_field || options_.unsuitable || triangle_areas_) {
       device_.program("size_bound.cl", "setup");
       size_bound_ = std::make_unique<SizeBound>(device_, mesh(), options_.size_field,
@@ -311,11 +308,11 @@ public:
       return;
     }
     collect_statistics();
+    steps_.reset(); // the steps' lists go before the mesh comes to the host
     const std::size_t n = points_.size();
-    result_.added_points = steps_->renumbering.number(n);
+    result_.added_points = SteinerRenumbering(device_, mesh(), scheduler_.scan()).number(n);
     const std::size_t survivors = result_.added_points.size();
     stats_.inserted = static_cast<long>(survivors);
-    steps_.reset();
     scheduler_.download(result_.mesh);
     result_.mesh.duplicate_of.resize(n + survivors);
     stats_.inserted_more_than_once =
@@ -469,10 +466,11 @@ private:
   // and the Steiner points, and the segments as chains of subsegments.
   void finish_pslg() {
     collect_statistics();
+    steps_.reset(); // the steps' lists go before the mesh comes to the host
     std::vector<int32_t> on_segment;
-    std::vector<Point> steiner = steps_->renumbering.number(first_steiner_, &on_segment);
+    std::vector<Point> steiner =
+        SteinerRenumbering(device_, mesh(), scheduler_.scan()).number(first_steiner_, &on_segment);
     stats_.inserted = static_cast<long>(steiner.size());
-    steps_.reset();
     std::vector<int32_t> labels;
     const bool attributes = options_.attributes && mesh().has_regions;
     scheduler_.download(result_.mesh, nullptr, attributes ? &mesh().tri_region : nullptr, &labels);
@@ -576,11 +574,15 @@ private:
   }
 
   // Thesis §3.6.1: the live triangles and Steiner points move to the front,
-  // in Z-order. Every slot number changes: the lists of triangles are void.
+  // in Z-order. Every slot number changes: the lists of triangles are void,
+  // and the steps start again with new arrays. Their pages go back to the
+  // system for the move, and the long lists of the first iterations do not
+  // hold pages while the mesh grows.
   void compact() {
-    steps_->compaction.compact(low_, side_, first_steiner_);
-    steps_->offcenter.forget_triangles();
-    changed_.size = 0;
+    steps_.reset();
+    ZOrderCompaction(device_, mesh(), scheduler_.scan()).compact(low_, side_, first_steiner_);
+    make_steps();
+    changed_ = DeviceList<cl_int>{};
     sizes_stale_ = true;
     deleted_since_collection_ = false;
     compacted_slots_ = mesh().triangle_count;

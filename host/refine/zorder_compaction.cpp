@@ -65,8 +65,11 @@ void ZOrderCompaction::compact_triangles(Point low, double side) {
     live = z_order(grid, cell, key, true, slots, order, new_slot);
   }
   {
-    DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity);
-    DeviceArray<cl_int> moved_region(device_, mesh_.has_regions ? mesh_.triangle_capacity : 1);
+    // The moved arrays take the place of the mesh's.
+    DeviceArray<cl_int> moved_neighbor(device_, 3 * mesh_.triangle_capacity,
+                                       DeviceMesh::kHugePages);
+    DeviceArray<cl_int> moved_region(device_, mesh_.has_regions ? mesh_.triangle_capacity : 1,
+                                     DeviceMesh::kHugePages);
     set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
              mesh_.tri_neighbor.buffer(), mesh_.tri_region.buffer(),
              static_cast<cl_int>(mesh_.has_regions), mesh_.children.buffer(),
@@ -99,12 +102,14 @@ void ZOrderCompaction::compact_steiner_points(Point low, double side, std::size_
     launch(device_, point_cells_, slots, kPhase);
     live = z_order(grid, cell, key, false, slots, order, new_slot);
   }
+  // The moved arrays take the place of the mesh's.
   const std::size_t capacity = mesh_.point_capacity;
-  DeviceArray<cl_double2> points(device_, capacity);
-  DeviceArray<cl_int> state(device_, capacity);
-  DeviceArray<cl_double> radius2(device_, capacity);
-  DeviceArray<cl_uint> priority(device_, capacity);
-  DeviceArray<cl_int> segment(device_, capacity);
+  constexpr bool huge = DeviceMesh::kHugePages;
+  DeviceArray<cl_double2> points(device_, capacity, huge);
+  DeviceArray<cl_int> state(device_, capacity, huge);
+  DeviceArray<cl_double> radius2(device_, capacity, huge);
+  DeviceArray<cl_uint> priority(device_, capacity, huge);
+  DeviceArray<cl_int> segment(device_, capacity, huge);
   set_args_from(move_points_, mesh_.bind(move_points_, 0), order.buffer(), points.buffer(),
                 state.buffer(), radius2.buffer(), priority.buffer(), segment.buffer(),
                 static_cast<cl_int>(first), static_cast<cl_int>(first + live));

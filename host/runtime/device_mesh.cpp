@@ -9,13 +9,18 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
       triangle_capacity(2 * point_capacity + 2),
       // Each winner of an insertion round owns a triangle and adds two, so the
       // 4 entries per winner stay below 4/3 of the triangle slots.
-      list_capacity(4 * triangle_capacity / 3 + 16), points(device, point_capacity),
-      original_id(device, point_capacity), tri_vertex(device, 3 * triangle_capacity),
-      tri_neighbor(device, 3 * triangle_capacity), tri_mark(device, triangle_capacity),
-      modified_stamp(device, triangle_capacity), children(device, 3 * triangle_capacity),
-      vertex_triangle(device, point_capacity), duplicate_of(device, point_capacity),
-      location(device, point_capacity), location_edge(device, point_capacity),
-      constraint_start(device, point_capacity + 1), constraint_adjacent(device, 1),
+      list_capacity(4 * triangle_capacity / 3 + 16), points(device, point_capacity, kHugePages),
+      original_id(device, point_capacity, kHugePages),
+      tri_vertex(device, 3 * triangle_capacity, kHugePages),
+      tri_neighbor(device, 3 * triangle_capacity, kHugePages),
+      tri_mark(device, triangle_capacity, kHugePages),
+      modified_stamp(device, triangle_capacity, kHugePages),
+      children(device, 3 * triangle_capacity, kHugePages),
+      vertex_triangle(device, point_capacity, kHugePages),
+      duplicate_of(device, point_capacity, kHugePages),
+      location(device, point_capacity, kHugePages),
+      location_edge(device, point_capacity, kHugePages),
+      constraint_start(device, point_capacity + 1, kHugePages), constraint_adjacent(device, 1),
       constraint_segment(device, 1), tri_region(device, 1) {}
 
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
@@ -98,10 +103,10 @@ void DeviceMesh::set_constraint_rows(Device &device, const std::vector<Segment> 
 }
 
 void DeviceMesh::enable_refinement(Device &device) {
-  point_state = DeviceArray<cl_int>(device, point_capacity);
-  insertion_radius2 = DeviceArray<cl_double>(device, point_capacity);
-  point_priority = DeviceArray<cl_uint>(device, point_capacity);
-  point_segment = DeviceArray<cl_int>(device, point_capacity);
+  point_state = DeviceArray<cl_int>(device, point_capacity, kHugePages);
+  insertion_radius2 = DeviceArray<cl_double>(device, point_capacity, kHugePages);
+  point_priority = DeviceArray<cl_uint>(device, point_capacity, kHugePages);
+  point_segment = DeviceArray<cl_int>(device, point_capacity, kHugePages);
   segment_end = DeviceArray<cl_int>(device, 2);
   point_state.fill(device, 0, point_capacity);    // every point so far is an input point
   point_segment.fill(device, -1, point_capacity); // CLM_NO_SEGMENT

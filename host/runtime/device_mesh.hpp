@@ -12,9 +12,11 @@ namespace clmesh {
 template <typename T> class DeviceArray {
 public:
   DeviceArray() = default;
-  DeviceArray(Device &device, std::size_t size) : size_(size) {
+  // huge_pages: for the mesh's arrays (Device::allocate); kept when the array grows.
+  DeviceArray(Device &device, std::size_t size, bool huge_pages = false)
+      : size_(size), huge_pages_(huge_pages) {
     buffer_ = guarded("allocation", "allocating a device array",
-                      [&] { return device.allocate(sizeof(T) * (size ? size : 1)); });
+                      [&] { return device.allocate(sizeof(T) * (size ? size : 1), huge_pages); });
   }
   std::size_t size() const { return size_; }
   const cl::Buffer &buffer() const { return buffer_; }
@@ -50,7 +52,7 @@ public:
   // not written (so not touched: memory comes to a CPU device when first
   // written).
   DeviceArray enlarged(Device &device, std::size_t size, std::size_t kept) const {
-    DeviceArray bigger(device, size);
+    DeviceArray bigger(device, size, huge_pages_);
     if (kept)
       guarded("allocation", "growing a device array", [&] {
         device.queue().enqueueCopyBuffer(buffer_, bigger.buffer_, 0, 0, kept * sizeof(T));
@@ -71,6 +73,7 @@ private:
 
   cl::Buffer buffer_;
   std::size_t size_ = 0;
+  bool huge_pages_ = false;
 };
 
 // A list on the device that grows (amortised doubling): entries appended
@@ -96,8 +99,11 @@ template <typename T> struct DeviceList {
 };
 
 // The triangulation and the per-point state that stay resident on the device
-// from upload to download (thesis §2.2 data structure).
+// from upload to download (thesis §2.2 data structure). Its arrays (and those
+// that take their place) ask for huge pages (Device::allocate).
 struct DeviceMesh {
+  static constexpr bool kHugePages = true;
+
   // Room for the input points and `extra_points` points added later (the
   // intersections of crossing segments).
   DeviceMesh(Device &device, std::size_t point_count, std::size_t extra_points = 0);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -291,29 +292,64 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     set_work_group(std::strtoul(env, nullptr, 10));
 }
 
-cl::Buffer Device::allocate(std::size_t bytes) {
+namespace {
+
+// A mapping of its own for a device buffer: released to the system as the
+// buffer goes. (From the heap, a freed buffer's pages would stay in the
+// process, raising the peak memory of every later phase.)
+struct Mapping {
+  void *start;
+  std::size_t length;
+};
+
+} // namespace
+
+cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
+  // Smaller buffers come from the driver: a mapping each would cost more
+  // system calls than the memory it gives back.
+  constexpr std::size_t own_mapping = std::size_t{64} << 10;
+  if (cpu_paths_ && bytes >= own_mapping) {
+    constexpr std::size_t page = 4096, huge_page = std::size_t{2} << 20;
+    const std::size_t length = (bytes + page - 1) / page * page;
+    // Huge pages: aligned to one, mapped with room to align, the slack
+    // before and after unmapped again.
+    const bool huge = huge_pages && bytes >= huge_page;
+    const std::size_t align = huge ? huge_page : page;
+    void *mapped = mmap(nullptr, length + align - page, PROT_READ | PROT_WRITE,
+                        MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapped != MAP_FAILED) {
+      const auto first = reinterpret_cast<std::uintptr_t>(mapped);
+      const std::uintptr_t aligned = (first + align - 1) / align * align;
+      if (aligned > first)
+        munmap(mapped, aligned - first);
+      if (first + align - page > aligned)
+        munmap(reinterpret_cast<void *>(aligned + length), first + align - page - aligned);
+      void *memory = reinterpret_cast<void *>(aligned);
 #ifdef MADV_HUGEPAGE
-  constexpr std::size_t huge_page = std::size_t{2} << 20;
-  if (cpu_paths_ && bytes >= huge_page) {
-    void *memory = nullptr;
-    if (posix_memalign(&memory, huge_page, bytes) == 0) {
       // Advice only, for the whole huge pages (a partial last one would be
       // committed whole): the kernel may not follow it.
-      madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+      if (huge)
+        madvise(memory, bytes / huge_page * huge_page, MADV_HUGEPAGE);
+#endif
       cl_int error = CL_SUCCESS;
       cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
                                      memory, &error);
       // The memory goes with the buffer (kernels may hold it longer than its owner).
-      auto release = [](cl_mem, void *user_data) { std::free(user_data); };
+      auto *mapping = new Mapping{memory, length};
+      auto release = [](cl_mem, void *user_data) {
+        const auto *owned = static_cast<Mapping *>(user_data);
+        munmap(owned->start, owned->length);
+        delete owned;
+      };
       if (error == CL_SUCCESS &&
-          clSetMemObjectDestructorCallback(buffer, release, memory) == CL_SUCCESS)
+          clSetMemObjectDestructorCallback(buffer, release, mapping) == CL_SUCCESS)
         return cl::Buffer(buffer);
       if (error == CL_SUCCESS)
         clReleaseMemObject(buffer);
-      std::free(memory); // then the driver's own memory
+      munmap(memory, length);
+      delete mapping; // then the driver's own memory
     }
   }
-#endif
   return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
 }
 

@@ -48,11 +48,14 @@ public:
   cl::Program &program(const std::string &file, const std::string &phase);
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
-  // A read-write buffer of `bytes`. On the CPU paths a large one lives in
-  // host memory that the device uses in place, aligned to 2 MiB with
-  // transparent huge pages asked for: the refinement's random accesses then
-  // miss the TLB far less often.
-  cl::Buffer allocate(std::size_t bytes);
+  // A read-write buffer of `bytes`. On the CPU paths one of 64 KiB or more
+  // lives in a mapping of its own that the device uses in place, unmapped
+  // when the buffer goes. With `huge_pages` (the mesh's arrays, read at
+  // random all along), one of 2 MiB or more is aligned to 2 MiB with
+  // transparent huge pages asked for: the random accesses then miss the TLB
+  // far less often. Lists and scratch arrays go without: used in part, a
+  // huge page would hold 2 MiB for the few entries written in it.
+  cl::Buffer allocate(std::size_t bytes, bool huge_pages = false);
   // Sets `bytes` bytes of `buffer` from byte `offset` on to copies of the
   // `pattern_size`-byte `pattern` (4, 8 or 16 bytes; offset and bytes whole
   // elements), in parallel (cl/fill.cl); the pattern repeats from the

@@ -430,11 +430,21 @@ inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
          subsegment_at(CLM_MESH_ARGS, t, i);
 }
 
+// The cosine of the angle at vertex o between o-x and o-y.
+inline double corner_cosine(__global const double2 *points, int o, int x, int y) {
+  const double2 u = points[x] - points[o], w = points[y] - points[o];
+  return (u.x * w.x + u.y * w.y) / sqrt(squared_length(u) * squared_length(w));
+}
+
 // The end of subsegment (or boundary edge) e of real triangle t around which
-// it is split on a shell, or -1 (at its midpoint): of its two ends, the one
-// alone where segments meet at a small angle, that is, where another
-// subsegment or boundary edge is an edge of t or of the triangle across e (as
-// Triangle decides).
+// it is split on a shell, or -1 (at its midpoint). An end is a candidate when
+// segments meet there and another subsegment or boundary edge at it is an
+// edge of t or of the triangle across e (as Triangle decides), at an acute
+// angle to e: only there can points on one segment encroach on the other.
+// Of two candidate ends the one at the smaller angle is the centre, so that
+// a segment leaving a fan of small angles is split on the fan's shells
+// however its far end meets the boundary (two ends at equal angles: the
+// midpoint).
 inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
   const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
   const bool joint_a = point_segment[a] == CLM_SEGMENT_JOINT,
@@ -444,11 +454,19 @@ inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
   // Across e, u = (d, b, a): its edge next3(j) ends at a, prev3(j) at b.
   const int link = tri_neighbor[3 * t + e], u = link_triangle(link), j = link_edge(link);
   const bool real_u = !is_ghost(load_vertices(tri_vertex, u));
-  const bool at_a = joint_a && (bounds_domain(CLM_MESH_ARGS, t, prev3(e)) ||
-                                (real_u && bounds_domain(CLM_MESH_ARGS, u, next3(j))));
-  const bool at_b = joint_b && (bounds_domain(CLM_MESH_ARGS, t, next3(e)) ||
-                                (real_u && bounds_domain(CLM_MESH_ARGS, u, prev3(j))));
-  return at_a == at_b ? -1 : at_a ? a : b;
+  const int c = tri_vertex[3 * t + e], d = real_u ? tri_vertex[3 * u + j] : -1;
+  double cos_a = -2, cos_b = -2;
+  if (joint_a && bounds_domain(CLM_MESH_ARGS, t, prev3(e)))
+    cos_a = corner_cosine(points, a, b, c);
+  if (joint_a && real_u && bounds_domain(CLM_MESH_ARGS, u, next3(j)))
+    cos_a = fmax(cos_a, corner_cosine(points, a, b, d));
+  if (joint_b && bounds_domain(CLM_MESH_ARGS, t, next3(e)))
+    cos_b = corner_cosine(points, b, a, c);
+  if (joint_b && real_u && bounds_domain(CLM_MESH_ARGS, u, prev3(j)))
+    cos_b = fmax(cos_b, corner_cosine(points, b, a, d));
+  if (fmax(cos_a, cos_b) <= 0 || cos_a == cos_b)
+    return -1;
+  return cos_a > cos_b ? a : b;
 }
 
 // The point that splits subsegment (or hull edge) a-b: its midpoint; or, with

@@ -13,7 +13,6 @@
 #include "messages.hpp"
 #include "worker_processes.hpp"
 
-#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>

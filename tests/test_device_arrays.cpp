@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include "runtime/device_mesh.hpp"
+#include "runtime/host_memory.hpp"
 #include "runtime/opencl_context.hpp"
 #include "runtime/prefix_scan.hpp"
 #include "test_support.hpp"
@@ -13,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <numeric>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -135,4 +137,18 @@ TEST_CASE("device arrays: fills set exactly their range, for 4-, 8- and 16-byte 
       break;
     }
   }
+}
+
+TEST_CASE("device memory: a CPU device counts no more than this process could hold") {
+  Device &dev = device();
+  const auto reported =
+      dev.context().getInfo<CL_CONTEXT_DEVICES>().front().getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+  CHECK(dev.global_memory() <= reported);
+  const std::optional<std::size_t> host = host_memory_for_process();
+  REQUIRE(host.has_value()); // Linux says
+  CHECK(*host > 0);
+  if ((dev.context().getInfo<CL_CONTEXT_DEVICES>().front().getInfo<CL_DEVICE_TYPE>() &
+       CL_DEVICE_TYPE_CPU) != 0)
+    // Other processes may free memory between the two readings: 1% slack.
+    CHECK(static_cast<double>(dev.global_memory()) <= 1.01 * static_cast<double>(*host));
 }

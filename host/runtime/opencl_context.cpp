@@ -1,6 +1,7 @@
 // clmesh — device selection, program building and error naming.
 #include "runtime/opencl_context.hpp"
 
+#include "runtime/host_memory.hpp"
 #include "runtime/program_cache.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -366,7 +368,13 @@ std::size_t Device::max_allocation() const {
 }
 
 std::size_t Device::global_memory() const {
-  return static_cast<std::size_t>(device_.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+  const auto global = static_cast<std::size_t>(device_.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+  const bool host_memory = (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0 ||
+                           device_.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() != CL_FALSE;
+  if (!host_memory)
+    return global;
+  const std::optional<std::size_t> host = host_memory_for_process();
+  return host ? std::min(global, *host) : global;
 }
 
 void Device::set_work_group(std::size_t size) {

@@ -71,8 +71,11 @@ public:
   // Whether this device takes the CPU paths (DevicePaths): true for a CPU
   // device unless CLMESH_DEVICE_PATHS or the constructor said otherwise.
   bool cpu_paths() const { return cpu_paths_; }
-  // CL_DEVICE_MAX_MEM_ALLOC_SIZE and CL_DEVICE_GLOBAL_MEM_SIZE, in bytes.
+  // CL_DEVICE_MAX_MEM_ALLOC_SIZE, in bytes.
   std::size_t max_allocation() const;
+  // CL_DEVICE_GLOBAL_MEM_SIZE, in bytes; for a device whose memory is the
+  // host's (a CPU, an integrated GPU) no more than this process could hold
+  // now (host_memory_for_process()), which other processes' use lowers.
   std::size_t global_memory() const;
 
 private:

@@ -74,10 +74,11 @@ std::size_t OffcenterInsertion::count_unfixable() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
-  set_args_from(
-      count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
-      region_area_.buffer(), size_bound_buffer(), static_cast<cl_int>(size_bound_ != nullptr),
-      static_cast<cl_int>(protected_segments_), count.buffer(), static_cast<cl_int>(slots));
+  set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
+                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
+                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }

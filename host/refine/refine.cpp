@@ -259,7 +259,7 @@ public:
                                                 triangle_areas_.get(), options_.unsuitable);
     }
     make_steps();
-    acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
+    steps_->offcenter.flag_hull_vertices();
     return true;
   }
 
@@ -520,8 +520,7 @@ private:
 
   // The statistics of the iterations' steps.
   void collect_statistics() {
-    if (acute_hull_vertices_ > 0 || pslg_ || options_.protected_segments)
-      stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
+    stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
     stats_.deleted = flips_.deleted;
     stats_.kept_redundant = flips_.kept_redundant;
     stats_.boundary_splits = flips_.midpoints;
@@ -713,7 +712,6 @@ private:
   bool sizes_stale_ = true;                   // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
-  std::size_t acute_hull_vertices_ = 0;
   Point low_{};
   double side_ = 0; // the points' bounding square, for the Z-order
   FlipFlopCounts flips_;

@@ -199,6 +199,27 @@ for n in 16 50 200; do
       fail "$switches overlap$n.poly: $(count "overlap$n.1.node") vertices, wanted $((2 * n))"
   done
 done
+# Their domain is slivers a hair wide: flat triangles, which refinement leaves
+# and counts (once it split them without end, and a split point rounded
+# across a boundary edge made triangles overlap).
+for n in 50 200; do
+  for switches in -pq30C -pcq30C; do
+    finishes "$switches" "overlap$n.poly"
+    grep -q 'keep angles below the bound' "$work/log/err" ||
+      fail "$switches overlap$n.poly: no flat triangles reported: $(cat "$work/log/err")"
+  done
+done
+
+# A mesh refined with -pc, fed back with -c: its boundary chains are a hair
+# from straight (rounded split points), the convex hull's edges pass a hair
+# from their vertices. Refinement once split those hull edges onto the
+# vertices, and their pieces again, until memory ran out.
+fresh refined_again
+cp "$inputs/A.poly" .
+run -Q -pcq30 A.poly
+for switches in -pcq30C -pcq33C; do
+  finishes "$switches" A.1.poly
+done
 
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.
 fresh zero

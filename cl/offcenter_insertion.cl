@@ -96,13 +96,6 @@ typedef struct {
   bool skinny, large, unfixable;
 } Quality;
 
-// Do the corners p[] lie within rounding noise of the line of the longest
-// edge (squared length longest2)? twice_area: their orientation determinant.
-inline bool flat_triangle(const double2 *p, double twice_area, double longest2) {
-  const double noise = fmax(rounding_noise(p[0], p[1]), rounding_noise(p[2], p[2]));
-  return fabs(twice_area) <= noise * sqrt(longest2);
-}
-
 // Do the ends of edge x-y lie on two segments that meet at a small input
 // angle, at the same distance from where they meet? Then the triangle's small
 // angle is the input's, and splitting it would only cut the shells around that
@@ -180,10 +173,8 @@ inline Quality assess(__global const double2 *points, __global const int *point_
                                (4.0 * twice_area * twice_area * q.length_squared[q.shortest]);
   q.skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
   q.large = max_area > 0 && 0.5 * twice_area > max_area;
-  const double longest2 = fmax(fmax(q.length_squared[0], q.length_squared[1]), q.length_squared[2]);
   q.unfixable = q.skinny && !q.large &&
-                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL ||
-                 flat_triangle(q.p, twice_area, longest2) ||
+                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL || flat_corners(q.p) ||
                  along_one_segment(point_segment, segment_end, tri) ||
                  across_input_angle(points, point_segment, segment_end, tri.v[next3(q.shortest)],
                                     tri.v[prev3(q.shortest)]));

@@ -40,18 +40,6 @@ inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
   return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
 }
 
-// How far apart two points near p and q may lie and still be the same point
-// to the arithmetic: four units in the last place of their largest
-// coordinate (the noise within which constraint insertion snaps crossings).
-inline double rounding_noise(double2 p, double2 q) {
-  return 4 * DBL_EPSILON * fmax(fmax(fabs(p.x), fabs(p.y)), fmax(fabs(q.x), fabs(q.y)));
-}
-
-// Are p and q within `noise` of each other (in each coordinate)?
-inline bool indistinct(double2 p, double2 q, double noise) {
-  return fabs(p.x - q.x) <= noise && fabs(p.y - q.y) <= noise;
-}
-
 // point_segment of a vertex: the segment (an index into segment_end) that a
 // vertex added on a segment lies on; for the others one of these.
 #define CLM_NO_SEGMENT (-1)    // on no segment, or the end of a single segment

@@ -21,6 +21,12 @@ public:
   long run(bool from_hull, const std::vector<Point> &holes);
   const DeviceArray<cl_int> &removed() const { return removed_; }
 
+  // -c: removes the pockets between the segments and the convex hull whose
+  // triangles are all flat, slivers made by rounding (a chain of segments a
+  // hair inside a hull edge: see seed_thick_pockets in the kernels); returns
+  // how many triangles.
+  long remove_flat_pockets();
+
   // A mesh to refine (-r): removes the real triangles whose label is -1 (no
   // input triangle's, MeshReconstruction).
   void remove_unlabelled(const DeviceArray<cl_int> &label);
@@ -44,7 +50,11 @@ private:
 
   long seeds_on_segments_ = 0;
 
-  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_;
+  // Seeds a removal flood from the hull edges that are no constraints.
+  void seed_from_hull(std::size_t slots);
+
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_,
+      seed_thick_pockets_, remove_flat_pockets_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 

@@ -330,13 +330,19 @@ private:
   }
 
   // GPU-CDT, the exterior and holes removed, and the domain closed by ghosts.
-  // With -c the domain is the convex hull (less the holes), and its hull
-  // edges join the segments, marker 1, as Triangle's -c makes them: they are
-  // split on shells where segments meet them at small angles.
+  // With -c the domain is the convex hull (less the holes and the pockets
+  // between segments and hull that are only flat slivers of rounding), and
+  // its hull edges join the segments, marker 1, as Triangle's -c makes them:
+  // they are split on shells where segments meet them at small angles.
   void constrain() {
     constraints_ = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     ExteriorRemoval removal(device_, mesh());
     remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints);
+    if (constrained_->keep_convex_hull) {
+      // Flat pockets are slivers of rounding that refinement could not mend.
+      result_.constraints.eaten_triangles += removal.remove_flat_pockets();
+      scheduler_.timer().charge(ExteriorRemoval::kPhase);
+    }
     label_regions(removal);
     DomainBoundary boundary(device_, mesh(), scheduler_.scan());
     close_domain(boundary, removal);

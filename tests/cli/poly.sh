@@ -213,12 +213,20 @@ done
 # A mesh refined with -pc, fed back with -c: its boundary chains are a hair
 # from straight (rounded split points), the convex hull's edges pass a hair
 # from their vertices. Refinement once split those hull edges onto the
-# vertices, and their pieces again, until memory ran out.
+# vertices, and their pieces again, until memory ran out. The pockets between
+# hull and chains are flat slivers, left out of the domain: its domain is its
+# convex hull, so -c refines it as -p does.
 fresh refined_again
 cp "$inputs/A.poly" .
 run -Q -pcq30 A.poly
-for switches in -pcq30C -pcq33C; do
-  finishes "$switches" A.1.poly
+for q in 30 33; do
+  finishes "-pq$q" A.1.poly
+  mv A.2.node p.node
+  finishes "-pcq${q}C" A.1.poly
+  ! grep -q 'refinement stopped' "$work/log/err" ||
+    fail "-pcq${q}C A.1.poly: $(cat "$work/log/err")"
+  cmp -s <(grep -v '^#' A.2.node) <(grep -v '^#' p.node) ||
+    fail "-pcq$q A.1.poly: $(count A.2.node) vertices, -pq$q $(count p.node)"
 done
 
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.

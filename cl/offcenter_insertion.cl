@@ -368,6 +368,16 @@ inline bool stranded(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
   return false;
 }
 
+// stuck[t]: the stamp of the location that dropped the candidate of bad
+// triangle t beyond a boundary edge or subsegment that cannot be split
+// (splittable), not one of t's own; valid while t is not rewritten since.
+// Such a triangle is left and counted as a stranded one is, until a
+// compaction or growth renews the steps (the array) and its candidate is
+// located again.
+inline bool is_stuck(__global const int *modified_stamp, __global const int *stuck, int t) {
+  return modified_stamp[t] < stuck[t];
+}
+
 // Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
 // slot gid. The list holds the bad triangles of the last search and the
 // triangles changed since: the others are still good (thesis §3.3.2). With an
@@ -394,7 +404,8 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
                                  __global const double *region_area,
                                  __global const double *size_bound, const int sized,
                                  const double offconstant, const int conforming, const int protect,
-                                 __global int *is_bad, const int election, const int n) {
+                                 __global const int *stuck, __global int *is_bad,
+                                 const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -413,7 +424,7 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
           area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
           offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
           protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority) &&
-      !stranded(CLM_MESH_ARGS, t, tri, steiner);
+      !stranded(CLM_MESH_ARGS, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -421,15 +432,15 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
 
 // counts[0]: the bad triangles left as they are, counted at the end over
 // every slot: those whose smallest angle is the input's or which are flat
-// (assess), those whose candidate lies beyond an edge of their own that
-// cannot be split (stranded), and with -Y those whose candidate lies beyond
+// (assess), those whose candidate lies beyond an edge that cannot be split
+// (stranded, is_stuck), and with -Y those whose candidate lies beyond
 // an edge of their own no point may split.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
                                         const double max_area, __global const double *region_area,
                                         __global const double *size_bound, const int sized,
                                         const double offconstant, const int conforming,
-                                        const int protect, volatile __global int *counts,
-                                        const int n) {
+                                        const int protect, __global const int *stuck,
+                                        volatile __global int *counts, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -452,7 +463,7 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
                               ratio_bound_squared, bound, offconstant,
                               conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), mask,
                               &steiner, &priority) &&
-       stranded(CLM_MESH_ARGS, t, tri, steiner)))
+       (stranded(CLM_MESH_ARGS, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
     atomic_inc(counts);
 }
 
@@ -627,7 +638,8 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
                                 __global double2 *candidate, __global int *container,
                                 __global int *split_edge, __global const int *origin,
                                 __global uint *priority, __global double *radius2,
-                                const double lens, const int max_steps, const int n) {
+                                const double lens, const int stamp, __global int *stuck,
+                                const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -650,10 +662,12 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   const VertexTriple tri = load_vertices(tri_vertex, t);
   int hull_edge = walk.outcome == CLM_WALK_BLOCKED ? walk.edge : -1;
   double2 split;
-  if (hull_edge >= 0 && (is_protected(CLM_MESH_ARGS, t, hull_edge, protect) ||
-                         !splittable(CLM_MESH_ARGS, t, hull_edge, &split)))
-    hull_edge = -1; // beyond an edge no point may split (-Y) or can: dropped, not located
-  else if (hull_edge < 0 && touches_hull(point_state, tri)) {
+  if (hull_edge >= 0 && is_protected(CLM_MESH_ARGS, t, hull_edge, protect))
+    hull_edge = -1; // beyond an edge no point may split (-Y): dropped, not located
+  else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, t, hull_edge, &split)) {
+    hull_edge = -1; // beyond an edge no point can split: dropped, and bad stuck
+    stuck[bad] = stamp;
+  } else if (hull_edge < 0 && touches_hull(point_state, tri)) {
     // A hull edge or subsegment of the container, or of a neighbour that
     // c's cavity takes (its circumcircle holds c), whose diametral lens
     // holds c is encroached: it is split instead (Triangle tests the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace clmesh {
 
@@ -39,12 +40,13 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
       tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
       priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
-      radius2_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()),
-      size_bound_(size_bound) {
+      radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
+      region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
   last_container_.fill(device_, -1, mesh.triangle_capacity);
+  stuck_.fill(device_, std::numeric_limits<cl_int>::min(), mesh.triangle_capacity);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
@@ -78,7 +80,7 @@ std::size_t OffcenterInsertion::count_unfixable() {
                 region_area_.buffer(), size_bound_buffer(),
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                count.buffer(), static_cast<cl_int>(slots));
+                stuck_.buffer(), count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -108,7 +110,7 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
                 region_area_.buffer(), size_bound_buffer(),
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
+                stuck_.buffer(), keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -143,8 +145,9 @@ void OffcenterInsertion::locate_candidates(int stamp) {
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
                 candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
-                priority_.buffer(), radius2_.buffer(), lens_,
-                static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
+                priority_.buffer(), radius2_.buffer(), lens_, static_cast<cl_int>(stamp),
+                stuck_.buffer(), static_cast<cl_int>(mesh_.triangle_count + 8),
+                static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
 }

@@ -98,7 +98,10 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  DeviceArray<cl_double> radius2_;     // each candidate's insertion radius, squared
+  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
+  // Per bad triangle: the stamp of the location that dropped its candidate
+  // beyond an edge that cannot be split (see is_stuck in the kernels).
+  DeviceArray<cl_int> stuck_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

@@ -220,6 +220,8 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
     return false;
+  if (encroaching && flat_corners(q.p))
+    return false; // -D: a flat triangle faces its longest edge at about 180 degrees; left
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
   const int shortest = q.shortest;
   const double2 a = q.p[next3(shortest)], b = q.p[prev3(shortest)], r = q.p[shortest];
@@ -432,8 +434,8 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
 
 // counts[0]: the bad triangles left as they are, counted at the end over
 // every slot: those whose smallest angle is the input's or which are flat
-// (assess), those whose candidate lies beyond an edge that cannot be split
-// (stranded, is_stuck), and with -Y those whose candidate lies beyond
+// (assess; with -D, flat ones that face a subsegment obtusely), those whose candidate lies beyond
+// an edge that cannot be split (stranded, is_stuck), and with -Y those whose candidate lies beyond
 // an edge of their own no point may split.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
                                         const double max_area, __global const double *region_area,
@@ -454,15 +456,15 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   double2 steiner;
   uint priority;
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
-  if (q.unfixable ||
+  const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
+  if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
        bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
                               ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
        beyond_edges(q.p, mask, steiner)) ||
       (bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
-                              ratio_bound_squared, bound, offconstant,
-                              conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri), mask,
-                              &steiner, &priority) &&
+                              ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
+                              &priority) &&
        (stranded(CLM_MESH_ARGS, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
     atomic_inc(counts);
 }

@@ -214,7 +214,8 @@ done
 for n in 50 200; do
   segment_pairs walled "$n" > "walled$n.poly"
   for file in "overlap$n.poly" "walled$n.poly"; do
-    for switches in -pq30C -pcq30C; do
+    # -D: the flat triangles cannot conform (no -C), but are left as well.
+    for switches in -pq30C -pcq30C -pDq30; do
       finishes "$switches" "$file"
       grep -q 'keep angles below the bound' "$work/log/err" &&
         ! grep -q 'refinement stopped' "$work/log/err" ||

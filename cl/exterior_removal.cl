@@ -171,3 +171,18 @@ __kernel void remove_flat_pockets(__global const int *pocket, __global const int
     atomic_inc(count);
   }
 }
+
+// count: the removed real triangles that are flat (flat_corners): the
+// exterior or a hole runs a hair wide between parts of the domain there.
+__kernel void count_flat_removed(CLM_TRIANGULATION_PARAMS, __global const int *removed,
+                                 volatile __global int *count, const int n) {
+  const int t = get_global_id(0);
+  if (t >= n || !removed[t])
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_ghost(tri) || is_dead(tri))
+    return;
+  const double2 p[3] = {points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]};
+  if (flat_corners(p))
+    atomic_inc(count);
+}

@@ -327,9 +327,29 @@ inline double2 subsegment_split(__global const double2 *points, int centre, int 
   return from + (to - from) * (shell / length);
 }
 
+// Split point s of edge a-b of the domain's boundary (the domain left of
+// a -> b), moved back onto a-b or inside when rounding left it beyond: one
+// unit in the last place at a time toward the inside, a few times at most.
+// When parts of a PSLG's domain lie a hair apart (polygons whose edges
+// overlap a hair from collinear: the exterior or a hole between them has
+// flat triangles; `inward`, see Refinement), the domain then never grows by
+// rounding into another part. Otherwise nothing lies beyond, and the split
+// point stays as rounding leaves it.
+inline double2 inside_edge(__global const double2 *points, int a, int b, double2 s) {
+  const double2 normal = (double2)(points[a].y - points[b].y, points[b].x - points[a].x);
+  for (int step = 0; step < 4 && orient_point(points, a, b, s) < 0; ++step) {
+    if (normal.x != 0)
+      s.x = nextafter(s.x, normal.x > 0 ? (double)INFINITY : -(double)INFINITY);
+    if (normal.y != 0)
+      s.y = nextafter(s.y, normal.y > 0 ? (double)INFINITY : -(double)INFINITY);
+  }
+  return s;
+}
+
 // Can boundary edge or subsegment e of real triangle t be split within the
-// precision of the arithmetic? Its split point (subsegment_split, in *split)
-// must leave every new triangle counter-clockwise (on a run of boundary
+// precision of the arithmetic? Its split point (subsegment_split, in *split;
+// on a boundary edge with `inward`, kept inside: inside_edge) must leave
+// every new triangle counter-clockwise (on a run of boundary
 // points a hair from straight it may not), and lie farther than rounding
 // noise from the ends of e and from the apexes on both sides: within it, it
 // is that vertex to the arithmetic (a hull edge that -c makes a boundary
@@ -338,18 +358,22 @@ inline double2 subsegment_split(__global const double2 *points, int centre, int 
 // split is kept whole as -Y keeps the boundary: a candidate in its lens goes
 // in all the same, one beyond it is dropped, and a bad triangle whose
 // candidate lies beyond it is left (stranded).
-inline bool splittable(CLM_MESH_PARAMS, int t, int e, double2 *split) {
+inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split) {
   const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)],
             apex = tri_vertex[3 * t + e];
-  const double2 s = subsegment_split(points, shell_centre(CLM_MESH_ARGS, t, e), a, b);
+  const int link = tri_neighbor[3 * t + e], u = link_triangle(link);
+  const bool boundary = is_ghost(load_vertices(tri_vertex, u));
+  double2 s = subsegment_split(points, shell_centre(CLM_MESH_ARGS, t, e), a, b);
+  if (boundary && inward)
+    s = inside_edge(points, a, b, s);
   *split = s;
   const double noise = rounding_noise(points[a], points[b]);
   if (indistinct(s, points[a], noise) || indistinct(s, points[b], noise) ||
       indistinct(s, points[apex], noise) || orient_point(points, apex, a, s) <= 0 ||
-      orient_point(points, b, apex, s) <= 0)
+      orient_point(points, b, apex, s) <= 0 ||
+      (boundary && inward && orient_point(points, a, b, s) < 0))
     return false;
-  const int link = tri_neighbor[3 * t + e], u = link_triangle(link);
-  if (is_ghost(load_vertices(tri_vertex, u)))
+  if (boundary)
     return true;
   const int across = tri_vertex[3 * u + link_edge(link)]; // (across, b, a) splits too
   return !indistinct(s, points[across], noise) && orient_point(points, across, b, s) > 0 &&
@@ -359,13 +383,13 @@ inline bool splittable(CLM_MESH_PARAMS, int t, int e, double2 *split) {
 // Does candidate c of bad real triangle t lie on or beyond an edge of t
 // that bounds the domain and cannot be split (splittable)? No point then
 // mends t: it is left and counted.
-inline bool stranded(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
+inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, double2 c) {
   double2 p[3], split;
   for (int i = 0; i < 3; ++i)
     p[i] = points[tri.v[i]];
   for (int i = 0; i < 3; ++i)
     if (beyond_edges(p, 1 << i, c) && bounds_domain(CLM_MESH_ARGS, t, i) &&
-        !splittable(CLM_MESH_ARGS, t, i, &split))
+        !splittable(CLM_MESH_ARGS, inward, t, i, &split))
       return true;
   return false;
 }
@@ -406,7 +430,7 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
                                  __global const double *region_area,
                                  __global const double *size_bound, const int sized,
                                  const double offconstant, const int conforming, const int protect,
-                                 __global const int *stuck, __global int *is_bad,
+                                 const int inward, __global const int *stuck, __global int *is_bad,
                                  const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
@@ -426,7 +450,7 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
           area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
           offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
           protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority) &&
-      !stranded(CLM_MESH_ARGS, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
+      !stranded(CLM_MESH_ARGS, inward, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
@@ -441,8 +465,9 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
                                         const double max_area, __global const double *region_area,
                                         __global const double *size_bound, const int sized,
                                         const double offconstant, const int conforming,
-                                        const int protect, __global const int *stuck,
-                                        volatile __global int *counts, const int n) {
+                                        const int protect, const int inward,
+                                        __global const int *stuck, volatile __global int *counts,
+                                        const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -465,7 +490,7 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
       (bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
                               ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
                               &priority) &&
-       (stranded(CLM_MESH_ARGS, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
+       (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
     atomic_inc(counts);
 }
 
@@ -632,16 +657,14 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
-                                const int located_stamp, const double ratio_bound_squared,
-                                const double max_area, __global const double *region_area,
-                                __global const double *size_bound, const int sized,
-                                const double offconstant, const int conforming, const int protect,
-                                __global double2 *candidate, __global int *container,
-                                __global int *split_edge, __global const int *origin,
-                                __global uint *priority, __global double *radius2,
-                                const double lens, const int stamp, __global int *stuck,
-                                const int max_steps, const int n) {
+__kernel void locate_candidates(
+    CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
+    const double ratio_bound_squared, const double max_area, __global const double *region_area,
+    __global const double *size_bound, const int sized, const double offconstant,
+    const int conforming, const int protect, __global double2 *candidate, __global int *container,
+    __global int *split_edge, __global const int *origin, __global uint *priority,
+    __global double *radius2, const double lens, const int inward, const int stamp,
+    __global int *stuck, volatile __global int *stuck_count, const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -666,9 +689,10 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   double2 split;
   if (hull_edge >= 0 && is_protected(CLM_MESH_ARGS, t, hull_edge, protect))
     hull_edge = -1; // beyond an edge no point may split (-Y): dropped, not located
-  else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, t, hull_edge, &split)) {
+  else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, inward, t, hull_edge, &split)) {
     hull_edge = -1; // beyond an edge no point can split: dropped, and bad stuck
     stuck[bad] = stamp;
+    atomic_inc(stuck_count);
   } else if (hull_edge < 0 && touches_hull(point_state, tri)) {
     // A hull edge or subsegment of the container, or of a neighbour that
     // c's cavity takes (its circumcircle holds c), whose diametral lens
@@ -690,7 +714,7 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
           continue; // not a boundary edge or subsegment; or one c may encroach (-Y)
         if (in_lens(points[a], points[b], c, lens) &&
             (r < 0 || circumcircle_holds(points, near, c)) &&
-            splittable(CLM_MESH_ARGS, s, i, &split)) {
+            splittable(CLM_MESH_ARGS, inward, s, i, &split)) {
           hull_edge = i;
           t = s;
         }

@@ -17,6 +17,7 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       remove_unlabelled_(device.kernel(kFile, "remove_unlabelled", kPhase)),
       seed_thick_pockets_(device.kernel(kFile, "seed_thick_pockets", kPhase)),
       remove_flat_pockets_(device.kernel(kFile, "remove_flat_pockets", kPhase)),
+      count_flat_removed_(device.kernel(kFile, "count_flat_removed", kPhase)),
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
       count_(device, 1) {
@@ -79,6 +80,15 @@ long ExteriorRemoval::remove_flat_pockets() {
   set_args(remove_flat_pockets_, pocket.buffer(), label_.buffer(), removed_.buffer(),
            count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, remove_flat_pockets_, slots, kPhase);
+  return count_.read(device_, 0);
+}
+
+long ExteriorRemoval::count_flat_removed() {
+  const std::size_t slots = mesh_.triangle_count;
+  count_.fill(device_, 0, 1);
+  set_args_from(count_flat_removed_, mesh_.bind_triangulation(count_flat_removed_, 0),
+                removed_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, count_flat_removed_, slots, kPhase);
   return count_.read(device_, 0);
 }
 

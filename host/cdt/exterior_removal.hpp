@@ -27,6 +27,10 @@ public:
   // how many triangles.
   long remove_flat_pockets();
 
+  // How many removed triangles are flat: the exterior or a hole runs a hair
+  // wide between parts of the domain there.
+  long count_flat_removed();
+
   // A mesh to refine (-r): removes the real triangles whose label is -1 (no
   // input triangle's, MeshReconstruction).
   void remove_unlabelled(const DeviceArray<cl_int> &label);
@@ -54,7 +58,7 @@ private:
   void seed_from_hull(std::size_t slots);
 
   cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_,
-      seed_thick_pockets_, remove_flat_pockets_;
+      seed_thick_pockets_, remove_flat_pockets_, count_flat_removed_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 

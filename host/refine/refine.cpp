@@ -170,14 +170,14 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 // The phase objects of the steps, sized by the mesh: built again when the
 // mesh grows.
 struct RefinementSteps {
-  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options,
+  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options, bool inward,
                   const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
-                  options.protected_segments, region_areas, size_bound),
+                  options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -286,6 +286,8 @@ public:
       locate_candidates();
       filter_candidates();
       const std::size_t added = append_survivors();
+      if (added == 0 && steps_->offcenter.stuck_since_last_asked())
+        continue; // the next search leaves out the triangles just found stuck
       if (added == 0) {
         // The arrays did not grow past the -S limit, or every candidate fell
         // on a vertex.
@@ -357,7 +359,8 @@ private:
   }
 
   // The domain left by `removal` closed by ghosts.
-  void close_domain(DomainBoundary &boundary, const ExteriorRemoval &removal) {
+  void close_domain(DomainBoundary &boundary, ExteriorRemoval &removal) {
+    inward_ = removal.count_flat_removed() > 0;
     const std::size_t ghosts = boundary.room_needed(removal.removed());
     if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
       scheduler_.grow(ghosts / 2 + 1);
@@ -617,7 +620,7 @@ private:
 
   // The phase objects of the steps, for the mesh's arrays as they are.
   void make_steps() {
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_,
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, inward_, region_areas_,
                                                size_bound_ ? &size_bound_->bounds() : nullptr);
   }
 
@@ -709,9 +712,12 @@ private:
   const ConstrainedOptions *constrained_;
   const GivenMesh *given_;
   DelaunayScheduler scheduler_;
-  std::vector<Segment> constraints_;          // a PSLG's segments as they stand (device numbering)
-  std::vector<Point> crossings_;              // vertices added where segments cross
-  std::vector<double> region_areas_;          // with regions: each one's area bound (<= 0: none)
+  std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;     // vertices added where segments cross
+  std::vector<double> region_areas_; // with regions: each one's area bound (<= 0: none)
+  // Parts of the domain lie a hair apart (flat triangles among the removed
+  // ones): split points of boundary edges are kept inside (inside_edge).
+  bool inward_ = false;
   std::size_t first_steiner_ = 0;             // slot of the first Steiner point
   std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
   std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback

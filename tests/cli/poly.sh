@@ -224,6 +224,49 @@ for n in 50 200; do
   done
 done
 
+# facing_pairs SEED: a .poly of 3 to 12 pairs of triangles, each pair facing
+# across a slanted line, an edge of each on it (their vertices rounded, so a
+# hair apart), placed at random (SEED) so that pairs also cross.
+facing_pairs() {
+  python3 - "$1" <<'PY'
+import math, random, sys
+random.seed(int(sys.argv[1]))
+points, segments = [], []
+def vertex(x, y):
+    points.append((x, y))
+    return len(points)
+for _ in range(random.randint(3, 12)):
+    s = random.choice([math.pi / 3, math.sqrt(2), math.e / 10, 1 / 3, 7 / 3])
+    ox, oy = random.uniform(-2, 2), random.uniform(-2, 2)
+    d, e = sorted(random.uniform(0, 1) for _ in range(2))
+    on = lambda x: vertex(ox + x, oy + x * s)
+    a, b, c = on(0), on(1), vertex(ox + 0.5, oy + 0.5 * s - 1)
+    p, q, r = on(d), on(1 + e), vertex(ox + 1, oy + s + 1)
+    segments += [(a, b), (b, c), (c, a), (p, q), (q, r), (r, p)]
+print(len(points), 2, 0, 0)
+for i, (x, y) in enumerate(points):
+    print(i + 1, repr(x), repr(y))
+print(len(segments), 0)
+for i, (a, b) in enumerate(segments):
+    print(i + 1, a, b)
+print(0)
+PY
+}
+
+# Polygons whose edges overlap a hair from collinear: the exterior between
+# them is flat, and a boundary edge's split point that rounded beyond it
+# landed in the polygon across, whose triangles it then overlapped (-C
+# failed). Split points of boundary edges are kept inside there.
+fresh facing
+for seed in 5 9 16 27; do
+  facing_pairs "$seed" > "facing$seed.poly"
+  for switches in -pq30C -pq33C -pcq30C; do
+    finishes "$switches" "facing$seed.poly"
+    ! grep -q 'refinement stopped' "$work/log/err" ||
+      fail "$switches facing$seed.poly: $(cat "$work/log/err")"
+  done
+done
+
 # A mesh refined with -pc, fed back with -c: its boundary chains are a hair
 # from straight (rounded split points), the convex hull's edges pass a hair
 # from their vertices. Refinement once split those hull edges onto the

@@ -172,12 +172,13 @@ __kernel void remove_flat_pockets(__global const int *pocket, __global const int
   }
 }
 
-// count: the removed real triangles that are flat (flat_corners): the
-// exterior or a hole runs a hair wide between parts of the domain there.
-__kernel void count_flat_removed(CLM_TRIANGULATION_PARAMS, __global const int *removed,
-                                 volatile __global int *count, const int n) {
+// count: the real triangles that are flat (flat_corners), among those
+// flagged in among[] (or all of them with every). Among the removed ones:
+// the exterior or a hole runs a hair wide between parts of the domain there.
+__kernel void count_flat_triangles(CLM_TRIANGULATION_PARAMS, __global const int *among,
+                                   const int every, volatile __global int *count, const int n) {
   const int t = get_global_id(0);
-  if (t >= n || !removed[t])
+  if (t >= n || !(every || among[t]))
     return;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))

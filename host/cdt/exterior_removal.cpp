@@ -17,7 +17,7 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       remove_unlabelled_(device.kernel(kFile, "remove_unlabelled", kPhase)),
       seed_thick_pockets_(device.kernel(kFile, "seed_thick_pockets", kPhase)),
       remove_flat_pockets_(device.kernel(kFile, "remove_flat_pockets", kPhase)),
-      count_flat_removed_(device.kernel(kFile, "count_flat_removed", kPhase)),
+      count_flat_(device.kernel(kFile, "count_flat_triangles", kPhase)),
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
       count_(device, 1) {
@@ -54,6 +54,8 @@ void ExteriorRemoval::seed_from_hull(std::size_t slots) {
 }
 
 long ExteriorRemoval::remove_flat_pockets() {
+  if (count_flat(true) == 0)
+    return 0; // no flat triangle: no flat pocket (the usual case, one sweep)
   const std::size_t slots = mesh_.triangle_count, capacity = mesh_.triangle_capacity;
   // The pockets: what a removal from the hull would eat (into removed_ for
   // the flood, swapped out after).
@@ -83,12 +85,12 @@ long ExteriorRemoval::remove_flat_pockets() {
   return count_.read(device_, 0);
 }
 
-long ExteriorRemoval::count_flat_removed() {
+long ExteriorRemoval::count_flat(bool every) {
   const std::size_t slots = mesh_.triangle_count;
   count_.fill(device_, 0, 1);
-  set_args_from(count_flat_removed_, mesh_.bind_triangulation(count_flat_removed_, 0),
-                removed_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
-  launch(device_, count_flat_removed_, slots, kPhase);
+  set_args_from(count_flat_, mesh_.bind_triangulation(count_flat_, 0), removed_.buffer(),
+                static_cast<cl_int>(every), count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, count_flat_, slots, kPhase);
   return count_.read(device_, 0);
 }
 

@@ -29,7 +29,7 @@ public:
 
   // How many removed triangles are flat: the exterior or a hole runs a hair
   // wide between parts of the domain there.
-  long count_flat_removed();
+  long count_flat_removed() { return count_flat(false); }
 
   // A mesh to refine (-r): removes the real triangles whose label is -1 (no
   // input triangle's, MeshReconstruction).
@@ -56,9 +56,11 @@ private:
 
   // Seeds a removal flood from the hull edges that are no constraints.
   void seed_from_hull(std::size_t slots);
+  // How many real triangles are flat: every one, or the removed ones.
+  long count_flat(bool every);
 
   cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_,
-      seed_thick_pockets_, remove_flat_pockets_, count_flat_removed_;
+      seed_thick_pockets_, remove_flat_pockets_, count_flat_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 

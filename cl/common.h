@@ -131,6 +131,28 @@ inline int adjacent_ghost(__global const int *tri_neighbor, VertexTriple ghost, 
 // |v|^2 in plain floating point, no fused multiply-add (FP_CONTRACT OFF).
 inline double squared_length(double2 v) { return v.x * v.x + v.y * v.y; }
 
+// How far apart two points near p and q may lie and still be the same point
+// to the arithmetic: four units in the last place of their largest
+// coordinate (the noise within which constraint insertion snaps crossings).
+inline double rounding_noise(double2 p, double2 q) {
+  return 4 * DBL_EPSILON * fmax(fmax(fabs(p.x), fabs(p.y)), fmax(fabs(q.x), fabs(q.y)));
+}
+
+// Are p and q within `noise` of each other (in each coordinate)?
+inline bool indistinct(double2 p, double2 q, double noise) {
+  return fabs(p.x - q.x) <= noise && fabs(p.y - q.y) <= noise;
+}
+
+// Do corners p[0..2] lie within rounding noise of the line of their longest
+// edge? Such a triangle is flat: a sliver made by rounding.
+inline bool flat_corners(const double2 *p) {
+  const double2 d1 = p[1] - p[0], d2 = p[2] - p[0], d3 = p[2] - p[1];
+  const double twice_area = d1.x * d2.y - d1.y * d2.x;
+  const double longest2 = fmax(fmax(squared_length(d1), squared_length(d2)), squared_length(d3));
+  const double noise = fmax(rounding_noise(p[0], p[1]), rounding_noise(p[2], p[2]));
+  return fabs(twice_area) <= noise * sqrt(longest2);
+}
+
 inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y);

@@ -134,3 +134,56 @@ __kernel void spread_flood(CLM_TRIANGULATION_PARAMS, __global const int *frontie
   volatile __local int scratch[2];
   append_in_group(claimed, count, next_frontier, next_count, scratch);
 }
+
+// -c keeps the convex hull; but a pocket between the segments and the hull
+// (the triangles a flood from the hull reaches without crossing a
+// constraint: pocket[]) whose triangles are all flat (flat_corners) is a
+// sliver made by rounding, a chain of segments a hair inside a hull edge,
+// and the chain is the boundary there. seed_thick_pockets closes every
+// triangle outside the pockets to a flood (outside[]) and seeds it (label 0)
+// with the pocket triangles that are not flat; the flood reaches every
+// pocket that has one, and remove_flat_pockets removes the rest.
+__kernel void seed_thick_pockets(CLM_TRIANGULATION_PARAMS, __global const int *pocket,
+                                 __global int *outside, __global int *label, __global int *frontier,
+                                 volatile __global int *count, const int n) {
+  const int t = get_global_id(0);
+  if (t >= n)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  const bool in_pocket = !is_ghost(tri) && !is_dead(tri) && pocket[t];
+  outside[t] = !in_pocket;
+  label[t] = -1;
+  if (!in_pocket)
+    return;
+  const double2 p[3] = {points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]};
+  if (!flat_corners(p)) {
+    label[t] = 0;
+    frontier[atomic_inc(count)] = t;
+  }
+}
+
+__kernel void remove_flat_pockets(__global const int *pocket, __global const int *label,
+                                  __global int *removed, volatile __global int *count,
+                                  const int n) {
+  const int t = get_global_id(0);
+  if (t < n && pocket[t] && label[t] < 0) {
+    removed[t] = 1;
+    atomic_inc(count);
+  }
+}
+
+// count: the real triangles that are flat (flat_corners), among those
+// flagged in among[] (or all of them with every). Among the removed ones:
+// the exterior or a hole runs a hair wide between parts of the domain there.
+__kernel void count_flat_triangles(CLM_TRIANGULATION_PARAMS, __global const int *among,
+                                   const int every, volatile __global int *count, const int n) {
+  const int t = get_global_id(0);
+  if (t >= n || !(every || among[t]))
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (is_ghost(tri) || is_dead(tri))
+    return;
+  const double2 p[3] = {points[tri.v[0]], points[tri.v[1]], points[tri.v[2]]};
+  if (flat_corners(p))
+    atomic_inc(count);
+}

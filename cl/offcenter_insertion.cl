@@ -80,8 +80,15 @@ inline bool touches_hull(__global const int *point_state, VertexTriple tri) {
 
 // The quality of a real triangle: skinny (circumradius-to-shortest-edge
 // ratio above the bound), large (area above max_area), its shortest edge
-// (opposite vertex `shortest`, where its smallest angle is) and whether that
-// angle is at an acute hull vertex, where it cannot be mended.
+// (opposite vertex `shortest`, where its smallest angle is) and whether it
+// cannot be mended: that angle is at an acute hull vertex or the input's
+// (see below), or the triangle is flat, its corners within rounding noise of
+// the line of its longest edge. A flat triangle lies in a sliver of the
+// domain made by rounding (a boundary or segment chain a hair from straight
+// beside a hull edge or another chain, which bound it, since the triangle
+// across its longest edge would otherwise be Delaunay): every point that
+// could split it lands within the same noise, and splitting it only makes
+// more.
 typedef struct {
   double2 p[3];
   double length_squared[3];
@@ -167,7 +174,7 @@ inline Quality assess(__global const double2 *points, __global const int *point_
   q.skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
   q.large = max_area > 0 && 0.5 * twice_area > max_area;
   q.unfixable = q.skinny && !q.large &&
-                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL ||
+                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL || flat_corners(q.p) ||
                  along_one_segment(point_segment, segment_end, tri) ||
                  across_input_angle(points, point_segment, segment_end, tri.v[next3(q.shortest)],
                                     tri.v[prev3(q.shortest)]));
@@ -213,6 +220,8 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
     return false;
+  if (encroaching && flat_corners(q.p))
+    return false; // -D: a flat triangle faces its longest edge at about 180 degrees; left
   // Circumcenter relative to a, the origin of the shortest edge a-b (r: apex).
   const int shortest = q.shortest;
   const double2 a = q.p[next3(shortest)], b = q.p[prev3(shortest)], r = q.p[shortest];
@@ -235,6 +244,164 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
   // candidate beyond an edge of its own that no point may split (-Y).
   return isfinite(steiner->x) && isfinite(steiner->y) &&
          !beyond_edges(q.p, protected_mask, *steiner);
+}
+
+// The second triangle a candidate on an edge splits (a ghost for a hull
+// midpoint), or -1.
+inline int split_partner(__global const int *tri_neighbor, __global const int *container,
+                         __global const int *split_edge, int k) {
+  return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
+}
+
+// Whether located candidate k splits a hull edge (its partner is a ghost) or
+// a subsegment.
+inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
+                              __global const int *split_edge, int k) {
+  const int partner = split_partner(tri_neighbor, container, split_edge, k);
+  if (partner < 0)
+    return false;
+  if (is_ghost(load_vertices(tri_vertex, partner)))
+    return true;
+  return subsegment_at(CLM_MESH_ARGS, container[k], split_edge[k]);
+}
+
+// Is edge i of real triangle t a subsegment or on the domain's boundary?
+inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
+  return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
+         subsegment_at(CLM_MESH_ARGS, t, i);
+}
+
+// The cosine of the angle at vertex o between o-x and o-y.
+inline double corner_cosine(__global const double2 *points, int o, int x, int y) {
+  const double2 u = points[x] - points[o], w = points[y] - points[o];
+  return (u.x * w.x + u.y * w.y) / sqrt(squared_length(u) * squared_length(w));
+}
+
+// The end of subsegment (or boundary edge) e of real triangle t around which
+// it is split on a shell, or -1 (at its midpoint). An end is a candidate when
+// segments meet there and another subsegment or boundary edge at it is an
+// edge of t or of the triangle across e (as Triangle decides), at an acute
+// angle to e: only there can points on one segment encroach on the other.
+// Of two candidate ends the one at the smaller angle is the centre, so that
+// a segment leaving a fan of small angles is split on the fan's shells
+// however its far end meets the boundary (two ends at equal angles: the
+// midpoint).
+inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
+  const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
+  const bool joint_a = point_segment[a] == CLM_SEGMENT_JOINT,
+             joint_b = point_segment[b] == CLM_SEGMENT_JOINT;
+  if (!joint_a && !joint_b)
+    return -1;
+  // Across e, u = (d, b, a): its edge next3(j) ends at a, prev3(j) at b.
+  const int link = tri_neighbor[3 * t + e], u = link_triangle(link), j = link_edge(link);
+  const bool real_u = !is_ghost(load_vertices(tri_vertex, u));
+  const int c = tri_vertex[3 * t + e], d = real_u ? tri_vertex[3 * u + j] : -1;
+  double cos_a = -2, cos_b = -2;
+  if (joint_a && bounds_domain(CLM_MESH_ARGS, t, prev3(e)))
+    cos_a = corner_cosine(points, a, b, c);
+  if (joint_a && real_u && bounds_domain(CLM_MESH_ARGS, u, next3(j)))
+    cos_a = fmax(cos_a, corner_cosine(points, a, b, d));
+  if (joint_b && bounds_domain(CLM_MESH_ARGS, t, next3(e)))
+    cos_b = corner_cosine(points, b, a, c);
+  if (joint_b && real_u && bounds_domain(CLM_MESH_ARGS, u, prev3(j)))
+    cos_b = fmax(cos_b, corner_cosine(points, b, a, d));
+  if (fmax(cos_a, cos_b) <= 0 || cos_a == cos_b)
+    return -1;
+  return cos_a > cos_b ? a : b;
+}
+
+// The point that splits subsegment (or hull edge) a-b: its midpoint; or, with
+// a shell centre (a or b, see shell_centre), the point at a power of two from
+// it between a third and two thirds of the way (concentric shells: segments
+// that meet at a small angle are split at the same distances from their
+// common vertex, so that they stop encroaching on each other).
+inline double2 subsegment_split(__global const double2 *points, int centre, int a, int b) {
+  if (centre < 0)
+    return 0.5 * (points[a] + points[b]);
+  const bool from_a = centre == a;
+  const double2 from = from_a ? points[a] : points[b], to = from_a ? points[b] : points[a];
+  const double length = sqrt(squared_length(to - from));
+  int exponent;
+  frexp(length / 1.5, &exponent);
+  const double shell = ldexp(1.0, exponent - 1); // 1.5 shell <= length < 3 shell
+  return from + (to - from) * (shell / length);
+}
+
+// Split point s of edge a-b of the domain's boundary (the domain left of
+// a -> b), moved back onto a-b or inside when rounding left it beyond: one
+// unit in the last place at a time toward the inside, a few times at most.
+// When parts of a PSLG's domain lie a hair apart (polygons whose edges
+// overlap a hair from collinear: the exterior or a hole between them has
+// flat triangles; `inward`, see Refinement), the domain then never grows by
+// rounding into another part. Otherwise nothing lies beyond, and the split
+// point stays as rounding leaves it.
+inline double2 inside_edge(__global const double2 *points, int a, int b, double2 s) {
+  const double2 normal = (double2)(points[a].y - points[b].y, points[b].x - points[a].x);
+  for (int step = 0; step < 4 && orient_point(points, a, b, s) < 0; ++step) {
+    if (normal.x != 0)
+      s.x = nextafter(s.x, normal.x > 0 ? (double)INFINITY : -(double)INFINITY);
+    if (normal.y != 0)
+      s.y = nextafter(s.y, normal.y > 0 ? (double)INFINITY : -(double)INFINITY);
+  }
+  return s;
+}
+
+// Can boundary edge or subsegment e of real triangle t be split within the
+// precision of the arithmetic? Its split point (subsegment_split, in *split;
+// on a boundary edge with `inward`, kept inside: inside_edge) must leave
+// every new triangle counter-clockwise (on a run of boundary
+// points a hair from straight it may not), and lie farther than rounding
+// noise from the ends of e and from the apexes on both sides: within it, it
+// is that vertex to the arithmetic (a hull edge that -c makes a boundary
+// edge, passing a hair from boundary vertices, would be split onto them, and
+// its pieces again, down to lengths of the noise). An edge that cannot be
+// split is kept whole as -Y keeps the boundary: a candidate in its lens goes
+// in all the same, one beyond it is dropped, and a bad triangle whose
+// candidate lies beyond it is left (stranded).
+inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split) {
+  const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)],
+            apex = tri_vertex[3 * t + e];
+  const int link = tri_neighbor[3 * t + e], u = link_triangle(link);
+  const bool boundary = is_ghost(load_vertices(tri_vertex, u));
+  double2 s = subsegment_split(points, shell_centre(CLM_MESH_ARGS, t, e), a, b);
+  if (boundary && inward)
+    s = inside_edge(points, a, b, s);
+  *split = s;
+  const double noise = rounding_noise(points[a], points[b]);
+  if (indistinct(s, points[a], noise) || indistinct(s, points[b], noise) ||
+      indistinct(s, points[apex], noise) || orient_point(points, apex, a, s) <= 0 ||
+      orient_point(points, b, apex, s) <= 0 ||
+      (boundary && inward && orient_point(points, a, b, s) < 0))
+    return false;
+  if (boundary)
+    return true;
+  const int across = tri_vertex[3 * u + link_edge(link)]; // (across, b, a) splits too
+  return !indistinct(s, points[across], noise) && orient_point(points, across, b, s) > 0 &&
+         orient_point(points, a, across, s) > 0;
+}
+
+// Does candidate c of bad real triangle t lie on or beyond an edge of t
+// that bounds the domain and cannot be split (splittable)? No point then
+// mends t: it is left and counted.
+inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, double2 c) {
+  double2 p[3], split;
+  for (int i = 0; i < 3; ++i)
+    p[i] = points[tri.v[i]];
+  for (int i = 0; i < 3; ++i)
+    if (beyond_edges(p, 1 << i, c) && bounds_domain(CLM_MESH_ARGS, t, i) &&
+        !splittable(CLM_MESH_ARGS, inward, t, i, &split))
+      return true;
+  return false;
+}
+
+// stuck[t]: the stamp of the location that dropped the candidate of bad
+// triangle t beyond a boundary edge or subsegment that cannot be split
+// (splittable), not one of t's own; valid while t is not rewritten since.
+// Such a triangle is left and counted as a stranded one is, until a
+// compaction or growth renews the steps (the array) and its candidate is
+// located again.
+inline bool is_stuck(__global const int *modified_stamp, __global const int *stuck, int t) {
+  return modified_stamp[t] < stuck[t];
 }
 
 // Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
@@ -263,7 +430,8 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
                                  __global const double *region_area,
                                  __global const double *size_bound, const int sized,
                                  const double offconstant, const int conforming, const int protect,
-                                 __global int *is_bad, const int election, const int n) {
+                                 const int inward, __global const int *stuck, __global int *is_bad,
+                                 const int election, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -281,19 +449,24 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
           points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
           area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
           offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
-          protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
+          protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority) &&
+      !stranded(CLM_MESH_ARGS, inward, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
   is_bad[gid] = bad;
   if (bad && election)
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
 }
 
 // counts[0]: the bad triangles left as they are, counted at the end over
-// every slot: those whose smallest angle is the input's (assess), and with -Y
-// those whose candidate lies beyond an edge of their own no point may split.
+// every slot: those whose smallest angle is the input's or which are flat
+// (assess; with -D, flat ones that face a subsegment obtusely), those whose candidate lies beyond
+// an edge that cannot be split (stranded, is_stuck), and with -Y those whose candidate lies beyond
+// an edge of their own no point may split.
 __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_bound_squared,
                                         const double max_area, __global const double *region_area,
                                         __global const double *size_bound, const int sized,
-                                        const int protect, volatile __global int *counts,
+                                        const double offconstant, const int conforming,
+                                        const int protect, const int inward,
+                                        __global const int *stuck, volatile __global int *counts,
                                         const int n) {
   const int t = get_global_id(0);
   if (t >= n)
@@ -308,11 +481,16 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   double2 steiner;
   uint priority;
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
-  if (q.unfixable ||
+  const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
+  if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
        bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
                               ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
-       beyond_edges(q.p, mask, steiner)))
+       beyond_edges(q.p, mask, steiner)) ||
+      (bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
+                              ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
+                              &priority) &&
+       (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
     atomic_inc(counts);
 }
 
@@ -405,87 +583,6 @@ __kernel void gather_elected(__global const int *bad, __global const int *electe
     last_container[t] = -1;
 }
 
-// The second triangle a candidate on an edge splits (a ghost for a hull
-// midpoint), or -1.
-inline int split_partner(__global const int *tri_neighbor, __global const int *container,
-                         __global const int *split_edge, int k) {
-  return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
-}
-
-// Whether located candidate k splits a hull edge (its partner is a ghost) or
-// a subsegment.
-inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
-                              __global const int *split_edge, int k) {
-  const int partner = split_partner(tri_neighbor, container, split_edge, k);
-  if (partner < 0)
-    return false;
-  if (is_ghost(load_vertices(tri_vertex, partner)))
-    return true;
-  return subsegment_at(CLM_MESH_ARGS, container[k], split_edge[k]);
-}
-
-// Is edge i of real triangle t a subsegment or on the domain's boundary?
-inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
-  return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
-         subsegment_at(CLM_MESH_ARGS, t, i);
-}
-
-// The cosine of the angle at vertex o between o-x and o-y.
-inline double corner_cosine(__global const double2 *points, int o, int x, int y) {
-  const double2 u = points[x] - points[o], w = points[y] - points[o];
-  return (u.x * w.x + u.y * w.y) / sqrt(squared_length(u) * squared_length(w));
-}
-
-// The end of subsegment (or boundary edge) e of real triangle t around which
-// it is split on a shell, or -1 (at its midpoint). An end is a candidate when
-// segments meet there and another subsegment or boundary edge at it is an
-// edge of t or of the triangle across e (as Triangle decides), at an acute
-// angle to e: only there can points on one segment encroach on the other.
-// Of two candidate ends the one at the smaller angle is the centre, so that
-// a segment leaving a fan of small angles is split on the fan's shells
-// however its far end meets the boundary (two ends at equal angles: the
-// midpoint).
-inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
-  const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
-  const bool joint_a = point_segment[a] == CLM_SEGMENT_JOINT,
-             joint_b = point_segment[b] == CLM_SEGMENT_JOINT;
-  if (!joint_a && !joint_b)
-    return -1;
-  // Across e, u = (d, b, a): its edge next3(j) ends at a, prev3(j) at b.
-  const int link = tri_neighbor[3 * t + e], u = link_triangle(link), j = link_edge(link);
-  const bool real_u = !is_ghost(load_vertices(tri_vertex, u));
-  const int c = tri_vertex[3 * t + e], d = real_u ? tri_vertex[3 * u + j] : -1;
-  double cos_a = -2, cos_b = -2;
-  if (joint_a && bounds_domain(CLM_MESH_ARGS, t, prev3(e)))
-    cos_a = corner_cosine(points, a, b, c);
-  if (joint_a && real_u && bounds_domain(CLM_MESH_ARGS, u, next3(j)))
-    cos_a = fmax(cos_a, corner_cosine(points, a, b, d));
-  if (joint_b && bounds_domain(CLM_MESH_ARGS, t, next3(e)))
-    cos_b = corner_cosine(points, b, a, c);
-  if (joint_b && real_u && bounds_domain(CLM_MESH_ARGS, u, prev3(j)))
-    cos_b = fmax(cos_b, corner_cosine(points, b, a, d));
-  if (fmax(cos_a, cos_b) <= 0 || cos_a == cos_b)
-    return -1;
-  return cos_a > cos_b ? a : b;
-}
-
-// The point that splits subsegment (or hull edge) a-b: its midpoint; or, with
-// a shell centre (a or b, see shell_centre), the point at a power of two from
-// it between a third and two thirds of the way (concentric shells: segments
-// that meet at a small angle are split at the same distances from their
-// common vertex, so that they stop encroaching on each other).
-inline double2 subsegment_split(__global const double2 *points, int centre, int a, int b) {
-  if (centre < 0)
-    return 0.5 * (points[a] + points[b]);
-  const bool from_a = centre == a;
-  const double2 from = from_a ? points[a] : points[b], to = from_a ? points[b] : points[a];
-  const double length = sqrt(squared_length(to - from));
-  int exponent;
-  frexp(length / 1.5, &exponent);
-  const double shell = ldexp(1.0, exponent - 1); // 1.5 shell <= length < 3 shell
-  return from + (to - from) * (shell / length);
-}
-
 // The insertion radius of located candidate k at c (thesis §3.5): the
 // distance to the nearest vertex of its bad triangle; for a split of a hull
 // edge or subsegment, to the nearer end. Squared.
@@ -536,10 +633,12 @@ inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_step
 // stamp of that search). A candidate beyond the hull (or the domain's
 // boundary) or a subsegment, or inside the diametral lens of a hull edge or
 // subsegment of its container, splits that edge instead (subsegment_split),
-// inserted on that edge whatever the rounding of the split point (as Triangle
-// splits a segment). split_edge[k]: the edge of container[k] the candidate
-// lies on (the edge a split splits), or -1 inside; container[k] = -1 when it
-// falls on a vertex.
+// inserted on that edge a hair off it as rounding leaves it (as Triangle
+// splits a segment), when the edge can be split within precision
+// (splittable): else the candidate goes in as it is, or, beyond the edge, is
+// dropped. split_edge[k]: the edge of container[k] the candidate lies on (the
+// edge a split splits), or -1 inside; container[k] = -1 when it falls on a
+// vertex or is dropped.
 // Prefetching for locate_candidates (prefetch.h): the bad triangle where a
 // walk starts, its corners and its neighbours.
 inline void prefetch_walk_start(__global const int *origin, int k, int n,
@@ -558,15 +657,14 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
-                                const int located_stamp, const double ratio_bound_squared,
-                                const double max_area, __global const double *region_area,
-                                __global const double *size_bound, const int sized,
-                                const double offconstant, const int conforming, const int protect,
-                                __global double2 *candidate, __global int *container,
-                                __global int *split_edge, __global const int *origin,
-                                __global uint *priority, __global double *radius2,
-                                const double lens, const int max_steps, const int n) {
+__kernel void locate_candidates(
+    CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
+    const double ratio_bound_squared, const double max_area, __global const double *region_area,
+    __global const double *size_bound, const int sized, const double offconstant,
+    const int conforming, const int protect, __global double2 *candidate, __global int *container,
+    __global int *split_edge, __global const int *origin, __global uint *priority,
+    __global double *radius2, const double lens, const int inward, const int stamp,
+    __global int *stuck, volatile __global int *stuck_count, const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -588,9 +686,14 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
   int t = walk.outcome == CLM_WALK_LOST ? bad : walk.triangle;
   const VertexTriple tri = load_vertices(tri_vertex, t);
   int hull_edge = walk.outcome == CLM_WALK_BLOCKED ? walk.edge : -1;
+  double2 split;
   if (hull_edge >= 0 && is_protected(CLM_MESH_ARGS, t, hull_edge, protect))
     hull_edge = -1; // beyond an edge no point may split (-Y): dropped, not located
-  else if (hull_edge < 0 && touches_hull(point_state, tri)) {
+  else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, inward, t, hull_edge, &split)) {
+    hull_edge = -1; // beyond an edge no point can split: dropped, and bad stuck
+    stuck[bad] = stamp;
+    atomic_inc(stuck_count);
+  } else if (hull_edge < 0 && touches_hull(point_state, tri)) {
     // A hull edge or subsegment of the container, or of a neighbour that
     // c's cavity takes (its circumcircle holds c), whose diametral lens
     // holds c is encroached: it is split instead (Triangle tests the
@@ -610,34 +713,20 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, __global int *last_container,
             is_protected(CLM_MESH_ARGS, s, i, protect))
           continue; // not a boundary edge or subsegment; or one c may encroach (-Y)
         if (in_lens(points[a], points[b], c, lens) &&
-            (r < 0 || circumcircle_holds(points, near, c))) {
+            (r < 0 || circumcircle_holds(points, near, c)) &&
+            splittable(CLM_MESH_ARGS, inward, s, i, &split)) {
           hull_edge = i;
           t = s;
         }
       }
     }
   }
-  bool splits_cleanly = true;
-  if (hull_edge >= 0) {
-    const int a = tri_vertex[3 * t + next3(hull_edge)], b = tri_vertex[3 * t + prev3(hull_edge)],
-              apex = tri_vertex[3 * t + hull_edge];
-    const double2 split = subsegment_split(points, shell_centre(CLM_MESH_ARGS, t, hull_edge), a, b);
+  if (hull_edge >= 0)
     candidate[k] = split;
-    // The rounded split point must leave every half counter-clockwise (on a
-    // nearly straight run of boundary points it may not): else no split.
-    splits_cleanly =
-        orient_point(points, apex, a, split) > 0 && orient_point(points, b, apex, split) > 0;
-    const int link = tri_neighbor[3 * t + hull_edge], u = link_triangle(link);
-    if (!is_ghost(load_vertices(tri_vertex, u))) { // a subsegment: (across, b, a) splits too
-      const int across = tri_vertex[3 * u + link_edge(link)];
-      splits_cleanly = splits_cleanly && orient_point(points, across, b, split) > 0 &&
-                       orient_point(points, a, across, split) > 0;
-    }
-  }
   // Segment-split goes before triangle-split (thesis §3.4.1): off-centers
   // rank after every midpoint, in their own order.
   priority[k] = hull_edge < 0 ? rank | CLM_OFFCENTER_RANK : rank;
-  const bool located = (walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0) && splits_cleanly;
+  const bool located = walk.outcome == CLM_WALK_LOCATED || hull_edge >= 0;
   container[k] = located ? t : -1;
   last_container[bad] = located ? t : -1;
   split_edge[k] = hull_edge >= 0 ? hull_edge : walk.edge;

@@ -627,7 +627,8 @@ void warn_refinement(const Job &job, const clmesh::RefineStats &refinement) {
   case RefineStop::done:
     if (bad > 0)
       warn("Warning:  %ld triangles keep angles below the bound at small angles of the "
-           "input (hull corners, segments meeting)%s, which no Steiner point mends.\n",
+           "input (hull corners, segments meeting, slivers of rounding)%s, which no Steiner "
+           "point mends.\n",
            bad, options.no_steiner_on_segments ? " or beside segments -Y keeps whole" : "");
     return;
   case RefineStop::steiner_limit:

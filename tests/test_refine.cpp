@@ -329,6 +329,23 @@ TEST_CASE("refine: small angles of the hull end the refinement, never a hang") {
   }
 }
 
+TEST_CASE("refine: points a hair from collinear along the hull end the refinement") {
+  // Points on a slanted line, rounded to doubles, and one below: the hull
+  // passes a hair from most of them, and the triangles between are flat.
+  // Refinement once split them until its iteration limit; they are left.
+  std::vector<Point> points;
+  for (int k = 0; k < 60; ++k)
+    points.push_back({k / 60.0, k / 60.0 * 3.14159265358979323846 / 3});
+  points.push_back({0.5, -1});
+  for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
+    const auto result = refine_checked(points, 30, -1, tuning_of(algorithm), true);
+    const clmesh::RefineStats &stats = result.statistics.refinement;
+    CHECK(stats.stop_reason == clmesh::RefineStop::done);
+    CHECK(stats.remaining_bad > 0);
+    CHECK(stats.iterations < 100);
+  }
+}
+
 TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
   clmesh::Options options = clmesh::parse_switches("q30S50");
   const auto result = refine(fixtures::uniform(2000, 77), options);

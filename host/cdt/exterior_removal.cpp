@@ -15,6 +15,9 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       spread_(device.kernel(kFile, "spread_flood", kPhase)),
       seed_label_(device.kernel(kFile, "seed_label", kPhase)),
       remove_unlabelled_(device.kernel(kFile, "remove_unlabelled", kPhase)),
+      seed_thick_pockets_(device.kernel(kFile, "seed_thick_pockets", kPhase)),
+      remove_flat_pockets_(device.kernel(kFile, "remove_flat_pockets", kPhase)),
+      count_flat_(device.kernel(kFile, "count_flat_triangles", kPhase)),
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
       count_(device, 1) {
@@ -25,11 +28,8 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
   const std::size_t slots = mesh_.triangle_count;
   count_.fill(device_, 0, 1);
   seeds_on_segments_ = 0;
-  if (from_hull) {
-    set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0), removed_.buffer(),
-                  frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
-    launch(device_, seed_from_hull_, slots, kPhase);
-  }
+  if (from_hull)
+    seed_from_hull(slots);
   if (!holes.empty()) {
     std::vector<cl_double2> seeds;
     for (const Point &p : holes)
@@ -45,6 +45,53 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
     count_seeds_on_segments(on_segment, seeds.size());
   }
   return flood(-1);
+}
+
+void ExteriorRemoval::seed_from_hull(std::size_t slots) {
+  set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0), removed_.buffer(),
+                frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, seed_from_hull_, slots, kPhase);
+}
+
+long ExteriorRemoval::remove_flat_pockets() {
+  if (count_flat(true) == 0)
+    return 0; // no flat triangle: no flat pocket (the usual case, one sweep)
+  const std::size_t slots = mesh_.triangle_count, capacity = mesh_.triangle_capacity;
+  // The pockets: what a removal from the hull would eat (into removed_ for
+  // the flood, swapped out after).
+  DeviceArray<cl_int> pocket(device_, capacity);
+  pocket.fill(device_, 0, capacity);
+  std::swap(removed_, pocket);
+  count_.fill(device_, 0, 1);
+  seed_from_hull(slots);
+  flood(-1);
+  std::swap(removed_, pocket);
+  // The pockets with a triangle that is not flat, labelled 0 by a flood
+  // closed outside the pockets.
+  DeviceArray<cl_int> outside(device_, capacity);
+  label_ = DeviceArray<cl_int>(device_, capacity);
+  count_.fill(device_, 0, 1);
+  set_args_from(seed_thick_pockets_, mesh_.bind_triangulation(seed_thick_pockets_, 0),
+                pocket.buffer(), outside.buffer(), label_.buffer(), frontier_.buffer(),
+                count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, seed_thick_pockets_, slots, kPhase);
+  std::swap(removed_, outside);
+  flood(0);
+  std::swap(removed_, outside);
+  count_.fill(device_, 0, 1);
+  set_args(remove_flat_pockets_, pocket.buffer(), label_.buffer(), removed_.buffer(),
+           count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, remove_flat_pockets_, slots, kPhase);
+  return count_.read(device_, 0);
+}
+
+long ExteriorRemoval::count_flat(bool every) {
+  const std::size_t slots = mesh_.triangle_count;
+  count_.fill(device_, 0, 1);
+  set_args_from(count_flat_, mesh_.bind_triangulation(count_flat_, 0), removed_.buffer(),
+                static_cast<cl_int>(every), count_.buffer(), static_cast<cl_int>(slots));
+  launch(device_, count_flat_, slots, kPhase);
+  return count_.read(device_, 0);
 }
 
 void ExteriorRemoval::remove_unlabelled(const DeviceArray<cl_int> &label) {

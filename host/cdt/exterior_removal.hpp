@@ -21,6 +21,16 @@ public:
   long run(bool from_hull, const std::vector<Point> &holes);
   const DeviceArray<cl_int> &removed() const { return removed_; }
 
+  // -c: removes the pockets between the segments and the convex hull whose
+  // triangles are all flat, slivers made by rounding (a chain of segments a
+  // hair inside a hull edge: see seed_thick_pockets in the kernels); returns
+  // how many triangles.
+  long remove_flat_pockets();
+
+  // How many removed triangles are flat: the exterior or a hole runs a hair
+  // wide between parts of the domain there.
+  long count_flat_removed() { return count_flat(false); }
+
   // A mesh to refine (-r): removes the real triangles whose label is -1 (no
   // input triangle's, MeshReconstruction).
   void remove_unlabelled(const DeviceArray<cl_int> &label);
@@ -44,7 +54,13 @@ private:
 
   long seeds_on_segments_ = 0;
 
-  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_;
+  // Seeds a removal flood from the hull edges that are no constraints.
+  void seed_from_hull(std::size_t slots);
+  // How many real triangles are flat: every one, or the removed ones.
+  long count_flat(bool every);
+
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_,
+      seed_thick_pockets_, remove_flat_pockets_, count_flat_;
   DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace clmesh {
 
@@ -14,13 +15,13 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
                                        double max_area, int filter_rings, int filter_distance_rings,
                                        double filter_near, bool parallel_midpoints,
                                        int election_rings, bool conforming, int protected_segments,
-                                       const std::vector<double> &region_areas,
+                                       bool inward, const std::vector<double> &region_areas,
                                        const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
       parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
-      conforming_(conforming), protected_segments_(protected_segments),
+      conforming_(conforming), protected_segments_(protected_segments), inward_(inward),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -39,12 +40,14 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
       tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
       priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
-      radius2_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()),
-      size_bound_(size_bound) {
+      radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
+      stuck_count_(device, 1), region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
   last_container_.fill(device_, -1, mesh.triangle_capacity);
+  stuck_.fill(device_, std::numeric_limits<cl_int>::min(), mesh.triangle_capacity);
+  stuck_count_.fill(device_, 0, 1);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
   // R / l > 1 / (2 sin(angle)) exactly when the smallest angle is below `angle`.
@@ -77,7 +80,8 @@ std::size_t OffcenterInsertion::count_unfixable() {
   set_args_from(
       count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
       region_area_.buffer(), size_bound_buffer(), static_cast<cl_int>(size_bound_ != nullptr),
-      static_cast<cl_int>(protected_segments_), count.buffer(), static_cast<cl_int>(slots));
+      offconstant_, static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+      static_cast<cl_int>(inward_), stuck_.buffer(), count.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -102,12 +106,12 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   }
   searched_ = true;
   const auto items = static_cast<cl_int>(entries);
-  set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
-                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), size_bound_buffer(),
-                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
-                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
+  set_args_from(
+      find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(), static_cast<cl_int>(use_list),
+      ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
+      static_cast<cl_int>(size_bound_ != nullptr), offconstant_, static_cast<cl_int>(conforming_),
+      static_cast<cl_int>(protected_segments_), static_cast<cl_int>(inward_), stuck_.buffer(),
+      keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -142,10 +146,18 @@ void OffcenterInsertion::locate_candidates(int stamp) {
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
                 candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
-                priority_.buffer(), radius2_.buffer(), lens_,
+                priority_.buffer(), radius2_.buffer(), lens_, static_cast<cl_int>(inward_),
+                static_cast<cl_int>(stamp), stuck_.buffer(), stuck_count_.buffer(),
                 static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;
+}
+
+bool OffcenterInsertion::stuck_since_last_asked() {
+  const std::size_t total = static_cast<std::size_t>(stuck_count_.read(device_, 0));
+  const bool more = total > stuck_seen_;
+  stuck_seen_ = total;
+  return more;
 }
 
 void OffcenterInsertion::filter_candidates() {

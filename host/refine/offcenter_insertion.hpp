@@ -28,13 +28,15 @@ public:
   // boundary edges (and subsegments) no point may split: a candidate that
   // encroaches on one goes in all the same, one beyond it is dropped, and a
   // bad triangle whose candidate lies beyond such an edge of its own is left;
+  // inward: parts of the domain lie a hair apart, so a boundary edge's split
+  // point that rounds beyond it is moved back inside (inside_edge);
   // region_areas: the maximum area of
   // each region of DeviceMesh::tri_region (<= 0: none; empty without regions);
   // size_bound: each triangle slot's own area bound (SizeBound; null: none).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
                      bool parallel_midpoints, int election_rings, bool conforming,
-                     int protected_segments, const std::vector<double> &region_areas,
+                     int protected_segments, bool inward, const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -52,6 +54,10 @@ public:
   // mesh's next modification stamp; a triangle rewritten later has a larger
   // one.
   void locate_candidates(int stamp);
+  // Whether locations since the last call (or since these steps were made)
+  // dropped candidates beyond edges that cannot be split: their bad
+  // triangles are then left out of the next search (stuck).
+  bool stuck_since_last_asked();
   // The insertion filter: which candidates survive.
   void filter_candidates();
   // Appends the survivors to the mesh's points (free slots first, then from
@@ -81,6 +87,7 @@ private:
   int election_rings_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
+  bool inward_;            // split points of boundary edges kept inside
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
       mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;
@@ -98,7 +105,12 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  DeviceArray<cl_double> radius2_;     // each candidate's insertion radius, squared
+  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
+  // Per bad triangle: the stamp of the location that dropped its candidate
+  // beyond an edge that cannot be split (see is_stuck in the kernels).
+  DeviceArray<cl_int> stuck_;
+  DeviceArray<cl_int> stuck_count_;    // candidates dropped so, in all
+  std::size_t stuck_seen_ = 0;         // stuck_count_ at the last stuck_since_last_asked
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

@@ -170,14 +170,14 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 // The phase objects of the steps, sized by the mesh: built again when the
 // mesh grows.
 struct RefinementSteps {
-  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options,
+  RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options, bool inward,
                   const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
       : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
-                  options.protected_segments, region_areas, size_bound),
+                  options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -259,7 +259,7 @@ public:
                                                 triangle_areas_.get(), options_.unsuitable);
     }
     make_steps();
-    acute_hull_vertices_ = steps_->offcenter.flag_hull_vertices();
+    steps_->offcenter.flag_hull_vertices();
     return true;
   }
 
@@ -286,6 +286,8 @@ public:
       locate_candidates();
       filter_candidates();
       const std::size_t added = append_survivors();
+      if (added == 0 && steps_->offcenter.stuck_since_last_asked())
+        continue; // the next search leaves out the triangles just found stuck
       if (added == 0) {
         // The arrays did not grow past the -S limit, or every candidate fell
         // on a vertex.
@@ -330,13 +332,19 @@ private:
   }
 
   // GPU-CDT, the exterior and holes removed, and the domain closed by ghosts.
-  // With -c the domain is the convex hull (less the holes), and its hull
-  // edges join the segments, marker 1, as Triangle's -c makes them: they are
-  // split on shells where segments meet them at small angles.
+  // With -c the domain is the convex hull (less the holes and the pockets
+  // between segments and hull that are only flat slivers of rounding), and
+  // its hull edges join the segments, marker 1, as Triangle's -c makes them:
+  // they are split on shells where segments meet them at small angles.
   void constrain() {
     constraints_ = insert_constraints(device_, scheduler_, *pslg_, result_.constraints, crossings_);
     ExteriorRemoval removal(device_, mesh());
     remove_exterior(scheduler_, removal, *pslg_, *constrained_, result_.constraints);
+    if (constrained_->keep_convex_hull) {
+      // Flat pockets are slivers of rounding that refinement could not mend.
+      result_.constraints.eaten_triangles += removal.remove_flat_pockets();
+      scheduler_.timer().charge(ExteriorRemoval::kPhase);
+    }
     label_regions(removal);
     DomainBoundary boundary(device_, mesh(), scheduler_.scan());
     close_domain(boundary, removal);
@@ -351,7 +359,8 @@ private:
   }
 
   // The domain left by `removal` closed by ghosts.
-  void close_domain(DomainBoundary &boundary, const ExteriorRemoval &removal) {
+  void close_domain(DomainBoundary &boundary, ExteriorRemoval &removal) {
+    inward_ = removal.count_flat_removed() > 0;
     const std::size_t ghosts = boundary.room_needed(removal.removed());
     if (mesh().triangle_count + ghosts > mesh().triangle_capacity)
       scheduler_.grow(ghosts / 2 + 1);
@@ -520,8 +529,7 @@ private:
 
   // The statistics of the iterations' steps.
   void collect_statistics() {
-    if (acute_hull_vertices_ > 0 || pslg_ || options_.protected_segments)
-      stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
+    stats_.remaining_bad += static_cast<long>(steps_->offcenter.count_unfixable());
     stats_.deleted = flips_.deleted;
     stats_.kept_redundant = flips_.kept_redundant;
     stats_.boundary_splits = flips_.midpoints;
@@ -612,7 +620,7 @@ private:
 
   // The phase objects of the steps, for the mesh's arrays as they are.
   void make_steps() {
-    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, region_areas_,
+    steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, inward_, region_areas_,
                                                size_bound_ ? &size_bound_->bounds() : nullptr);
   }
 
@@ -704,16 +712,18 @@ private:
   const ConstrainedOptions *constrained_;
   const GivenMesh *given_;
   DelaunayScheduler scheduler_;
-  std::vector<Segment> constraints_;          // a PSLG's segments as they stand (device numbering)
-  std::vector<Point> crossings_;              // vertices added where segments cross
-  std::vector<double> region_areas_;          // with regions: each one's area bound (<= 0: none)
+  std::vector<Segment> constraints_; // a PSLG's segments as they stand (device numbering)
+  std::vector<Point> crossings_;     // vertices added where segments cross
+  std::vector<double> region_areas_; // with regions: each one's area bound (<= 0: none)
+  // Parts of the domain lie a hair apart (flat triangles among the removed
+  // ones): split points of boundary edges are kept inside (inside_edge).
+  bool inward_ = false;
   std::size_t first_steiner_ = 0;             // slot of the first Steiner point
   std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
   std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback
   bool sizes_stale_ = true;                   // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
-  std::size_t acute_hull_vertices_ = 0;
   Point low_{};
   double side_ = 0; // the points' bounding square, for the Z-order
   FlipFlopCounts flips_;

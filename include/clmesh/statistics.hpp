@@ -45,7 +45,9 @@ struct ConstrainedStats {
   long outer_iterations = 0;      // markings that led to flips
   long inner_iterations = 0; // runs flipped along (the inner loop's work-items), all iterations
   long delaunay_flips = 0;   // flips of the final constrained Delaunay flipping
-  long eaten_triangles = 0;  // triangles removed as exterior or hole
+  // Triangles removed as exterior or hole (with -c and refinement, also the
+  // flat pockets between segments and hull: slivers of rounding).
+  long eaten_triangles = 0;
   // Hole seeds (unless -O) and region seeds (with -A) lying exactly on a
   // segment or at one of its vertices: on neither side, ignored.
   long ignored_holes = 0;
@@ -79,7 +81,8 @@ struct RefineStats {
   long non_delaunay_flips = 0;      // step 3's flops and 3-1 flips deleting points
   long growths = 0;                 // times the mesh's arrays grew (thesis §3.6.1)
   bool out_of_memory = false;       // stopped: the device cannot hold more points
-  long remaining_bad = 0;           // bad triangles left (small input angles, -Y, -S reached)
+  // Bad triangles left: small input angles, flat slivers of rounding, -Y, -S reached.
+  long remaining_bad = 0;
   RefineStop stop_reason = RefineStop::done;
   // -a: at least this many points mesh the convex hull within the area bound
   // (half its area over the bound); 0 without -a.

@@ -150,7 +150,8 @@ finishes() {
 
 # segment_pairs KIND N: a .poly of N segments, each between two vertices of
 # its own: the diameters of a star (KIND star) or pieces of a slanted line,
-# each overlapping the next (overlap); endpoints rounded to doubles.
+# each overlapping the next (overlap; walled: with a quadrilateral on either
+# side of the line, closed at its ends); endpoints rounded to doubles.
 segment_pairs() {
   python3 - "$1" "$2" <<'PY'
 import math, sys
@@ -162,13 +163,18 @@ for k in range(n):
         ends.append(((x, y), (-x, -y)))
     else:
         ends.append(tuple((x, x * math.pi / 3) for x in (k / n, (k + n / 2) / n)))
-print(2 * n, 2, 0, 0)
-for k, pair in enumerate(ends):
-    for j, (x, y) in enumerate(pair):
-        print(2 * k + j + 1, repr(x), repr(y))
-print(n, 0)
-for k in range(n):
-    print(k + 1, 2 * k + 1, 2 * k + 2)
+points = [p for pair in ends for p in pair]
+segments = [(2 * k + 1, 2 * k + 2) for k in range(n)]
+if kind == "walled":
+    (x, y), m = ends[-1][1], 2 * n
+    points += [(0.0, 1.0), (x, y + 1), (0.5, -1.0), (x + 0.5, y - 1)]
+    segments += [(1, m + 1), (m + 1, m + 2), (m + 2, m), (1, m + 3), (m + 3, m + 4), (m + 4, m)]
+print(len(points), 2, 0, 0)
+for k, (x, y) in enumerate(points):
+    print(k + 1, repr(x), repr(y))
+print(len(segments), 0)
+for k, (a, b) in enumerate(segments):
+    print(k + 1, a, b)
 print(0)
 PY
 }
@@ -198,6 +204,86 @@ for n in 16 50 200; do
     [[ "$(count "overlap$n.1.node")" == "$((2 * n))" ]] ||
       fail "$switches overlap$n.poly: $(count "overlap$n.1.node") vertices, wanted $((2 * n))"
   done
+done
+# Their domain is slivers a hair wide: flat triangles, which refinement leaves
+# and counts (once it split them without end, and a split point rounded
+# across a boundary edge made triangles overlap). Walled in on both sides,
+# the chains of overlapping pieces cannot be split within precision (the
+# flat triangles across): the triangles whose candidates lie beyond them are
+# left and counted too, and refinement ends as done.
+for n in 50 200; do
+  segment_pairs walled "$n" > "walled$n.poly"
+  for file in "overlap$n.poly" "walled$n.poly"; do
+    # -D: the flat triangles cannot conform (no -C), but are left as well.
+    for switches in -pq30C -pcq30C -pDq30; do
+      finishes "$switches" "$file"
+      grep -q 'keep angles below the bound' "$work/log/err" &&
+        ! grep -q 'refinement stopped' "$work/log/err" ||
+        fail "$switches $file: not ended with flat triangles counted: $(cat "$work/log/err")"
+    done
+  done
+done
+
+# facing_pairs SEED: a .poly of 3 to 12 pairs of triangles, each pair facing
+# across a slanted line, an edge of each on it (their vertices rounded, so a
+# hair apart), placed at random (SEED) so that pairs also cross.
+facing_pairs() {
+  python3 - "$1" <<'PY'
+import math, random, sys
+random.seed(int(sys.argv[1]))
+points, segments = [], []
+def vertex(x, y):
+    points.append((x, y))
+    return len(points)
+for _ in range(random.randint(3, 12)):
+    s = random.choice([math.pi / 3, math.sqrt(2), math.e / 10, 1 / 3, 7 / 3])
+    ox, oy = random.uniform(-2, 2), random.uniform(-2, 2)
+    d, e = sorted(random.uniform(0, 1) for _ in range(2))
+    on = lambda x: vertex(ox + x, oy + x * s)
+    a, b, c = on(0), on(1), vertex(ox + 0.5, oy + 0.5 * s - 1)
+    p, q, r = on(d), on(1 + e), vertex(ox + 1, oy + s + 1)
+    segments += [(a, b), (b, c), (c, a), (p, q), (q, r), (r, p)]
+print(len(points), 2, 0, 0)
+for i, (x, y) in enumerate(points):
+    print(i + 1, repr(x), repr(y))
+print(len(segments), 0)
+for i, (a, b) in enumerate(segments):
+    print(i + 1, a, b)
+print(0)
+PY
+}
+
+# Polygons whose edges overlap a hair from collinear: the exterior between
+# them is flat, and a boundary edge's split point that rounded beyond it
+# landed in the polygon across, whose triangles it then overlapped (-C
+# failed). Split points of boundary edges are kept inside there.
+fresh facing
+for seed in 5 9 16 27; do
+  facing_pairs "$seed" > "facing$seed.poly"
+  for switches in -pq30C -pq33C -pcq30C; do
+    finishes "$switches" "facing$seed.poly"
+    ! grep -q 'refinement stopped' "$work/log/err" ||
+      fail "$switches facing$seed.poly: $(cat "$work/log/err")"
+  done
+done
+
+# A mesh refined with -pc, fed back with -c: its boundary chains are a hair
+# from straight (rounded split points), the convex hull's edges pass a hair
+# from their vertices. Refinement once split those hull edges onto the
+# vertices, and their pieces again, until memory ran out. The pockets between
+# hull and chains are flat slivers, left out of the domain: its domain is its
+# convex hull, so -c refines it as -p does.
+fresh refined_again
+cp "$inputs/A.poly" .
+run -Q -pcq30 A.poly
+for q in 30 33; do
+  finishes "-pq$q" A.1.poly
+  mv A.2.node p.node
+  finishes "-pcq${q}C" A.1.poly
+  ! grep -q 'refinement stopped' "$work/log/err" ||
+    fail "-pcq${q}C A.1.poly: $(cat "$work/log/err")"
+  cmp -s <(grep -v '^#' A.2.node) <(grep -v '^#' p.node) ||
+    fail "-pcq$q A.1.poly: $(count A.2.node) vertices, -pq$q $(count p.node)"
 done
 
 # A vertex count of 0: the vertices come from double_hex3.node; -zen outputs.

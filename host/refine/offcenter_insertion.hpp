@@ -98,7 +98,11 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  DeviceArray<cl_double> radius2_;     // each candidate's insertion radius, squared
+  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
+  // Per triangle slot, set by the search for a bad one: does its candidate
+  // split an edge of its own on the boundary (splits_own_edge)? It is then
+  // elected whatever its neighbours' priorities.
+  DeviceArray<cl_int> splits_boundary_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

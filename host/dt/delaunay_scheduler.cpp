@@ -322,6 +322,7 @@ std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
 }
 
 void PhaseTimer::charge(const std::string &name) {
+  device_.queue().finish();
   const auto now = Clock::now();
   const double seconds = std::chrono::duration<double>(now - last_).count();
   last_ = now;
@@ -360,7 +361,7 @@ DelaunayScheduler::~DelaunayScheduler() = default;
 bool DelaunayScheduler::triangulate() {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
-  timer_ = std::make_unique<PhaseTimer>(stats_);
+  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
   if (all_collinear(points))
     return false; // no triangle
 

@@ -26,17 +26,14 @@ inline double seconds_since(Clock::time_point start) {
 // the digital Voronoi texture's, and the cells of refinement's triangle order.
 std::pair<Point, double> bounding_square(const std::vector<Point> &points);
 
-// Charges wall time to named phases. A boundary does not wait for the
-// device (waits at every boundary of every refinement iteration cost a
-// tenth of a large run on a CPU device): a phase's time runs to the host's
-// last wait for the device in it (most phases end with one, reading a
-// count), and work it leaves queued counts toward the next phase.
+// Charges wall time to named phases, waiting for the device at each boundary.
 class PhaseTimer {
 public:
-  explicit PhaseTimer(DelaunayStats &stats) : stats_(stats) {}
+  PhaseTimer(Device &device, DelaunayStats &stats) : device_(device), stats_(stats) {}
   void charge(const std::string &name);
 
 private:
+  Device &device_;
   DelaunayStats &stats_;
   Clock::time_point last_ = Clock::now();
 };

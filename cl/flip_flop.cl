@@ -213,17 +213,19 @@ inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS, C
         continue;
       flop = true;
     } else {
+      // Constraints are subsegments (tested below): a segment refinement has
+      // split no longer stands between its ends. The in-circle filter comes
+      // first: it keeps most edges, and the subsegment test, which reads
+      // more of the mesh, is then not needed.
+      const int verdict =
+          edge_must_flip(points, constraint_start, constraint_adjacent, 0, 1, c, a, b, d, exact);
+      if (verdict == CLM_KEEP)
+        continue;
       if (constrained && is_subsegment(points, constraint_start, constraint_adjacent,
                                        constraint_segment, point_segment, segment_end, a, b, c, d))
         continue; // subsegments stay, split only
-      // Constraints are subsegments (tested above): a segment refinement has
-      // split no longer stands between its ends.
-      const int verdict =
-          edge_must_flip(points, constraint_start, constraint_adjacent, 0, 1, c, a, b, d, exact);
       if (verdict == CLM_UNCERTAIN)
         return false;
-      if (verdict == CLM_KEEP)
-        continue;
     }
     if (dependent_pair(points, point_state, insertion_radius2, orthogonal_test, c, d)) {
       const int r = redundant_one(point_state, point_priority, c, d);

@@ -404,11 +404,32 @@ inline bool is_stuck(__global const int *modified_stamp, __global const int *stu
   return modified_stamp[t] < stuck[t];
 }
 
+// Does candidate c of bad real triangle t split an edge of its own on the
+// domain's boundary or a subsegment, one a point may split (-Y): does c lie
+// on or beyond it, or in its diametral lens (`lens`, Triangle's test)? The
+// location (locate_candidates) then nearly always makes c that edge's
+// midpoint; the other candidates of triangles with a corner on the boundary
+// become midpoints far less often.
+inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c, double lens,
+                            int protect) {
+  for (int i = 0; i < 3; ++i) {
+    const int a = tri.v[next3(i)], b = tri.v[prev3(i)];
+    if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
+      continue;
+    const double2 pa = points[a], e = points[b] - pa, f = c - pa;
+    if ((e.x * f.y - e.y * f.x <= 0 || in_lens(pa, points[b], c, lens)) &&
+        bounds_domain(CLM_MESH_ARGS, t, i) && !is_protected(CLM_MESH_ARGS, t, i, protect))
+      return true;
+  }
+  return false;
+}
+
 // Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
 // slot gid. The list holds the bad triangles of the last search and the
 // triangles changed since: the others are still good (thesis §3.3.2). With an
 // election, each bad triangle also marks its slot with its priority, ranked as
-// a midpoint's when a corner is on the hull (see elect_candidates).
+// a midpoint's when a corner is on the hull, and sets splits_boundary[slot]
+// (splits_own_edge; see elect_candidates).
 // -D (conforming Delaunay): does real triangle t have an edge on a subsegment
 // or the boundary whose diametral circle holds the opposite vertex (the angle
 // there is obtuse)? Its circumcenter then lies beyond that edge, so the walk
@@ -431,7 +452,8 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
                                  __global const double *size_bound, const int sized,
                                  const double offconstant, const int conforming, const int protect,
                                  const int inward, __global const int *stuck, __global int *is_bad,
-                                 const int election, const int n) {
+                                 const int election, const double lens,
+                                 __global int *splits_boundary, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
@@ -452,8 +474,10 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
           protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority) &&
       !stranded(CLM_MESH_ARGS, inward, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
   is_bad[gid] = bad;
-  if (bad && election)
+  if (bad && election) {
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
+    splits_boundary[t] = splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect);
+  }
 }
 
 // counts[0]: the bad triangles left as they are, counted at the end over
@@ -541,13 +565,17 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // candidates the insertion filter would mostly leave out, wait for a later
 // iteration without being located, which saves most of the location and
 // filtering work. The best bad triangle always sends its candidate, so the
-// refinement goes on. So do those with a corner on the hull, whose
-// candidates mostly become hull midpoints, which go first; they rank before
-// the others, so that the bad triangles along the hull do not wait for each
-// other in turn.
+// refinement goes on. So do those whose candidate splits an edge of their
+// own on the boundary (splits_boundary, set by find_bad_triangles): hull
+// midpoints never keep each other out, so the bad triangles along the hull
+// do not wait for each other in turn. The others with a corner on the
+// boundary rank before the rest but take part: along a PSLG's jagged
+// outline they are most bad triangles, their candidates are mostly
+// off-centers, and most of those would lose in the filter.
 __kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
                                __global const uint *tri_mark, const int rings,
-                               __global int *elected, const int n) {
+                               __global const int *splits_boundary, __global int *elected,
+                               const int n) {
   const int k = get_global_id(0);
   prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
   if (k >= n)
@@ -555,7 +583,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
   const int t = bad[k];
   const uint mine = tri_mark[t];
   bool best = true;
-  for (int i = 0; i < 3 && best && !is_midpoint_priority(mine); ++i) {
+  for (int i = 0; i < 3 && best && !splits_boundary[t]; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     best = tri_mark[u] >= mine;
     for (int j = 0; j < 3 && best && rings > 1; ++j) {

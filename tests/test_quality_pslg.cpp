@@ -79,8 +79,12 @@ bool segments_are_chains(const clmesh::Mesh &cdt, const clmesh::Mesh &refined) {
 // point added on a segment carrying the segment's marker; the area bound
 // everywhere, and no angle below the bound beyond the triangles the
 // refinement reports it could not mend.
-clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switches) {
-  const clmesh::Options options = clmesh::parse_switches(switches);
+// With `tuning`, those refinement settings instead of the defaults.
+clmesh::Mesh refine_checked(const clmesh::Input &pslg, const std::string &switches,
+                            const clmesh::Tuning *tuning = nullptr) {
+  clmesh::Options options = clmesh::parse_switches(switches);
+  if (tuning)
+    options.tuning = *tuning;
   clmesh::Options cdt_options = options;
   cdt_options.quality = false;
   cdt_options.max_area.reset();
@@ -175,6 +179,32 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
     CHECK(ratio > 0.75);
     CHECK(ratio < 1.05);
     CHECK(below <= 1.05 * c.triangle_below);
+  }
+}
+
+TEST_CASE("quality pslg: along coastlines the election sends few of the off-centers") {
+  // Most bad triangles have a corner on a coastline, and most of their
+  // candidates are off-centers that would lose in the insertion filter. Only
+  // those that split an edge of their own on the boundary are sent whatever
+  // their neighbours' priorities; the others take part in the election.
+  clmesh::Tuning every_one;
+  every_one.election_rings = 0;
+  for (const char *name : {"water", "water-huge2", "simplified-us-border"}) {
+    INFO(std::string(name));
+    const clmesh::Input coast = load("pslg", name);
+    const auto all = refine_checked(coast, "pq30", &every_one).statistics.refinement;
+    const auto elected = refine_checked(coast, "pq30").statistics.refinement;
+    MESSAGE(std::string(name) << ": candidates, iterations, points: every bad triangle "
+                              << all.candidates << ", " << all.iterations << ", " << all.inserted
+                              << "; elected " << elected.candidates << ", " << elected.iterations
+                              << ", " << elected.inserted);
+    // Under half the candidates (sending every bad triangle with a corner on
+    // the boundary located three quarters of them or more), no more
+    // iterations, and at most 5% more points but on the smallest coastline.
+    CHECK(elected.candidates * 2 < all.candidates);
+    CHECK(elected.iterations <= all.iterations);
+    if (all.inserted > 1000)
+      CHECK(elected.inserted * 100 <= all.inserted * 105);
   }
 }
 

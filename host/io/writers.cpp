@@ -19,7 +19,6 @@
 #include <filesystem>
 #include <memory>
 #include <string_view>
-#include <unordered_map>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -33,13 +32,6 @@ namespace clmesh {
 
 namespace {
 
-// Key of the undirected edge {a, b}.
-uint64_t edge_key(int32_t a, int32_t b) {
-  const uint32_t lo = static_cast<uint32_t>(std::min(a, b)),
-                 hi = static_cast<uint32_t>(std::max(a, b));
-  return (static_cast<uint64_t>(lo) << 32) | hi;
-}
-
 void check_neighbors(const std::vector<Triangle> &triangles,
                      const std::vector<std::array<int32_t, 3>> &neighbors, const char *caller) {
   if (neighbors.size() != triangles.size())
@@ -48,18 +40,46 @@ void check_neighbors(const std::vector<Triangle> &triangles,
                         " neighbour entries");
 }
 
-// Every edge of the mesh, mapped to whether it lies on the mesh boundary.
-std::unordered_map<uint64_t, bool>
-edges_on_boundary(const std::vector<Triangle> &triangles,
-                  const std::vector<std::array<int32_t, 3>> &neighbors) {
-  std::unordered_map<uint64_t, bool> edges;
-  edges.reserve(triangles.size() * 2 + 4);
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int i = 0; i < 3; ++i)
-      edges.emplace(edge_key(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3]),
-                    neighbors[t][i] == -1);
-  return edges;
-}
+// The segments by their ends: the indices of the segments {a, b}, found in
+// constant time from the smaller end's row (compressed rows, in index order).
+// Hashing every mesh edge instead costs more than writing the files.
+class SegmentsByEnd {
+public:
+  explicit SegmentsByEnd(const std::vector<Segment> &segments) {
+    std::size_t rows = 0;
+    for (const Segment &segment : segments)
+      if (std::min(segment.a, segment.b) >= 0)
+        rows = std::max(rows, static_cast<std::size_t>(std::min(segment.a, segment.b)) + 1);
+    first_.assign(rows + 1, 0);
+    for (const Segment &segment : segments)
+      if (std::min(segment.a, segment.b) >= 0)
+        ++first_[static_cast<std::size_t>(std::min(segment.a, segment.b)) + 1];
+    for (std::size_t row = 0; row < rows; ++row)
+      first_[row + 1] += first_[row];
+    std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
+    entries_.resize(first_[rows]);
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+      const int32_t low = std::min(segments[s].a, segments[s].b);
+      if (low >= 0)
+        entries_[next[static_cast<std::size_t>(low)]++] = {std::max(segments[s].a, segments[s].b),
+                                                           s};
+    }
+  }
+  // Calls found(s) for every segment s that joins a and b, in index order.
+  template <typename Found> void visit(int32_t a, int32_t b, Found found) const {
+    const int32_t low = std::min(a, b), high = std::max(a, b);
+    if (low < 0 || static_cast<std::size_t>(low) + 1 >= first_.size())
+      return;
+    for (std::size_t k = first_[static_cast<std::size_t>(low)];
+         k < first_[static_cast<std::size_t>(low) + 1]; ++k)
+      if (entries_[k].first == high)
+        found(entries_[k].second);
+  }
+
+private:
+  std::vector<std::size_t> first_; // row v: entries first_[v] to first_[v + 1]
+  std::vector<std::pair<int32_t, std::size_t>> entries_; // the larger end and the segment
+};
 
 // Triangle's -p marker of a segment in the mesh: its own when non-zero, else 1
 // when it lies on the mesh boundary (Triangle marks the subsegments that
@@ -85,14 +105,13 @@ std::vector<Edge> mesh_edges(const std::vector<Triangle> &triangles,
                              const std::vector<std::array<int32_t, 3>> &neighbors,
                              const std::vector<Segment> &segments) {
   std::vector<Edge> edges = mesh_edges(triangles, neighbors);
-  std::unordered_map<uint64_t, int> marker_of; // segment edge -> its marker (first one wins)
-  marker_of.reserve(segments.size() * 2 + 1);
-  for (const Segment &segment : segments)
-    marker_of.emplace(edge_key(segment.a, segment.b), segment.marker);
+  const SegmentsByEnd by_end(segments);
   for (Edge &edge : edges) {
-    auto found = marker_of.find(edge_key(edge.a, edge.b));
-    if (found != marker_of.end())
-      edge.marker = segment_marker(Segment{edge.a, edge.b, found->second}, edge.marker == 1);
+    std::size_t first = segments.size(); // the first segment on the edge gives its marker
+    by_end.visit(edge.a, edge.b, [&](std::size_t s) { first = std::min(first, s); });
+    if (first < segments.size())
+      edge.marker =
+          segment_marker(Segment{edge.a, edge.b, segments[first].marker}, edge.marker == 1);
   }
   return edges;
 }
@@ -192,14 +211,25 @@ std::vector<int32_t> output_vertex_numbers(const MeshView &mesh, const WriteOpti
 std::vector<Segment> output_segments(const MeshView &mesh) {
   if (!mesh.segments)
     throw InternalError("output_segments called without segments");
-  const auto on_boundary = edges_on_boundary(triangles_of(mesh), neighbors_of(mesh));
+  const std::vector<Triangle> &triangles = triangles_of(mesh);
+  const std::vector<std::array<int32_t, 3>> &neighbors = neighbors_of(mesh);
+  // Each segment's edge in the mesh: whether the first triangle (in order)
+  // that has it has no neighbour across it; -1 when no triangle has it.
+  std::vector<signed char> on_boundary(mesh.segments->size(), -1);
+  const SegmentsByEnd by_end(*mesh.segments);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int i = 0; i < 3; ++i)
+      by_end.visit(triangles[t][(i + 1) % 3], triangles[t][(i + 2) % 3], [&](std::size_t s) {
+        if (on_boundary[s] < 0)
+          on_boundary[s] = neighbors[t][i] == -1;
+      });
   std::vector<Segment> segments;
   segments.reserve(mesh.segments->size());
-  for (const Segment &segment : *mesh.segments) {
-    auto edge = on_boundary.find(edge_key(segment.a, segment.b));
-    if (edge == on_boundary.end())
+  for (std::size_t s = 0; s < mesh.segments->size(); ++s) {
+    if (on_boundary[s] < 0)
       continue; // no edge of the mesh: eaten with a hole or the exterior
-    segments.push_back(Segment{segment.a, segment.b, segment_marker(segment, edge->second)});
+    const Segment &segment = (*mesh.segments)[s];
+    segments.push_back(Segment{segment.a, segment.b, segment_marker(segment, on_boundary[s] == 1)});
   }
   return segments;
 }

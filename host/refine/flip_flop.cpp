@@ -97,15 +97,30 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = result.next;
     }
   }
+  midpoints_.fill(device_, 0, 1);
+  if (m > 0) {
+    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
+             static_cast<cl_int>(m));
+    launch(device_, finish_, m, kPhase);
+  }
+  // The iteration's counts, read with one wait.
+  cl_int failures = 0, midpoints = 0, kept = 0, flips[3] = {};
+  failures_.download_later(device_, &failures, 1);
+  flip_counts_.download_later(device_, flips, 3);
+  midpoints_.download_later(device_, &midpoints, 1);
+  kept_.download_later(device_, &kept, 1);
+  device_.wait(kPhase);
   // Checked once per iteration: a lost star only leaves its point undeleted
   // until then.
-  if (failures_.read(device_, 0) != 0)
+  if (failures != 0)
     throw InternalError("flip-flop lost the star of a redundant point");
-  const std::vector<cl_int> flips = flip_counts_.download(device_, 3);
   counts.delaunay_flips += flips[0];
   counts.non_delaunay_flips += flips[1] + flips[2];
   counts.deleted += flips[2]; // each removal deletes one point
+  counts.midpoints += midpoints;
+  counts.kept_redundant += kept;
   if (flips[2] > 0) {
+    // After finish_iteration, which leaves the deleted points' state alone.
     DeviceList<cl_double2> &log = deleted.coordinates;
     log.reserve(device_, static_cast<std::size_t>(flips[2]));
     logged_.fill(device_, 0, 1);
@@ -115,14 +130,6 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     launch(device_, log_deleted_, tracked_n_, kPhase);
     log.size += static_cast<std::size_t>(flips[2]);
   }
-  midpoints_.fill(device_, 0, 1);
-  if (m > 0) {
-    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
-             static_cast<cl_int>(m));
-    launch(device_, finish_, m, kPhase);
-  }
-  counts.midpoints += midpoints_.read(device_, 0);
-  counts.kept_redundant += kept_.read(device_, 0);
 }
 
 cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
@@ -139,6 +146,10 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   const auto items = static_cast<cl_int>(n);
   marked_count_.fill(device_, 0, 1);
   counts.exact_checks += propose(items, any_redundant);
+  // The proposals have marked every point they mark: the count is read with
+  // the scan's total below (the queue runs in order).
+  cl_int marked = 0;
+  marked_count_.download_later(device_, &marked, 1);
   bind(apply_, stamp, items);
   launch(device_, apply_, n, kPhase);
   bind(relink_, stamp, items);
@@ -147,7 +158,7 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   result.next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
   set_args_from(gather_next_, bind_lists(gather_next_, 0), items);
   launch(device_, gather_next_, n, kPhase);
-  result.marked = marked_count_.read(device_, 0);
+  result.marked = marked;
   result.looked_for_stars = result.marked > 0 || redundant_left_;
   if (result.looked_for_stars)
     result.length = find_stars(stamp, result.next, &result.stars);

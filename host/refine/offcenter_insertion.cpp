@@ -41,7 +41,8 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
       priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
       radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), region_area_(device, region_areas.size()), size_bound_(size_bound) {
+      stuck_count_(device, 1), splits_boundary_(device, mesh.triangle_capacity),
+      region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
@@ -106,12 +107,13 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   }
   searched_ = true;
   const auto items = static_cast<cl_int>(entries);
-  set_args_from(
-      find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(), static_cast<cl_int>(use_list),
-      ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
-      static_cast<cl_int>(size_bound_ != nullptr), offconstant_, static_cast<cl_int>(conforming_),
-      static_cast<cl_int>(protected_segments_), static_cast<cl_int>(inward_), stuck_.buffer(),
-      keep_.buffer(), static_cast<cl_int>(election_rings_ > 0), items);
+  set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
+                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
+                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
+                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(),
+                static_cast<cl_int>(election_rings_ > 0), lens_, splits_boundary_.buffer(), items);
   launch(device_, find_bad_, entries, kPhase);
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
@@ -129,7 +131,7 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
   set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           static_cast<cl_int>(election_rings_), keep_.buffer(), bad);
+           static_cast<cl_int>(election_rings_), splits_boundary_.buffer(), keep_.buffer(), bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),

@@ -109,8 +109,12 @@ private:
   // Per bad triangle: the stamp of the location that dropped its candidate
   // beyond an edge that cannot be split (see is_stuck in the kernels).
   DeviceArray<cl_int> stuck_;
-  DeviceArray<cl_int> stuck_count_;    // candidates dropped so, in all
-  std::size_t stuck_seen_ = 0;         // stuck_count_ at the last stuck_since_last_asked
+  DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
+  std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
+  // Per triangle slot, set by the search for a bad one: does its candidate
+  // split an edge of its own on the boundary (splits_own_edge)? It is then
+  // elected whatever its neighbours' priorities.
+  DeviceArray<cl_int> splits_boundary_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

@@ -40,6 +40,17 @@ public:
     return data;
   }
   T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }
+  // Queues the copy of `count` entries from `offset` into `out` without
+  // waiting for it: `out` holds them once the queue (in order) has finished
+  // this copy, after Device::wait() or a later blocking transfer. Several
+  // counts read together cost one wait for the device instead of one each.
+  void download_later(Device &device, T *out, std::size_t count, std::size_t offset = 0) const {
+    if (count)
+      guarded("transfer", "downloading", [&] {
+        device.queue().enqueueReadBuffer(buffer_, CL_FALSE, offset * sizeof(T), count * sizeof(T),
+                                         out);
+      });
+  }
 
   // A larger array holding this one's contents, the rest set to `fill`.
   DeviceArray grown(Device &device, std::size_t size, T fill) const {

@@ -430,6 +430,10 @@ cl::Kernel Device::kernel(const std::string &file, const std::string &name,
   return guarded(phase, "creating kernel", [&] { return cl::Kernel(built, name.c_str()); });
 }
 
+void Device::wait(const std::string &phase) {
+  guarded(phase, "waiting for the device", [&] { queue_.finish(); });
+}
+
 void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
                   std::size_t offset, std::size_t bytes, const std::string &phase) {
   if (bytes == 0)

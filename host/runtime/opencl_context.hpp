@@ -40,6 +40,8 @@ public:
   cl::Context &context() { return context_; }
   const cl::Device &cl_device() const { return device_; }
   cl::CommandQueue &queue() { return queue_; }
+  // Waits until the device has done everything queued (`phase` names a failure).
+  void wait(const std::string &phase);
 
   // Builds (once per device) the program made of `file` with its
   // `#include "x.h"` lines expanded, without fast-math or mad options.

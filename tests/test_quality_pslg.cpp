@@ -163,11 +163,11 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
                         {"water", "pcq30", 21673, 799},       {"water2", "pcq30", 7114, 159},
                         {"water4", "pcq30", 2848, 54},        {"clusters", "pcq30", 69, 27}};
   for (const Case &c : cases) {
-    INFO(std::string(c.name) << " -" << c.switches);
+    INFO(std::string(c.name) << " -" << std::string(c.switches));
     const clmesh::Mesh mesh = refine_checked(load("pslg", c.name), c.switches);
     const double ratio = static_cast<double>(mesh.points.size()) / c.triangle_vertices;
     const long below = mesh.statistics.refinement.remaining_bad;
-    MESSAGE(std::string(c.name) << " -" << c.switches << ": " << mesh.points.size()
+    MESSAGE(std::string(c.name) << " -" << std::string(c.switches) << ": " << mesh.points.size()
                                 << " vertices, Triangle " << c.triangle_vertices << " (" << ratio
                                 << "), " << below << " triangles left at small angles, Triangle "
                                 << c.triangle_below);

@@ -384,8 +384,7 @@ bool DelaunayScheduler::triangulate() {
   mesh.points.upload(device, coordinates);
   std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
   mesh.original_id.upload(device, original_id);
-  mesh.tri_mark.fill(device, -1, mesh.triangle_capacity); // no mark: all bits set
-  mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+  mesh.clear_triangle_slots(); // marks and stamps set as the slots come into use
   mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
   mesh.location.fill(device, 0, mesh.point_capacity);
   mesh.constraint_start.fill(device, 0, mesh.point_capacity + 1);
@@ -412,8 +411,8 @@ bool DelaunayScheduler::triangulate() {
     mesh.tri_vertex.upload(device, fan.vertices);
     mesh.tri_neighbor.upload(device, fan.neighbors);
     mesh.triangle_count = fan.vertices.size() / 3;
-    mesh.tri_mark.fill(device, -1, mesh.triangle_capacity);
-    mesh.modified_stamp.fill(device, 0, mesh.triangle_capacity);
+    mesh.clear_triangle_slots();
+    mesh.fill_triangle_slots(device, mesh.triangle_count);
     mesh.location.fill(device, 0, mesh.point_capacity);
     std::vector<char> in_mesh(n, 0);
     for (const int32_t v : device_hull)
@@ -503,6 +502,7 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
     return false;
   stats_.constructed_triangles = static_cast<long>(built.real);
   mesh.triangle_count = built.real + built.ghosts;
+  mesh.fill_triangle_slots(device_, mesh.triangle_count); // the construction sets no marks
 
   // Phase 5 on the whole construction: the ghost flips make the outer cycle
   // convex. A structure that is no triangulation may flip on and on: a bound

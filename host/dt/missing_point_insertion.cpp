@@ -73,6 +73,7 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   if (mesh_.triangle_count + new_slots > mesh_.triangle_capacity ||
       4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
     throw InternalError("missing-point insertion: triangle slots exhausted");
+  mesh_.fill_triangle_slots(device_, mesh_.triangle_count + new_slots);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
   set_args_from(split_, mesh_.bind_triangulation(split_, 0), remaining_.buffer(), winner_.buffer(),
                 offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,

@@ -32,6 +32,7 @@ std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
   if (slots + ghosts > mesh_.triangle_capacity)
     throw InternalError("no room for the ghosts of the domain's boundary");
   const auto first_ghost = static_cast<cl_int>(slots);
+  mesh_.fill_triangle_slots(device_, slots + ghosts);
   DeviceArray<cl_int> lost(device_, 1);
   lost.fill(device_, 0, 1);
   set_args_from(make_ghosts_, mesh_.bind_triangulation(make_ghosts_, 0), removed.buffer(),

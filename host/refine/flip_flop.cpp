@@ -43,7 +43,6 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orth
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
     return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
-  redundant_mark_.fill(device_, 0, mesh.point_capacity);
   failures_.fill(device_, 0, 1);
 }
 
@@ -57,6 +56,11 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       device_.queue().enqueueCopyBuffer(changed.buffer(), active_.buffer(), 0, 0,
                                         n * sizeof(cl_int));
     });
+  if (mesh_.point_count > marks_filled_) { // the points that came since: not marked
+    redundant_mark_.fill_range(device_, 0, marks_filled_, mesh_.point_count - marks_filled_,
+                               kPhase);
+    marks_filled_ = mesh_.point_count;
+  }
   flip_counts_.fill(device_, 0, 3);
   kept_.fill(device_, 0, 1);
   // The points to follow: this iteration's, then the old ones that encroach

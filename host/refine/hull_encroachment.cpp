@@ -14,9 +14,7 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       mark_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
-      offset_(device, mesh.point_capacity) {
-  claim_.fill(device_, kNoClaim, mesh.point_capacity);
-}
+      offset_(device, mesh.point_capacity) {}
 
 std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
                                                const DeviceArray<cl_int> &redundant_mark,
@@ -24,6 +22,12 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
                                                const DeviceArray<cl_int> &tracked) {
   if (m == 0)
     return 0;
+  // The claims of the points that came since the last call start empty.
+  if (mesh_.point_count > claims_filled_) {
+    claim_.fill_range(device_, kNoClaim, claims_filled_, mesh_.point_count - claims_filled_,
+                      kPhase);
+    claims_filled_ = mesh_.point_count;
+  }
   const auto items = static_cast<cl_int>(m);
   auto run_step = [&](cl_int step) {
     set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), lens_, step, claim_.buffer(),

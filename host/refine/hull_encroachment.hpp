@@ -35,6 +35,7 @@ private:
   cl::Kernel mark_, clear_claims_;
   // Per point: the smallest midpoint claiming it (empty: 0x7fffffff between calls).
   DeviceArray<cl_int> claim_;
+  std::size_t claims_filled_ = 0;      // claim_ is set (empty) below this point
   DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
 };
 

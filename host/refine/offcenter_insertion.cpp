@@ -45,9 +45,6 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
-  tie_mark_.fill(device_, kNoCandidate, mesh.triangle_capacity);
-  last_container_.fill(device_, -1, mesh.triangle_capacity);
-  stuck_.fill(device_, std::numeric_limits<cl_int>::min(), mesh.triangle_capacity);
   stuck_count_.fill(device_, 0, 1);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
@@ -63,7 +60,19 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       min_angle > 0 ? 0.475 * std::sqrt((1 + std::cos(angle)) / (1 - std::cos(angle))) : 1e300;
 }
 
+void OffcenterInsertion::fill_new_slots() {
+  const std::size_t slots = mesh_.triangle_count;
+  if (slots <= filled_slots_)
+    return;
+  const std::size_t first = filled_slots_, count = slots - first;
+  tie_mark_.fill_range(device_, kNoCandidate, first, count, kPhase);
+  last_container_.fill_range(device_, -1, first, count, kPhase);
+  stuck_.fill_range(device_, std::numeric_limits<cl_int>::min(), first, count, kPhase);
+  filled_slots_ = slots;
+}
+
 std::size_t OffcenterInsertion::flag_hull_vertices() {
+  fill_new_slots();
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> flagged(device_, 1);
   flagged.fill(device_, 0, 1);
@@ -75,6 +84,7 @@ std::size_t OffcenterInsertion::flag_hull_vertices() {
 }
 
 std::size_t OffcenterInsertion::count_unfixable() {
+  fill_new_slots();
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
@@ -89,6 +99,7 @@ std::size_t OffcenterInsertion::count_unfixable() {
 
 std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
                                                    const DeviceList<cl_int> *changed) {
+  fill_new_slots();
   // The first search sweeps every slot; the later ones only the last bad
   // triangles and the changed ones, without duplicates.
   const bool use_list = searched_ && changed != nullptr;

@@ -122,6 +122,11 @@ private:
     return size_bound_ ? size_bound_->buffer() : region_area_.buffer();
   }
   cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
+  // tie_mark_, last_container_ and stuck_ hold their first values in the
+  // slots below this; the rest are set as the mesh's slots come into use, so
+  // that the pages past the used slots are not touched (not resident).
+  std::size_t filled_slots_ = 0;
+  void fill_new_slots();
 };
 
 } // namespace clmesh

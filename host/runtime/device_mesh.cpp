@@ -31,8 +31,9 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   original_id = original_id.grown(device, points_now, 0);
   tri_vertex = tri_vertex.grown(device, 3 * triangles_now, 0);
   tri_neighbor = tri_neighbor.grown(device, 3 * triangles_now, 0);
-  tri_mark = tri_mark.grown(device, triangles_now, -1); // no mark
-  modified_stamp = modified_stamp.grown(device, triangles_now, 0);
+  // Past triangles_filled: set when used (fill_triangle_slots).
+  tri_mark = tri_mark.enlarged(device, triangles_now, triangles_filled);
+  modified_stamp = modified_stamp.enlarged(device, triangles_now, triangles_filled);
   children = children.grown(device, 3 * triangles_now, -1);
   vertex_triangle = vertex_triangle.grown(device, points_now, 0);
   duplicate_of = duplicate_of.grown(device, points_now, -1);
@@ -53,6 +54,15 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   point_capacity = points_now;
   triangle_capacity = triangles_now;
   list_capacity = 4 * triangle_capacity / 3 + 16;
+}
+
+void DeviceMesh::fill_triangle_slots(Device &device, std::size_t slots) {
+  if (slots <= triangles_filled)
+    return;
+  const std::size_t count = std::min(slots, triangle_capacity) - triangles_filled;
+  tri_mark.fill_range(device, -1, triangles_filled, count, "setup"); // no mark: all bits set
+  modified_stamp.fill_range(device, 0, triangles_filled, count, "setup");
+  triangles_filled += count;
 }
 
 std::size_t DeviceMesh::FreeList::take(std::size_t wanted) {

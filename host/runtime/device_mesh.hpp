@@ -73,14 +73,15 @@ public:
   void fill(Device &device, T value, std::size_t count) const {
     fill_range(device, value, 0, count, "setup");
   }
-
-private:
-  static_assert(sizeof(T) == 4 || sizeof(T) == 8 || sizeof(T) == 16,
-                "Device::fill writes elements of 1, 2 or 4 words");
+  // Entries [first, first + count) set to `value`.
   void fill_range(Device &device, T value, std::size_t first, std::size_t count,
                   const char *phase) const {
     device.fill(buffer_, &value, sizeof(T), first * sizeof(T), count * sizeof(T), phase);
   }
+
+private:
+  static_assert(sizeof(T) == 4 || sizeof(T) == 8 || sizeof(T) == 16,
+                "Device::fill writes elements of 1, 2 or 4 words");
 
   cl::Buffer buffer_;
   std::size_t size_ = 0;
@@ -151,6 +152,17 @@ struct DeviceMesh {
   void set_constraint_rows(Device &device, const std::vector<Segment> &segments);
 
   std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
+
+  // tri_mark holds no mark and modified_stamp 0 in the slots that were never
+  // used, below triangles_filled; the slots past it are set only when they
+  // come into use (fill_triangle_slots, before triangle_count passes them),
+  // so that their pages are not touched (not resident) before.
+  std::size_t triangles_filled = 0;
+  // Slots [triangles_filled, slots) set so (from the first slot after
+  // clear_triangle_slots).
+  void fill_triangle_slots(Device &device, std::size_t slots);
+  // Every slot to be set again when it comes into use.
+  void clear_triangle_slots() { triangles_filled = 0; }
 
   // Empty slots (thesis §3.6.1), in slot order: free_triangles[free_first ..
   // free_first + free_count), likewise for points. Refinement deletes

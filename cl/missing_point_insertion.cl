@@ -58,10 +58,16 @@ inline int next_visible_ghost(__global const double2 *points, __global const int
 }
 
 // Marks the triangle(s) each pending point would split with its priority.
+// placed: the points were not walked to (no locate_points), all pending
+// where they stand; their status is set here.
 __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global const int *status, const int n) {
+                              __global int *status, const int placed, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || status[gid] != CLM_PENDING)
+  if (gid >= n)
+    return;
+  if (placed)
+    status[gid] = CLM_PENDING;
+  else if (status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   const uint key = clm_priority_of((uint)p);

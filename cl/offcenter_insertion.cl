@@ -889,11 +889,13 @@ __kernel void insertion_filter(CLM_MESH_PARAMS, __global const int *container,
   survive[k] = wins;
 }
 
-__kernel void clear_candidate_marks(__global const int *container, __global const int *split_edge,
-                                    __global const int *tri_neighbor, __global uint *tri_mark,
-                                    __global int *tie_mark, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n || container[k] < 0)
+// Candidate k's marks on its container and partner cleared, after the
+// filter (by append_survivors, or by clear_candidate_marks when none is
+// appended).
+inline void clear_marks_of(__global const int *container, __global const int *split_edge,
+                           __global const int *tri_neighbor, volatile __global uint *tri_mark,
+                           __global int *tie_mark, int k) {
+  if (container[k] < 0)
     return;
   tri_mark[container[k]] = CLM_NO_MARK;
   tie_mark[container[k]] = CLM_NO_CANDIDATE;
@@ -904,22 +906,35 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
   }
 }
 
+__kernel void clear_candidate_marks(__global const int *container, __global const int *split_edge,
+                                    __global const int *tri_neighbor, __global uint *tri_mark,
+                                    __global int *tie_mark, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    clear_marks_of(container, split_edge, tri_neighbor, tri_mark, tie_mark, k);
+}
+
 // The survivors become points of the mesh (slots by prefix sum over the
 // candidates, free slots first, see allocate_slot), listed in new_points,
 // each to be inserted in its container, on split_edge when it lies on an
 // edge. Each gets its state, priority and insertion radius (thesis §3.5: the
 // distance to the nearest vertex of its bad triangle; to the nearer end for a
 // split of a hull edge or subsegment), and a split its segment.
-// Only the first `count` survivors are taken (the -S limit).
+// Only the first `count` survivors are taken (the -S limit). Every
+// candidate clears the filter's marks (tie_mark and tri_mark): nothing here
+// reads them.
 __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidate,
                                __global const int *container, __global const int *split_edge,
                                __global const double *radius2, __global const uint *priority,
                                __global const int *survive, __global const int *offset,
                                __global const int *free_points, const int free_first,
                                const int free_count, const int first_new, __global int *new_points,
-                               const int count, const int n) {
+                               __global int *tie_mark, const int count, const int n) {
   const int k = get_global_id(0);
-  if (k >= n || !survive[k] || offset[k] >= count)
+  if (k >= n)
+    return;
+  clear_marks_of(container, split_edge, tri_neighbor, tri_mark, tie_mark, k);
+  if (!survive[k] || offset[k] >= count)
     return;
   const int p = allocate_slot(free_points, free_first, free_count, first_new, offset[k]);
   const double2 c = candidate[k];

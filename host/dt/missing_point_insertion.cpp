@@ -50,12 +50,10 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
                   max_steps, n);
     launch(device_, locate_, pending_, kPhase);
     located_since_ = stamp; // this round's changes and later ones move points
-  } else {
-    status_.fill(device_, 0, pending_); // all pending where they stand
   }
-
+  // Without a walk mark_containers sets every status to pending.
   set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
-                n);
+                static_cast<cl_int>(!walk), n);
   launch(device_, mark_, pending_, kPhase);
   set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
                 status_.buffer(), winner_.buffer(), n);

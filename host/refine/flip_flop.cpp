@@ -1,6 +1,7 @@
 #include "refine/flip_flop.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 
@@ -44,6 +45,10 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orth
     return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
   failures_.fill(device_, 0, 1);
+  // Running totals, never reset: each iteration takes the difference.
+  flip_counts_.fill(device_, 0, 3);
+  midpoints_.fill(device_, 0, 1);
+  kept_.fill(device_, 0, 1);
 }
 
 void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
@@ -61,8 +66,6 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                                kPhase);
     marks_filled_ = mesh_.point_count;
   }
-  flip_counts_.fill(device_, 0, 3);
-  kept_.fill(device_, 0, 1);
   // The points to follow: this iteration's, then the old ones that encroach
   // a hull edge split in this iteration (thesis §3.4.1).
   if (m > 0)
@@ -101,19 +104,27 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = result.next;
     }
   }
-  midpoints_.fill(device_, 0, 1);
   if (m > 0) {
     set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
              static_cast<cl_int>(m));
     launch(device_, finish_, m, kPhase);
   }
-  // The iteration's counts, read with one wait.
-  cl_int failures = 0, midpoints = 0, kept = 0, flips[3] = {};
+  // The iteration's counts, read with one wait: the running totals less
+  // the last ones (modulo 2^32, as the device's counters wrap).
+  cl_int failures = 0;
+  std::array<cl_int, kTotals> totals{};
   failures_.download_later(device_, &failures, 1);
-  flip_counts_.download_later(device_, flips, 3);
-  midpoints_.download_later(device_, &midpoints, 1);
-  kept_.download_later(device_, &kept, 1);
+  flip_counts_.download_later(device_, &totals[0], 3);
+  midpoints_.download_later(device_, &totals[3], 1);
+  kept_.download_later(device_, &totals[4], 1);
   device_.wait(kPhase);
+  std::array<cl_int, kTotals> since{};
+  for (std::size_t k = 0; k < kTotals; ++k) {
+    since[k] = static_cast<cl_int>(static_cast<cl_uint>(totals[k]) -
+                                   static_cast<cl_uint>(last_totals_[k]));
+    last_totals_[k] = totals[k];
+  }
+  const cl_int *flips = &since[0], midpoints = since[3], kept = since[4];
   // Checked once per iteration: a lost star only leaves its point undeleted
   // until then.
   if (failures != 0)

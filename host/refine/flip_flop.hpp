@@ -8,6 +8,7 @@
 
 #include "clmesh/geometry.hpp"
 
+#include <array>
 #include <vector>
 
 namespace clmesh {
@@ -101,6 +102,10 @@ private:
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
+  // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
+  // totals, not cleared each iteration.
+  static constexpr std::size_t kTotals = 5;
+  std::array<cl_int, kTotals> last_totals_{};
 };
 
 } // namespace clmesh

@@ -186,8 +186,11 @@ void OffcenterInsertion::filter_candidates() {
                 static_cast<cl_int>(filter_rings_), static_cast<cl_int>(filter_distance_rings_),
                 filter_near2_, static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
   launch(device_, filter_, candidates_, kPhase);
+}
+
+void OffcenterInsertion::clear_candidate_marks() {
   set_args(clear_, container_.buffer(), split_edge_.buffer(), mesh_.tri_neighbor.buffer(),
-           mesh_.tri_mark.buffer(), tie_mark_.buffer(), n);
+           mesh_.tri_mark.buffer(), tie_mark_.buffer(), static_cast<cl_int>(candidates_));
   launch(device_, clear_, candidates_, kPhase);
 }
 
@@ -199,8 +202,10 @@ std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &s
   const auto survivors =
       static_cast<std::size_t>(scan.exclusive_scan(survive_, offset_, candidates_, kPhase));
   const std::size_t count = std::min(survivors, room); // the first ones when there is less room
-  if (count == 0)
+  if (count == 0) {
+    clear_candidate_marks(); // else append_survivors clears them
     return 0;
+  }
   DeviceMesh::FreeList &free = mesh_.free_points;
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
@@ -209,7 +214,7 @@ std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &s
   set_args_from(append_, mesh_.bind(append_, 0), candidate_.buffer(), container_.buffer(),
                 split_edge_.buffer(), radius2_.buffer(), priority_.buffer(), survive_.buffer(),
                 offset_.buffer(), free_list, free_first, free_count,
-                static_cast<cl_int>(mesh_.point_count), new_points.buffer(),
+                static_cast<cl_int>(mesh_.point_count), new_points.buffer(), tie_mark_.buffer(),
                 static_cast<cl_int>(count), n);
   launch(device_, append_, candidates_, kPhase);
   mesh_.point_count += new_slots;

@@ -58,7 +58,8 @@ public:
   // dropped candidates beyond edges that cannot be split: their bad
   // triangles are then left out of the next search (stuck).
   bool stuck_since_last_asked();
-  // The insertion filter: which candidates survive.
+  // The insertion filter: which candidates survive. Its marks stay until
+  // append_survivors, which must follow, clears them.
   void filter_candidates();
   // Appends the survivors to the mesh's points (free slots first, then from
   // point_count on; they stay on the device) and lists them in new_points,
@@ -78,6 +79,8 @@ public:
   double lens() const { return lens_; }
 
 private:
+  // The filter's marks cleared, when append_survivors appends nothing.
+  void clear_candidate_marks();
   Device &device_;
   DeviceMesh &mesh_;
   double ratio_bound_squared_, max_area_, offconstant_, lens_, cos_bound_;

@@ -148,12 +148,33 @@ finishes() {
   [[ "$status" -eq 0 ]] || fail "$1 $2: exit status $status: $(cat "$work/log/err")"
 }
 
+# poly_python ARG... < SCRIPT: runs the Python SCRIPT (with ARGs) with
+# write_poly(points, segments) defined, which prints them as a .poly without
+# holes (points 1-based in the segments).
+poly_python() {
+  local prelude
+  prelude="$(
+    cat << 'PY'
+def write_poly(points, segments):
+    print(len(points), 2, 0, 0)
+    for k, (x, y) in enumerate(points):
+        print(k + 1, repr(x), repr(y))
+    print(len(segments), 0)
+    for k, (a, b) in enumerate(segments):
+        print(k + 1, a, b)
+    print(0)
+PY
+  )"
+  python3 -c "$prelude
+$(cat)" "$@"
+}
+
 # segment_pairs KIND N: a .poly of N segments, each between two vertices of
 # its own: the diameters of a star (KIND star) or pieces of a slanted line,
 # each overlapping the next (overlap; walled: with a quadrilateral on either
 # side of the line, closed at its ends); endpoints rounded to doubles.
 segment_pairs() {
-  python3 - "$1" "$2" <<'PY'
+  poly_python "$1" "$2" <<'PY'
 import math, sys
 kind, n = sys.argv[1], int(sys.argv[2])
 ends = []
@@ -169,13 +190,7 @@ if kind == "walled":
     (x, y), m = ends[-1][1], 2 * n
     points += [(0.0, 1.0), (x, y + 1), (0.5, -1.0), (x + 0.5, y - 1)]
     segments += [(1, m + 1), (m + 1, m + 2), (m + 2, m), (1, m + 3), (m + 3, m + 4), (m + 4, m)]
-print(len(points), 2, 0, 0)
-for k, (x, y) in enumerate(points):
-    print(k + 1, repr(x), repr(y))
-print(len(segments), 0)
-for k, (a, b) in enumerate(segments):
-    print(k + 1, a, b)
-print(0)
+write_poly(points, segments)
 PY
 }
 
@@ -228,7 +243,7 @@ done
 # across a slanted line, an edge of each on it (their vertices rounded, so a
 # hair apart), placed at random (SEED) so that pairs also cross.
 facing_pairs() {
-  python3 - "$1" <<'PY'
+  poly_python "$1" <<'PY'
 import math, random, sys
 random.seed(int(sys.argv[1]))
 points, segments = [], []
@@ -243,13 +258,7 @@ for _ in range(random.randint(3, 12)):
     a, b, c = on(0), on(1), vertex(ox + 0.5, oy + 0.5 * s - 1)
     p, q, r = on(d), on(1 + e), vertex(ox + 1, oy + s + 1)
     segments += [(a, b), (b, c), (c, a), (p, q), (q, r), (r, p)]
-print(len(points), 2, 0, 0)
-for i, (x, y) in enumerate(points):
-    print(i + 1, repr(x), repr(y))
-print(len(segments), 0)
-for i, (a, b) in enumerate(segments):
-    print(i + 1, a, b)
-print(0)
+write_poly(points, segments)
 PY
 }
 

@@ -40,6 +40,9 @@ inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCEN
 // cosine; none when acute_bound is 0): no refinement can mend the angle
 // every triangle there has at them (Triangle leaves those too). Run once, on
 // the convex hull of the Delaunay triangulation, ghost by ghost.
+// A vertex where the boundary passes twice (two holes, or a hole and the
+// outside, touching there) ends acute if either corner is: the marks never
+// turn an acute vertex back, whatever order the ghosts run in.
 __kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const double cos_bound,
                                  volatile __global int *flagged, const int n) {
   const int g = get_global_id(0);
@@ -57,7 +60,13 @@ __kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const d
   const int j = following.v[0] == b ? 0 : (following.v[1] == b ? 1 : 2);
   const int c =
       following.v[next3(j)] == CLM_INFINITE ? following.v[prev3(j)] : following.v[next3(j)];
-  point_state[b] = CLM_POINT_HULL;
+  volatile __global int *state = (volatile __global int *)&point_state[b];
+  for (int seen = *state; seen != CLM_POINT_HULL && seen != CLM_POINT_ACUTE_HULL;) {
+    const int was = atomic_cmpxchg(state, seen, CLM_POINT_HULL);
+    if (was == seen)
+      break;
+    seen = was;
+  }
   // The domain lies left of c -> b -> a: a reflex corner of a PSLG's
   // boundary is not acute, however small the angle between its edges.
   if (!acute_bound || a < 0 || c < 0 || a == c || orient_vertices(points, c, b, a) <= 0)
@@ -67,7 +76,7 @@ __kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const d
   const double lengths = sqrt((u.x * u.x + u.y * u.y) * (w.x * w.x + w.y * w.y));
   if (dot > cos_bound * lengths) // angle(a, b, c) below the bound
   {
-    point_state[b] = CLM_POINT_ACUTE_HULL;
+    atomic_xchg(state, CLM_POINT_ACUTE_HULL);
     atomic_inc(flagged);
   }
 }

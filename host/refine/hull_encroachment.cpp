@@ -24,9 +24,9 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
     return 0;
   // The claims of the points that came since the last call start empty.
   if (mesh_.point_count > claims_filled_) {
-    claim_.fill_range(device_, kNoClaim, claims_filled_, mesh_.point_count - claims_filled_,
-                      kPhase);
-    claims_filled_ = mesh_.point_count;
+    const std::size_t end = fill_ahead(mesh_.point_count, mesh_.point_capacity);
+    claim_.fill_range(device_, kNoClaim, claims_filled_, end - claims_filled_, kPhase);
+    claims_filled_ = end;
   }
   const auto items = static_cast<cl_int>(m);
   auto run_step = [&](cl_int step) {

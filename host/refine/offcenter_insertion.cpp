@@ -64,11 +64,12 @@ void OffcenterInsertion::fill_new_slots() {
   const std::size_t slots = mesh_.triangle_count;
   if (slots <= filled_slots_)
     return;
-  const std::size_t first = filled_slots_, count = slots - first;
+  const std::size_t first = filled_slots_,
+                    count = fill_ahead(slots, mesh_.triangle_capacity) - first;
   tie_mark_.fill_range(device_, kNoCandidate, first, count, kPhase);
   last_container_.fill_range(device_, -1, first, count, kPhase);
   stuck_.fill_range(device_, std::numeric_limits<cl_int>::min(), first, count, kPhase);
-  filled_slots_ = slots;
+  filled_slots_ = first + count;
 }
 
 std::size_t OffcenterInsertion::flag_hull_vertices() {

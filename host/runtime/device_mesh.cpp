@@ -59,7 +59,7 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
 void DeviceMesh::fill_triangle_slots(Device &device, std::size_t slots) {
   if (slots <= triangles_filled)
     return;
-  const std::size_t count = std::min(slots, triangle_capacity) - triangles_filled;
+  const std::size_t count = fill_ahead(slots, triangle_capacity) - triangles_filled;
   tri_mark.fill_range(device, -1, triangles_filled, count, "setup"); // no mark: all bits set
   modified_stamp.fill_range(device, 0, triangles_filled, count, "setup");
   triangles_filled += count;

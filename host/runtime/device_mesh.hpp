@@ -4,6 +4,7 @@
 #include "clmesh/input.hpp"
 #include "runtime/opencl_context.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -87,6 +88,15 @@ private:
   std::size_t size_ = 0;
   bool huge_pages_ = false;
 };
+
+// Arrays that are set only as their slots come into use are set this many
+// slots ahead of the use, within their capacity: a small mesh's growth takes
+// one fill, not one per iteration, and at most this many slots' pages are
+// touched early.
+constexpr std::size_t kFillAhead = 16384;
+inline std::size_t fill_ahead(std::size_t used, std::size_t capacity) {
+  return std::min(capacity, used + kFillAhead);
+}
 
 // A list on the device that grows (amortised doubling): entries appended
 // from other device arrays, or written by kernels into room reserved first.

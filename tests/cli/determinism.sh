@@ -77,6 +77,28 @@ for index in "${!refinements[@]}"; do
   done
 done
 
+# Quality meshes of PSLGs (segments protected, holes, -c, -D, regional
+# areas): the same files whatever the work-group size.
+pslgs=("pslg/water:-pq30" "pslg/water2:-pcq30" "pslg/water4:-pq25D" "la:-pAq30a")
+for index in "${!pslgs[@]}"; do
+  case="${pslgs[$index]}"
+  path="${case%%:*}"
+  input="${path##*/}"
+  switches="${case#*:}"
+  for group in 1 128; do
+    dir="pslg.$index.$group"
+    mkdir "$dir"
+    cp "$source_dir/datasets/$path.poly" "$dir/"
+    # shellcheck disable=SC2086  # switches holds separate arguments
+    (cd "$dir" && "$bin" -QC $switches --work-group "$group" "$input.poly") > "$dir.log" 2>&1 ||
+      fail "$input $switches --work-group $group: $(cat "$dir.log")"
+  done
+  for ext in node ele poly; do
+    cmp -s "pslg.$index.1/$input.1.$ext" "pslg.$index.128/$input.1.$ext" ||
+      fail "$input.1.$ext of '$switches' differs between work-group sizes 1 and 128"
+  done
+done
+
 # Refining a mesh (-r, with an .area file) under a sizing field: the same
 # files whatever the work-group size.
 "$bin" -Q lattice.node

@@ -149,7 +149,8 @@ inline bool flat_corners(const double2 *p) {
   const double2 d1 = p[1] - p[0], d2 = p[2] - p[0], d3 = p[2] - p[1];
   const double twice_area = d1.x * d2.y - d1.y * d2.x;
   const double longest2 = fmax(fmax(squared_length(d1), squared_length(d2)), squared_length(d3));
-  const double noise = fmax(rounding_noise(p[0], p[1]), rounding_noise(p[2], p[2]));
+  // The noise of the largest coordinate among the three corners.
+  const double noise = fmax(rounding_noise(p[0], p[1]), rounding_noise(p[1], p[2]));
   return fabs(twice_area) <= noise * sqrt(longest2);
 }
 

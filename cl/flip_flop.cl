@@ -553,107 +553,73 @@ __kernel void emit_redundant_stars(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const i
     emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, base);
 }
 
-// Whole passes by one work-group, for short lists: each pass runs the
-// kernels above in order (propose, exact proposals, apply, relink and count,
-// gather, and when stars are looked for, tracking, stars and duplicate
-// removal into active), with barriers between them instead of launches: most
-// passes list a few hundred triangles, for which a launch costs more than the
-// work. Entry by entry the results are those of the kernels, and between
-// passes it does what FlipFlop::run does: the pass's entries appended to
-// `rewritten` (from rewritten_size on, within rewritten_capacity), a stall's
-// redundant points kept, the next list moved to active. Passes go on while
-// the list is not empty, at most `limit` long, fewer than max_passes have run
-// and `rewritten` has room for the pass's entries (2 * n at most); pass k has
-// stamp + k, the first one `first_pass` in FlipFlop::run's count (none before
-// it looks at redundant points).
-// result: [0] passes run, [1] the list's length (in active), [2] whether
-// redundant points are left, [3] entries appended to rewritten, [4] exact
-// proposals, [5] -2 when the stars found had no room, else 0.
-__kernel void flipflop_passes_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
-                                       const int orthogonal_test, const int next_capacity,
-                                       const int m, int redundant_left, const int first_pass,
-                                       const int max_passes, const int limit,
-                                       __global int *rewritten, const int rewritten_size,
-                                       const int rewritten_capacity, volatile __global int *kept,
-                                       __local int *scratch, volatile __global int *result,
-                                       const int stamp, int n) {
+// A whole pass by one work-group, for short lists: the kernels above in
+// order (propose, exact proposals, apply, relink and count, gather, and when
+// stars are looked for, tracking, stars and duplicate removal into active),
+// with barriers between them instead of launches: most passes list a few
+// hundred triangles, for which a launch costs more than the work. Entry by
+// entry the results are those of the kernels.
+// result: [0] the pass's entries in next_active, [1] points marked, [2]
+// stars listed (-1: not looked for, -2: no room for them), [3] the next
+// list's length, [4] exact proposals.
+__kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
+                                     const int orthogonal_test, const int any_redundant,
+                                     const int next_capacity, const int m, const int find_stars,
+                                     __local int *scratch, volatile __global int *result,
+                                     const int stamp, const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
-  if (lid == 0)
+  if (lid == 0) {
+    marked_count[0] = 0;
     result[4] = 0;
-  int passes = 0, appended = 0, exact = 0, status = 0;
-  while (n > 0 && n <= limit && passes < max_passes && status == 0 &&
-         rewritten_size + appended + 2 * n <= rewritten_capacity) {
-    const int any_redundant = redundant_left && first_pass + passes > 0;
-    const int pass_stamp = stamp + passes;
-    barrier(CLK_GLOBAL_MEM_FENCE); // every item has read the last pass's marked count
-    if (lid == 0)
-      marked_count[0] = 0;
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    for (int k = lid; k < n; k += size) {
-      operation[k] = CLM_OP_NONE;
-      if (!propose_operation(k, 0, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test,
-                             any_redundant)) {
-        propose_operation(k, 1, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test, any_redundant);
-        ++exact;
-      }
-    }
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    int done[3] = {0, 0, 0};
-    for (int k = lid; k < n; k += size)
-      apply_operation(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, pass_stamp);
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    for (int k = lid; k < n; k += size)
-      relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, pass_stamp);
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    const int next = group_exclusive_scan(count, offset, n, scratch);
-    for (int k = lid; k < n; k += size)
-      gather_results(k, CLM_FLIPFLOP_ARGS);
-    for (int j = 0; j < 3; ++j)
-      if (done[j] > 0)
-        atomic_add(&flip_counts[j], done[j]);
-    const int marked = marked_count[0];
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    for (int k = lid; k < next; k += size)
-      rewritten[rewritten_size + appended + k] = next_active[k];
-    appended += next;
-    if (marked > 0 || redundant_left) {
-      for (int k = lid; k < m; k += size)
-        track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, pass_stamp);
-      barrier(CLK_GLOBAL_MEM_FENCE);
-      const int stars = group_exclusive_scan(star_size, star_offset, m, scratch);
-      if (next + stars > next_capacity) {
-        status = -2;
-      } else {
-        for (int k = lid; k < m; k += size)
-          emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
-        barrier(CLK_GLOBAL_MEM_FENCE);
-        n = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
-        redundant_left = stars > 0;
-        if (next == 0 && marked == 0 && redundant_left) {
-          // Stalled: what is left cannot be deleted (keep_stuck_points).
-          for (int k = lid; k < m; k += size)
-            if (point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
-              point_state[tracked[k]] = CLM_POINT_STEINER;
-              atomic_inc(kept);
-            }
-          redundant_left = 0;
-        }
-      }
-    } else {
-      for (int k = lid; k < next; k += size)
-        active[k] = next_active[k];
-      n = next;
-    }
-    ++passes;
   }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int exact = 0;
+  for (int k = lid; k < n; k += size) {
+    operation[k] = CLM_OP_NONE;
+    if (!propose_operation(k, 0, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test,
+                           any_redundant)) {
+      propose_operation(k, 1, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test, any_redundant);
+      ++exact;
+    }
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int done[3] = {0, 0, 0};
+  for (int k = lid; k < n; k += size)
+    apply_operation(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int next = group_exclusive_scan(count, offset, n, scratch);
+  for (int k = lid; k < n; k += size)
+    gather_results(k, CLM_FLIPFLOP_ARGS);
+  for (int j = 0; j < 3; ++j)
+    if (done[j] > 0)
+      atomic_add(&flip_counts[j], done[j]);
   if (exact > 0)
     atomic_add(&result[4], exact);
+  const int marked = marked_count[0];
+  int stars = -1, length = next;
+  if (marked > 0 || find_stars) {
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int k = lid; k < m; k += size)
+      track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    stars = group_exclusive_scan(star_size, star_offset, m, scratch);
+    if (next + stars > next_capacity) {
+      stars = -2;
+    } else {
+      for (int k = lid; k < m; k += size)
+        emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
+      barrier(CLK_GLOBAL_MEM_FENCE);
+      length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
+    }
+  }
   if (lid == 0) {
-    result[0] = passes;
-    result[1] = n;
-    result[2] = redundant_left;
-    result[3] = appended;
-    result[5] = status;
+    result[0] = next;
+    result[1] = marked;
+    result[2] = stars;
+    result[3] = length;
   }
 }
 

@@ -27,7 +27,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orth
       emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
       finish_(device.kernel(kFile, "finish_iteration", kPhase)),
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
-      passes_in_group_(device.kernel(kFile, "flipflop_passes_in_group", kPhase)),
+      pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
       log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
       // The next list holds the pass's results and the redundant stars before
       // duplicates are dropped; an active list has distinct live triangles.
@@ -40,9 +40,9 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orth
       star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
       marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
       failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
-      pass_result_(device, 6) {
+      pass_result_(device, 5) {
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
-    return passes_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
+    return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
   failures_.fill(device_, 0, 1);
   // Running totals, never reset: each iteration takes the difference.
@@ -76,25 +76,17 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
-  for (long pass = 0; n > 0;) {
-    if (pass >= kMaxPasses)
+  for (long pass = 0; n > 0; ++pass) {
+    if (pass == kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
                           " passes");
-    if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
-      // Several passes in one launch, while the list stays short.
-      const GroupPasses done = passes_in_group(n, pass, stamp, rewritten, counts);
-      pass += done.passes;
-      stamp += static_cast<int>(done.passes);
-      counts.passes += done.passes;
-      n = done.length;
-      continue;
-    }
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
-    const PassResult result = pass_by_kernels(n, any_redundant, pass_stamp, counts);
+    const PassResult result = n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
+                                  ? pass_in_group(n, any_redundant, pass_stamp, counts)
+                                  : pass_by_kernels(n, any_redundant, pass_stamp, counts);
     rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
     ++counts.passes;
-    ++pass;
     if (result.looked_for_stars) {
       redundant_left_ = result.stars > 0;
       n = result.length;
@@ -188,32 +180,25 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   return result;
 }
 
-FlipFlop::GroupPasses FlipFlop::passes_in_group(std::size_t n, long first_pass, int stamp,
-                                                DeviceList<cl_int> &rewritten,
-                                                FlipFlopCounts &counts) {
+FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
+                                             FlipFlopCounts &counts) {
   // The group may have to be smaller for this large kernel than for the others.
   const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
-  rewritten.reserve(device_, 2 * n); // room for one pass at least
-  bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(next_active_.size()),
+  bind(pass_in_group_, orthogonal_test_, any_redundant, static_cast<cl_int>(next_active_.size()),
        static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
-       static_cast<cl_int>(first_pass), static_cast<cl_int>(kPassesInGroup),
-       static_cast<cl_int>(group_pass_limit_), rewritten.items.buffer(),
-       static_cast<cl_int>(rewritten.size), static_cast<cl_int>(rewritten.items.size()),
-       kept_.buffer(), cl::Local(sizeof(cl_int) * group), pass_result_.buffer(),
-       static_cast<cl_int>(stamp), static_cast<cl_int>(n));
-  launch(device_, passes_in_group_, group, kPhase, group);
-  const std::vector<cl_int> values = pass_result_.download(device_, 6);
-  if (values[5] == -2)
+       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
+  launch(device_, pass_in_group_, group, kPhase, group);
+  const std::vector<cl_int> values = pass_result_.download(device_, 5);
+  if (values[2] == -2)
     throw InternalError("flip-flop: the active list is longer than its arrays");
-  if (values[0] == 0)
-    throw InternalError("flip-flop: no pass ran in the work-group");
-  GroupPasses done;
-  done.passes = values[0];
-  done.length = static_cast<std::size_t>(values[1]);
-  redundant_left_ = values[2] != 0;
-  rewritten.size += static_cast<std::size_t>(values[3]);
+  PassResult result;
+  result.next = static_cast<std::size_t>(values[0]);
+  result.marked = values[1];
+  result.looked_for_stars = values[2] >= 0;
+  result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
+  result.length = static_cast<std::size_t>(values[3]);
   counts.exact_checks += values[4];
-  return done;
+  return result;
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the

@@ -65,21 +65,13 @@ private:
     std::size_t stars = 0;
     std::size_t length = 0;
   };
+  // Short lists take one work-group for the whole pass (flipflop_pass_in_group)
+  // when the points to track are few too.
+  static constexpr std::size_t kTrackedInGroup = 8192;
   PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
                              FlipFlopCounts &counts);
-  // Short lists take one work-group for whole passes (flipflop_passes_in_group),
-  // up to kPassesInGroup of them in one launch, when the points to track are
-  // few too. The first is pass `first_pass` of the run, with `stamp`; the
-  // passes' entries are appended to `rewritten`, the next list is left in
-  // active_.
-  static constexpr std::size_t kTrackedInGroup = 8192;
-  static constexpr long kPassesInGroup = 32;
-  struct GroupPasses {
-    long passes = 0;        // passes run
-    std::size_t length = 0; // the list left for the next pass
-  };
-  GroupPasses passes_in_group(std::size_t n, long first_pass, int stamp,
-                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
+  PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
+                           FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.
@@ -98,18 +90,18 @@ private:
   HullEncroachment encroachment_;
   cl_int orthogonal_test_;
   std::size_t group_pass_limit_;
-  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_passes_in_group
+  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_pass_in_group
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,
-      keep_stuck_, passes_in_group_, log_deleted_;
+      keep_stuck_, pass_in_group_, log_deleted_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
-  DeviceArray<cl_int> pass_result_; // flipflop_passes_in_group's results
+  DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
   // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
   // totals, not cleared each iteration.
   static constexpr std::size_t kTotals = 5;

@@ -38,10 +38,19 @@ void MissingPointInsertion::set_points(const DeviceArray<cl_int> &points, std::s
   pending_ = count;
 }
 
+void MissingPointInsertion::trim_lists() {
+  if (!watermark_.discard_after(round_points_))
+    return;
+  for (const DeviceArray<cl_int> *list :
+       {&remaining_, &remaining_next_, &status_, &winner_, &offset_, &keep_, &changed_})
+    list->discard(device_, 0, kPhase);
+}
+
 std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto n = static_cast<cl_int>(pending_);
   if (n == 0)
     return 0;
+  round_points_ = pending_;
   // Any walk in a Delaunay triangulation visits each triangle at most once.
   const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
   if (walk) {

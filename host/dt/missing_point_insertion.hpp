@@ -3,6 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
+#include "runtime/scratch_watermark.hpp"
 
 #include <vector>
 
@@ -29,6 +30,9 @@ public:
   std::size_t run_round(int stamp, bool walk = true);
   const DeviceArray<cl_int> &changed() const { return changed_; }
   std::size_t duplicates() const { return duplicates_; }
+  // With no point pending: the lists give their memory back to the system
+  // once their use shrinks (ScratchWatermark); changed() is then lost.
+  void trim_lists();
 
 private:
   Device &device_;
@@ -39,6 +43,8 @@ private:
   DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
   DeviceArray<cl_int> keep_, changed_, failures_;
   std::size_t pending_ = 0;
+  std::size_t round_points_ = 0; // points of the last round
+  ScratchWatermark watermark_;
   int located_since_ = 0; // stamp of the last walk: older triangles keep their points
   std::size_t duplicates_ = 0;
 };

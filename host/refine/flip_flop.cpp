@@ -76,6 +76,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
+  run_entries_ = std::max(n, tracked_n_);
   for (long pass = 0; n > 0; ++pass) {
     if (pass == kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
@@ -86,6 +87,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                                   ? pass_in_group(n, any_redundant, pass_stamp, counts)
                                   : pass_by_kernels(n, any_redundant, pass_stamp, counts);
     rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
+    run_entries_ = std::max({run_entries_, result.next, result.length});
     ++counts.passes;
     if (result.looked_for_stars) {
       redundant_left_ = result.stars > 0;
@@ -145,6 +147,16 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     launch(device_, log_deleted_, tracked_n_, kPhase);
     log.size += static_cast<std::size_t>(flips[2]);
   }
+}
+
+void FlipFlop::trim_lists() {
+  if (!watermark_.discard_after(run_entries_))
+    return;
+  for (const DeviceArray<cl_int> *list :
+       {&active_, &next_active_, &exact_list_, &operation_, &proposal_, &star_, &applied_, &count_,
+        &offset_, &star_size_, &star_offset_, &tracked_})
+    list->discard(device_, 0, kPhase);
+  encroachment_.discard_lists();
 }
 
 cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "refine/hull_encroachment.hpp"
+#include "runtime/scratch_watermark.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -53,6 +54,9 @@ public:
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
            std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, DeletionLog &deleted,
            FlipFlopCounts &counts);
+  // After run: the lists of its passes, refilled by the next run, give
+  // their memory back to the system once their use shrinks (ScratchWatermark).
+  void trim_lists();
 
 private:
   // What a pass leaves: `next` entries in next_active_ (its results and
@@ -99,6 +103,8 @@ private:
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
+  std::size_t run_entries_ = 0;  // the most entries of a list in the last run
+  ScratchWatermark watermark_;
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult

@@ -16,6 +16,11 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
       offset_(device, mesh.point_capacity) {}
 
+void HullEncroachment::discard_lists() {
+  owned_.discard(device_, 0, kPhase);
+  offset_.discard(device_, 0, kPhase);
+}
+
 std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
                                                const DeviceArray<cl_int> &redundant_mark,
                                                const DeviceArray<cl_int> &redundant_anchor,

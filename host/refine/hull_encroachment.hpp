@@ -26,6 +26,9 @@ public:
                                const DeviceArray<cl_int> &redundant_mark,
                                const DeviceArray<cl_int> &redundant_anchor,
                                const DeviceArray<cl_int> &tracked);
+  // Between calls: the per-new-point lists give their memory back to the
+  // system (DeviceArray::discard).
+  void discard_lists();
 
 private:
   Device &device_;

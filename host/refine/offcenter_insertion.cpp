@@ -115,8 +115,12 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
     }
     entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
                                                    search_keep_, search_offset_, listed_, kPhase));
+    if (search_watermark_.discard_after(search_.size))
+      for (const DeviceArray<cl_int> *list : {&search_.items, &search_keep_, &search_offset_})
+        list->discard(device_, 0, kPhase);
   }
   searched_ = true;
+  searched_entries_ = entries;
   const auto items = static_cast<cl_int>(entries);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
                 static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
@@ -186,6 +190,18 @@ void OffcenterInsertion::filter_candidates() {
                 static_cast<cl_int>(filter_rings_), static_cast<cl_int>(filter_distance_rings_),
                 filter_near2_, static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
   launch(device_, filter_, candidates_, kPhase);
+}
+
+void OffcenterInsertion::trim_candidates() {
+  // Each list holds an entry per triangle examined by the search, or fewer.
+  if (!candidates_watermark_.discard_after(searched_entries_))
+    return;
+  for (const DeviceArray<cl_int> *list :
+       {&origin_, &container_, &split_edge_, &survive_, &keep_, &offset_, &listed_})
+    list->discard(device_, 0, kPhase);
+  candidate_.discard(device_, 0, kPhase);
+  priority_.discard(device_, 0, kPhase);
+  radius2_.discard(device_, 0, kPhase);
 }
 
 void OffcenterInsertion::clear_candidate_marks() {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
+#include "runtime/scratch_watermark.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -67,6 +68,10 @@ public:
   // how many were appended.
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
+  // After append_survivors: the lists of the candidates, filled again by the
+  // next search, give their memory back to the system once their use
+  // shrinks (ScratchWatermark).
+  void trim_candidates();
 
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
@@ -94,7 +99,9 @@ private:
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
       mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;
-  bool searched_ = false;     // the first search examines every slot
+  bool searched_ = false;            // the first search examines every slot
+  std::size_t searched_entries_ = 0; // triangles the last search examined
+  ScratchWatermark candidates_watermark_, search_watermark_;
   DeviceList<cl_int> search_; // the next search's triangles, with duplicates
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;

@@ -602,6 +602,8 @@ private:
   std::size_t find_bad_triangles() {
     update_size_bounds();
     const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
+    if (changed_watermark_.discard_after(changed_.size))
+      changed_.items.discard(device_, 0, OffcenterInsertion::kPhase);
     changed_.size = 0;
     stats_.remaining_bad = static_cast<long>(bad);
     last_bad_ = bad;
@@ -685,6 +687,7 @@ private:
     const std::size_t inserted = insertion.run_round(scheduler_.stamp()++, false);
     if (insertion.pending() > 0)
       throw InternalError("Steiner points placed in place were not all inserted in one round");
+    steps_->offcenter.trim_candidates();
     scheduler_.timer().charge(MissingPointInsertion::kPhase);
     return inserted;
   }
@@ -696,6 +699,8 @@ private:
     changed_.append(device_, insertion.changed(), 4 * inserted);
     steps_->flipflop.run(insertion.changed(), 4 * inserted, steps_->new_points, added,
                          scheduler_.stamp(), changed_, deletion_log_, flips_);
+    steps_->flipflop.trim_lists();
+    insertion.trim_lists();
     scheduler_.timer().charge(FlipFlop::kPhase);
     const auto deleted = static_cast<std::size_t>(flips_.deleted - deleted_before);
     deleted_since_collection_ = deleted_since_collection_ || deleted > 0;
@@ -729,7 +734,8 @@ private:
   FlipFlopCounts flips_;
   DeletionLog deletion_log_;
   DeviceList<cl_int> changed_; // the triangles rewritten since the last search
-  std::size_t steiner_ = 0;    // Steiner points in the mesh now
+  ScratchWatermark changed_watermark_;
+  std::size_t steiner_ = 0; // Steiner points in the mesh now
   bool deleted_since_collection_ = false;
   std::size_t compacted_slots_ = 0; // triangle slots after the last compaction
   std::size_t last_bad_ = 0;        // bad triangles at the last search

@@ -56,6 +56,21 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   list_capacity = 4 * triangle_capacity / 3 + 16;
 }
 
+void DeviceMesh::discard_except(Device &device,
+                                std::initializer_list<const DeviceArray<cl_int> *> kept) {
+  const char *phase = "download";
+  for (const DeviceArray<cl_int> *array :
+       {&original_id, &tri_vertex, &tri_neighbor, &tri_mark, &modified_stamp, &children,
+        &vertex_triangle, &duplicate_of, &location, &location_edge, &constraint_start,
+        &constraint_adjacent, &constraint_segment, &tri_region, &free_triangles.slots,
+        &free_points.slots, &point_state, &point_segment, &segment_end})
+    if (std::find(kept.begin(), kept.end(), array) == kept.end())
+      array->discard(device, 0, phase);
+  points.discard(device, 0, phase);
+  insertion_radius2.discard(device, 0, phase);
+  point_priority.discard(device, 0, phase);
+}
+
 void DeviceMesh::fill_triangle_slots(Device &device, std::size_t slots) {
   if (slots <= triangles_filled)
     return;

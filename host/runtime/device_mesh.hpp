@@ -5,6 +5,7 @@
 #include "runtime/opencl_context.hpp"
 
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 namespace clmesh {
@@ -72,6 +73,12 @@ public:
   }
   void fill(Device &device, T value, std::size_t count) const {
     fill_range(device, value, 0, count, "setup");
+  }
+  // Entries from `first` on discarded: their memory goes back to the system
+  // (Device::discard) and they hold zeros or old values when next read.
+  void discard(Device &device, std::size_t first, const char *phase) const {
+    if (first < size_)
+      device.discard(buffer_, first * sizeof(T), (size_ - first) * sizeof(T), phase);
   }
   // Entries [first, first + count) set to `value`.
   void fill_range(Device &device, T value, std::size_t first, std::size_t count,
@@ -199,6 +206,10 @@ struct DeviceMesh {
   // and refinement swap the buffers.
   cl_uint bind_triangulation(cl::Kernel &kernel, cl_uint first) const;
   cl_uint bind(cl::Kernel &kernel, cl_uint first) const;
+
+  // Every array but those in `kept` gives its memory back to the system
+  // (DeviceArray::discard): the mesh's last use is over but for them.
+  void discard_except(Device &device, std::initializer_list<const DeviceArray<cl_int> *> kept);
 
   // Makes room for `extra_points` more points (and their triangles), keeping
   // every array's contents (thesis §3.6.1: arrays expand when slots run out).

@@ -16,7 +16,9 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
       offset_(device, mesh.point_capacity) {}
 
-void HullEncroachment::discard_lists() {
+void HullEncroachment::trim_lists() {
+  if (!watermark_.discard_after(new_points_))
+    return;
   owned_.discard(device_, 0, kPhase);
   offset_.discard(device_, 0, kPhase);
 }
@@ -25,6 +27,7 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
                                                const DeviceArray<cl_int> &redundant_mark,
                                                const DeviceArray<cl_int> &redundant_anchor,
                                                const DeviceArray<cl_int> &tracked) {
+  new_points_ = m;
   if (m == 0)
     return 0;
   // The claims of the points that came since the last call start empty.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
+#include "runtime/scratch_watermark.hpp"
 
 namespace clmesh {
 
@@ -27,8 +28,8 @@ public:
                                const DeviceArray<cl_int> &redundant_anchor,
                                const DeviceArray<cl_int> &tracked);
   // Between calls: the per-new-point lists give their memory back to the
-  // system (DeviceArray::discard).
-  void discard_lists();
+  // system once their use shrinks (ScratchWatermark).
+  void trim_lists();
 
 private:
   Device &device_;
@@ -40,6 +41,8 @@ private:
   DeviceArray<cl_int> claim_;
   std::size_t claims_filled_ = 0;      // claim_ is set (empty) below this point
   DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
+  std::size_t new_points_ = 0;         // of the last call
+  ScratchWatermark watermark_;
 };
 
 } // namespace clmesh

@@ -11,11 +11,20 @@ const char *kFile = "offcenter_insertion.cl";
 constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_CANDIDATE)
 } // namespace
 
-OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
-                                       double max_area, int filter_rings, int filter_distance_rings,
-                                       double filter_near, bool parallel_midpoints,
-                                       int election_rings, bool conforming, int protected_segments,
-                                       bool inward, const std::vector<double> &region_areas,
+std::vector<std::size_t> OffcenterInsertion::scratch_lists(const DeviceMesh &mesh) {
+  const std::size_t slots = mesh.triangle_capacity;
+  // In the order of List.
+  std::vector<std::size_t> bytes{slots * sizeof(cl_double2), slots * sizeof(cl_double)};
+  bytes.resize(kPriority + 1, slots * sizeof(cl_int));
+  return bytes;
+}
+
+OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool,
+                                       double min_angle, double max_area, int filter_rings,
+                                       int filter_distance_rings, double filter_near,
+                                       bool parallel_midpoints, int election_rings, bool conforming,
+                                       int protected_segments, bool inward,
+                                       const std::vector<double> &region_areas,
                                        const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
@@ -34,13 +43,13 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       filter_(device.kernel(kFile, "insertion_filter", kPhase)),
       clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
       append_(device.kernel(kFile, "append_survivors", kPhase)),
-      candidate_(device, mesh.triangle_capacity), bad_list_(device, mesh.triangle_capacity),
-      origin_(device, mesh.triangle_capacity), container_(device, mesh.triangle_capacity),
-      split_edge_(device, mesh.triangle_capacity), survive_(device, mesh.triangle_capacity),
-      keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
-      tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
-      priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
-      radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
+      candidate_(pool.list<cl_double2>(kCandidate)), bad_list_(device, mesh.triangle_capacity),
+      origin_(pool.list<cl_int>(kOrigin)), container_(pool.list<cl_int>(kContainer)),
+      split_edge_(pool.list<cl_int>(kSplitEdge)), survive_(pool.list<cl_int>(kSurvive)),
+      keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)),
+      tie_mark_(device, mesh.triangle_capacity), listed_(pool.list<cl_int>(kListed)),
+      priority_(pool.list<cl_uint>(kPriority)), last_container_(device, mesh.triangle_capacity),
+      radius2_(pool.list<cl_double>(kRadius2)), stuck_(device, mesh.triangle_capacity),
       stuck_count_(device, 1), splits_boundary_(device, mesh.triangle_capacity),
       region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
@@ -190,18 +199,6 @@ void OffcenterInsertion::filter_candidates() {
                 static_cast<cl_int>(filter_rings_), static_cast<cl_int>(filter_distance_rings_),
                 filter_near2_, static_cast<cl_int>(parallel_midpoints_), survive_.buffer(), n);
   launch(device_, filter_, candidates_, kPhase);
-}
-
-void OffcenterInsertion::trim_candidates() {
-  // Each list holds an entry per triangle examined by the search, or fewer.
-  if (!candidates_watermark_.discard_after(searched_entries_))
-    return;
-  for (const DeviceArray<cl_int> *list :
-       {&origin_, &container_, &split_edge_, &survive_, &keep_, &offset_, &listed_})
-    list->discard(device_, 0, kPhase);
-  candidate_.discard(device_, 0, kPhase);
-  priority_.discard(device_, 0, kPhase);
-  radius2_.discard(device_, 0, kPhase);
 }
 
 void OffcenterInsertion::clear_candidate_marks() {

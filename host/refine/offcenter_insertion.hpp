@@ -3,7 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
-#include "runtime/scratch_watermark.hpp"
+#include "runtime/scratch_pool.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -34,10 +34,13 @@ public:
   // region_areas: the maximum area of
   // each region of DeviceMesh::tri_region (<= 0: none; empty without regions);
   // size_bound: each triangle slot's own area bound (SizeBound; null: none).
-  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
-                     int filter_rings, int filter_distance_rings, double filter_near,
-                     bool parallel_midpoints, int election_rings, bool conforming,
-                     int protected_segments, bool inward, const std::vector<double> &region_areas,
+  // The candidates' lists are those of `pool` (scratch_lists): no other step
+  // runs from find_bad_triangles to append_survivors.
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
+                     double max_area, int filter_rings, int filter_distance_rings,
+                     double filter_near, bool parallel_midpoints, int election_rings,
+                     bool conforming, int protected_segments, bool inward,
+                     const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -68,10 +71,10 @@ public:
   // how many were appended.
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
-  // After append_survivors: the lists of the candidates, filled again by the
-  // next search, give their memory back to the system once their use
-  // shrinks (ScratchWatermark).
-  void trim_candidates();
+  // The sizes in bytes of the lists it takes from a ScratchPool.
+  static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
+  // Triangles the last search examined: the most entries a list took.
+  std::size_t entries_used() const { return searched_entries_; }
 
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
@@ -84,6 +87,19 @@ public:
   double lens() const { return lens_; }
 
 private:
+  // The lists in the pool.
+  enum List {
+    kCandidate,
+    kRadius2,
+    kKeep,
+    kOffset,
+    kListed,
+    kOrigin,
+    kContainer,
+    kSplitEdge,
+    kSurvive,
+    kPriority
+  };
   // The filter's marks cleared, when append_survivors appends nothing.
   void clear_candidate_marks();
   Device &device_;
@@ -101,7 +117,7 @@ private:
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false;            // the first search examines every slot
   std::size_t searched_entries_ = 0; // triangles the last search examined
-  ScratchWatermark candidates_watermark_, search_watermark_;
+  ScratchWatermark search_watermark_;
   DeviceList<cl_int> search_; // the next search's triangles, with duplicates
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;

@@ -172,18 +172,22 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options, bool inward,
                   const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
-      : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
+      : scratch(scheduler.device(), {OffcenterInsertion::scratch_lists(scheduler.mesh()),
+                                     FlipFlop::scratch_lists(scheduler.mesh())}),
+        offcenter(scheduler.device(), scheduler.mesh(), scratch, options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
                   options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
-        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
+        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
+  // The lists of the off-centers' step and of flip-flop: one runs at a time.
+  ScratchPool scratch;
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
   FlipFlop flipflop;
@@ -687,7 +691,6 @@ private:
     const std::size_t inserted = insertion.run_round(scheduler_.stamp()++, false);
     if (insertion.pending() > 0)
       throw InternalError("Steiner points placed in place were not all inserted in one round");
-    steps_->offcenter.trim_candidates();
     scheduler_.timer().charge(MissingPointInsertion::kPhase);
     return inserted;
   }
@@ -701,6 +704,9 @@ private:
                          scheduler_.stamp(), changed_, deletion_log_, flips_);
     steps_->flipflop.trim_lists();
     insertion.trim_lists();
+    steps_->scratch.trim(
+        std::max(steps_->offcenter.entries_used(), steps_->flipflop.entries_used()),
+        FlipFlop::kPhase);
     scheduler_.timer().charge(FlipFlop::kPhase);
     const auto deleted = static_cast<std::size_t>(flips_.deleted - deleted_before);
     deleted_since_collection_ = deleted_since_collection_ || deleted > 0;

@@ -19,6 +19,13 @@ public:
     buffer_ = guarded("allocation", "allocating a device array",
                       [&] { return device.allocate(sizeof(T) * (size ? size : 1), huge_pages); });
   }
+  // The memory of `memory` (a ScratchPool's list) as `size` entries.
+  static DeviceArray view(const cl::Buffer &memory, std::size_t size) {
+    DeviceArray array;
+    array.buffer_ = memory;
+    array.size_ = size;
+    return array;
+  }
   std::size_t size() const { return size_; }
   const cl::Buffer &buffer() const { return buffer_; }
   operator const cl::Buffer &() const { return buffer_; }

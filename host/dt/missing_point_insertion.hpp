@@ -3,7 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
-#include "runtime/scratch_watermark.hpp"
+#include "runtime/scratch_pool.hpp"
 
 #include <vector>
 
@@ -13,7 +13,14 @@ class MissingPointInsertion {
 public:
   static constexpr const char *kPhase = "missing_point_insertion";
 
-  MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+  // With a `pool`, the lists of a round but changed() are those of the pool
+  // (scratch_lists): no other user of the pool runs from set_points to the
+  // end of the round, and the lists' contents are not needed after it
+  // (refinement inserts its points in one round).
+  MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
+                        const ScratchPool *pool = nullptr);
+  // The sizes in bytes of the lists it takes from a ScratchPool.
+  static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 
   // Points still to insert, each starting its walk from location[point].
   void set_points(const std::vector<cl_int> &points);
@@ -30,11 +37,17 @@ public:
   std::size_t run_round(int stamp, bool walk = true);
   const DeviceArray<cl_int> &changed() const { return changed_; }
   std::size_t duplicates() const { return duplicates_; }
-  // With no point pending: the lists give their memory back to the system
-  // once their use shrinks (ScratchWatermark); changed() is then lost.
+  // Points of the last round: the most entries a list took, but changed().
+  std::size_t entries_used() const { return round_points_; }
+  // With no point pending: changed() keeps the memory of the last round's
+  // entries, which the next round (of about the same size) writes again,
+  // and gives the rest back to the system (DeviceArray::discard); so do
+  // the other lists without a pool.
   void trim_lists();
 
 private:
+  // The lists that a pool may hold, in the order of scratch_lists.
+  enum List { kRemaining, kRemainingNext, kStatus, kWinner, kOffset, kKeep, kLists };
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
@@ -44,7 +57,7 @@ private:
   DeviceArray<cl_int> keep_, changed_, failures_;
   std::size_t pending_ = 0;
   std::size_t round_points_ = 0; // points of the last round
-  ScratchWatermark watermark_;
+  bool pooled_ = false;
   int located_since_ = 0; // stamp of the last walk: older triangles keep their points
   std::size_t duplicates_ = 0;
 };

@@ -60,8 +60,8 @@ public:
            FlipFlopCounts &counts);
   // The most entries a list took in the last run.
   std::size_t entries_used() const { return run_entries_; }
-  // After run: the boundary routine's lists give their memory back to the
-  // system once their use shrinks (ScratchWatermark).
+  // After run: the boundary routine's lists keep the memory of the entries
+  // the run took and give the rest back (HullEncroachment::trim_lists).
   void trim_lists();
 
 private:

@@ -17,10 +17,8 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       offset_(device, mesh.point_capacity) {}
 
 void HullEncroachment::trim_lists() {
-  if (!watermark_.discard_after(new_points_))
-    return;
-  owned_.discard(device_, 0, kPhase);
-  offset_.discard(device_, 0, kPhase);
+  owned_.discard(device_, new_points_, kPhase);
+  offset_.discard(device_, new_points_, kPhase);
 }
 
 std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,

@@ -5,7 +5,6 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
-#include "runtime/scratch_watermark.hpp"
 
 namespace clmesh {
 
@@ -27,8 +26,9 @@ public:
                                const DeviceArray<cl_int> &redundant_mark,
                                const DeviceArray<cl_int> &redundant_anchor,
                                const DeviceArray<cl_int> &tracked);
-  // Between calls: the per-new-point lists give their memory back to the
-  // system once their use shrinks (ScratchWatermark).
+  // Between calls: the per-new-point lists keep the memory of the last
+  // call's entries, which the next one (of about the same size) writes
+  // again, and give the rest back to the system (DeviceArray::discard).
   void trim_lists();
 
 private:
@@ -42,7 +42,6 @@ private:
   std::size_t claims_filled_ = 0;      // claim_ is set (empty) below this point
   DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
   std::size_t new_points_ = 0;         // of the last call
-  ScratchWatermark watermark_;
 };
 
 } // namespace clmesh

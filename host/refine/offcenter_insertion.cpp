@@ -124,9 +124,10 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
     }
     entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
                                                    search_keep_, search_offset_, listed_, kPhase));
-    if (search_watermark_.discard_after(search_.size))
-      for (const DeviceArray<cl_int> *list : {&search_.items, &search_keep_, &search_offset_})
-        list->discard(device_, 0, kPhase);
+    // The pages past this search's entries go back to the system (the next
+    // search, of about the same size, writes those it keeps again).
+    for (const DeviceArray<cl_int> *list : {&search_.items, &search_keep_, &search_offset_})
+      list->discard(device_, search_.size, kPhase);
   }
   searched_ = true;
   searched_entries_ = entries;

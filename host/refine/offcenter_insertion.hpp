@@ -117,8 +117,7 @@ private:
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false;            // the first search examines every slot
   std::size_t searched_entries_ = 0; // triangles the last search examined
-  ScratchWatermark search_watermark_;
-  DeviceList<cl_int> search_; // the next search's triangles, with duplicates
+  DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> bad_list_; // the bad triangles of the last search

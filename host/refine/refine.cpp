@@ -173,6 +173,7 @@ struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options, bool inward,
                   const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
       : scratch(scheduler.device(), {OffcenterInsertion::scratch_lists(scheduler.mesh()),
+                                     MissingPointInsertion::scratch_lists(scheduler.mesh()),
                                      FlipFlop::scratch_lists(scheduler.mesh())}),
         offcenter(scheduler.device(), scheduler.mesh(), scratch, options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
@@ -180,13 +181,14 @@ struct RefinementSteps {
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
                   options.protected_segments, inward, region_areas, size_bound),
-        insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
+        insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
-  // The lists of the off-centers' step and of flip-flop: one runs at a time.
+  // The lists of the off-centers' step, of the insertion and of flip-flop:
+  // one runs at a time.
   ScratchPool scratch;
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
@@ -606,8 +608,9 @@ private:
   std::size_t find_bad_triangles() {
     update_size_bounds();
     const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
-    if (changed_watermark_.discard_after(changed_.size))
-      changed_.items.discard(device_, 0, OffcenterInsertion::kPhase);
+    // The pages past this list's entries go back to the system (the next
+    // one, of about the same size, writes those it keeps again).
+    changed_.items.discard(device_, changed_.size, OffcenterInsertion::kPhase);
     changed_.size = 0;
     stats_.remaining_bad = static_cast<long>(bad);
     last_bad_ = bad;
@@ -704,9 +707,9 @@ private:
                          scheduler_.stamp(), changed_, deletion_log_, flips_);
     steps_->flipflop.trim_lists();
     insertion.trim_lists();
-    steps_->scratch.trim(
-        std::max(steps_->offcenter.entries_used(), steps_->flipflop.entries_used()),
-        FlipFlop::kPhase);
+    steps_->scratch.trim(std::max({steps_->offcenter.entries_used(), insertion.entries_used(),
+                                   steps_->flipflop.entries_used()}),
+                         mesh().list_capacity, FlipFlop::kPhase);
     scheduler_.timer().charge(FlipFlop::kPhase);
     const auto deleted = static_cast<std::size_t>(flips_.deleted - deleted_before);
     deleted_since_collection_ = deleted_since_collection_ || deleted > 0;
@@ -740,8 +743,7 @@ private:
   FlipFlopCounts flips_;
   DeletionLog deletion_log_;
   DeviceList<cl_int> changed_; // the triangles rewritten since the last search
-  ScratchWatermark changed_watermark_;
-  std::size_t steiner_ = 0; // Steiner points in the mesh now
+  std::size_t steiner_ = 0;    // Steiner points in the mesh now
   bool deleted_since_collection_ = false;
   std::size_t compacted_slots_ = 0; // triangle slots after the last compaction
   std::size_t last_bad_ = 0;        // bad triangles at the last search

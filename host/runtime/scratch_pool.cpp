@@ -1,6 +1,7 @@
 #include "runtime/scratch_pool.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace clmesh {
 
@@ -18,10 +19,12 @@ ScratchPool::ScratchPool(Device &device, std::initializer_list<std::vector<std::
     lists_.emplace_back(device, (size + largest - 1) / largest * largest / sizeof(cl_int));
 }
 
-void ScratchPool::trim(std::size_t work, const char *phase) {
-  if (watermark_.discard_after(work))
-    for (const DeviceArray<cl_int> &list : lists_)
-      list.discard(device_, 0, phase);
+void ScratchPool::trim(std::size_t work, std::size_t capacity, const char *phase) {
+  const double share = std::min(1.0, static_cast<double>(work) / static_cast<double>(capacity));
+  for (const DeviceArray<cl_int> &list : lists_)
+    list.discard(device_,
+                 static_cast<std::size_t>(std::ceil(share * static_cast<double>(list.size()))),
+                 phase);
 }
 
 } // namespace clmesh

@@ -2,7 +2,6 @@
 #pragma once
 
 #include "runtime/device_mesh.hpp"
-#include "runtime/scratch_watermark.hpp"
 
 #include <cstddef>
 #include <initializer_list>
@@ -29,15 +28,15 @@ public:
                                 lists_[k].size() * sizeof(cl_int) / sizeof(T));
   }
 
-  // After an iteration whose steps took at most `work` entries of a list:
-  // the lists give their memory back to the system once that shrinks
-  // (ScratchWatermark).
-  void trim(std::size_t work, const char *phase);
+  // After an iteration whose steps took at most `work` of `capacity`
+  // entries per list: each list keeps the pages of that share of its
+  // memory, which the next iteration (of about the same size) writes again,
+  // and gives the rest back to the system (DeviceArray::discard).
+  void trim(std::size_t work, std::size_t capacity, const char *phase);
 
 private:
   Device &device_;
   std::vector<DeviceArray<cl_int>> lists_;
-  ScratchWatermark watermark_;
 };
 
 } // namespace clmesh

@@ -388,10 +388,13 @@ private:
       for (int32_t &v : t)
         v = scheduler_.device_point(v);
     MeshReconstruction reconstruction(device_, mesh(), corners);
-    Pslg outline;
+    std::vector<Segment> outline_segments;
     for (const Segment &s : pslg_->segments)
       if (s.marker != kInnerEdge)
-        outline.segments.push_back(s);
+        outline_segments.push_back(s);
+    const std::vector<Point> no_points;
+    const std::vector<Region> no_regions;
+    const Pslg outline{no_points, outline_segments, no_points, no_regions};
     std::vector<Segment> constraints =
         insert_constraints(device_, scheduler_, outline, result_.constraints, crossings_);
     long missing = reconstruction.label();
@@ -824,9 +827,10 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
       index_of[i] = static_cast<int32_t>(kept.size());
       kept.push_back(static_cast<int32_t>(i));
     }
-  Pslg subset{{}, {}, pslg.holes, {}};
+  std::vector<Point> points;
+  points.reserve(kept.size());
   for (int32_t i : kept)
-    subset.points.push_back(pslg.points[static_cast<std::size_t>(i)]);
+    points.push_back(pslg.points[static_cast<std::size_t>(i)]);
   std::vector<Triangle> corners = triangles;
   for (Triangle &t : corners)
     for (int32_t &v : t)
@@ -836,7 +840,9 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
     s.a = index_of[static_cast<std::size_t>(s.a)];
     s.b = index_of[static_cast<std::size_t>(s.b)];
   }
-  subset.segments = mesh_constraints(corners, segments);
+  const std::vector<Segment> constraints = mesh_constraints(corners, segments);
+  const std::vector<Region> no_regions;
+  const Pslg subset{points, constraints, pslg.holes, no_regions};
 
   RefineResult result;
   check_area_bound(device, subset.points, options, result.stats);

@@ -50,8 +50,10 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const S
       tie_mark_(device, mesh.triangle_capacity), listed_(pool.list<cl_int>(kListed)),
       priority_(pool.list<cl_uint>(kPriority)), last_container_(device, mesh.triangle_capacity),
       radius2_(pool.list<cl_double>(kRadius2)), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), splits_boundary_(device, mesh.triangle_capacity),
-      region_area_(device, region_areas.size()), size_bound_(size_bound) {
+      stuck_count_(device, 1), splits_boundary_(pool.list<cl_int>(kContainer)),
+      splits_own_boundary_(pool.list<cl_int>(kSurvive)), region_area_(device, region_areas.size()),
+      size_bound_(size_bound), pooled_keep_(pool.list<cl_int>(kCandidate)),
+      pooled_offset_(pool.list<cl_int>(kRadius2)) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   stuck_count_.fill(device_, 0, 1);
@@ -118,12 +120,17 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
     search_.append(device_, bad_list_, bad_);
     if (changed->size > 0)
       search_.append(device_, changed->items, changed->size);
-    if (search_keep_.size() < search_.size) {
+    // The scan's scratch: two lists of the pool that hold candidates only
+    // later, when they are long enough (they nearly always are), else lists
+    // of its own.
+    const bool pooled = search_.size <= std::min(pooled_keep_.size(), pooled_offset_.size());
+    if (!pooled && search_keep_.size() < search_.size) {
       search_keep_ = DeviceArray<cl_int>(device_, search_.items.size());
       search_offset_ = DeviceArray<cl_int>(device_, search_.items.size());
     }
-    entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
-                                                   search_keep_, search_offset_, listed_, kPhase));
+    entries = static_cast<std::size_t>(scan.unique(
+        search_.items, search_.size, mesh_.tri_mark, pooled ? pooled_keep_ : search_keep_,
+        pooled ? pooled_offset_ : search_offset_, listed_, kPhase));
     // The pages past this search's entries go back to the system (the next
     // search, of about the same size, writes those it keeps again).
     for (const DeviceArray<cl_int> *list : {&search_.items, &search_keep_, &search_offset_})
@@ -145,7 +152,8 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   if (bad_ == 0)
     return 0;
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
-           static_cast<cl_int>(use_list), bad_list_.buffer(), items);
+           static_cast<cl_int>(use_list), splits_boundary_.buffer(), bad_list_.buffer(),
+           splits_own_boundary_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   return bad_;
 }
@@ -156,7 +164,8 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
   set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           static_cast<cl_int>(election_rings_), splits_boundary_.buffer(), keep_.buffer(), bad);
+           static_cast<cl_int>(election_rings_), splits_own_boundary_.buffer(), keep_.buffer(),
+           bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),

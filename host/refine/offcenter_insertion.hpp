@@ -118,6 +118,10 @@ private:
   bool searched_ = false;            // the first search examines every slot
   std::size_t searched_entries_ = 0; // triangles the last search examined
   DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
+  // The scratch of the scan that makes the search list: lists of the pool
+  // (those of candidate_ and radius2_, not used before the candidates are
+  // located; pooled_keep_, pooled_offset_), or these when the search list is
+  // longer.
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> bad_list_; // the bad triangles of the last search
@@ -136,10 +140,12 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
-  // Per triangle slot, set by the search for a bad one: does its candidate
-  // split an edge of its own on the boundary (splits_own_edge)? It is then
-  // elected whatever its neighbours' priorities.
-  DeviceArray<cl_int> splits_boundary_;
+  // Per entry of the search, set for a bad triangle, then per bad triangle
+  // (bad_list_'s order): does its candidate split an edge of its own on the
+  // boundary (splits_own_edge)? It is then elected whatever its neighbours'
+  // priorities. Lists of the pool that hold candidates only later (those of
+  // container_ and survive_).
+  DeviceArray<cl_int> splits_boundary_, splits_own_boundary_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).
@@ -152,6 +158,7 @@ private:
   // that the pages past the used slots are not touched (not resident).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
+  DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
 };
 
 } // namespace clmesh

@@ -233,6 +233,7 @@ std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &s
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
   const std::size_t new_slots = free.take(count);
+  mesh_.fill_point_slots(device_, mesh_.point_count + new_slots);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
   set_args_from(append_, mesh_.bind(append_, 0), candidate_.buffer(), container_.buffer(),
                 split_edge_.buffer(), radius2_.buffer(), priority_.buffer(), survive_.buffer(),

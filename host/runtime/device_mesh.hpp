@@ -156,6 +156,7 @@ struct DeviceMesh {
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
   DeviceArray<cl_int> constraint_segment;  // per entry of constraint_adjacent: its constraint
   bool has_constraints = false;            // any row not empty
+  cl_int constraint_entries = 0;           // entries of constraint_adjacent: where rows end
   // The region of each triangle slot (-1: none; triangle_capacity entries)
   // once has_regions, else one unused entry (cl/mesh_params.h).
   DeviceArray<cl_int> tri_region;
@@ -164,6 +165,16 @@ struct DeviceMesh {
   // Uploads `segments` (device point numbers, distinct, none of zero length)
   // as the constraint rows.
   void set_constraint_rows(Device &device, const std::vector<Segment> &segments);
+
+  // duplicate_of (-1: none) and constraint_start (empty rows) hold their
+  // first values for the points below points_filled; those past it are set
+  // only when the points come into use (fill_point_slots, before
+  // point_count passes them), so that the pages past the points in use are
+  // not touched (not resident). The points added later write their other
+  // arrays themselves (location, the refinement's state...).
+  std::size_t points_filled = 0;
+  // Points [points_filled, count) set so.
+  void fill_point_slots(Device &device, std::size_t count);
 
   std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
 

@@ -437,7 +437,7 @@ inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c,
 // slot gid. The list holds the bad triangles of the last search and the
 // triangles changed since: the others are still good (thesis §3.3.2). With an
 // election, each bad triangle also marks its slot with its priority, ranked as
-// a midpoint's when a corner is on the hull, and sets splits_boundary[slot]
+// a midpoint's when a corner is on the hull, and sets splits_boundary[gid]
 // (splits_own_edge; see elect_candidates).
 // -D (conforming Delaunay): does real triangle t have an edge on a subsegment
 // or the boundary whose diametral circle holds the opposite vertex (the angle
@@ -485,7 +485,7 @@ __kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, cons
   is_bad[gid] = bad;
   if (bad && election) {
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
-    splits_boundary[t] = splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect);
+    splits_boundary[gid] = splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect);
   }
 }
 
@@ -532,11 +532,14 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
 // work-group size.
 __kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
                                    __global const int *list, const int use_list,
-                                   __global int *origin, const int n) {
+                                   __global const int *splits_boundary, __global int *origin,
+                                   __global int *splits_own_boundary, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || !is_bad[gid])
     return;
   origin[offset[gid]] = use_list ? list[gid] : gid;
+  // Set by the search only with an election, read only then.
+  splits_own_boundary[offset[gid]] = splits_boundary[gid];
 }
 
 // Prefetching for a kernel that reads the marks of two rings of triangles
@@ -575,7 +578,7 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // iteration without being located, which saves most of the location and
 // filtering work. The best bad triangle always sends its candidate, so the
 // refinement goes on. So do those whose candidate splits an edge of their
-// own on the boundary (splits_boundary, set by find_bad_triangles): hull
+// own on the boundary (splits_boundary[k], set by find_bad_triangles): hull
 // midpoints never keep each other out, so the bad triangles along the hull
 // do not wait for each other in turn. The others with a corner on the
 // boundary rank before the rest but take part: along a PSLG's jagged
@@ -592,7 +595,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
   const int t = bad[k];
   const uint mine = tri_mark[t];
   bool best = true;
-  for (int i = 0; i < 3 && best && !splits_boundary[t]; ++i) {
+  for (int i = 0; i < 3 && best && !splits_boundary[k]; ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     best = tri_mark[u] >= mine;
     for (int j = 0; j < 3 && best && rings > 1; ++j) {

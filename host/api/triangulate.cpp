@@ -145,10 +145,11 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     // The .poly's segments and holes come with -p only; its regions never
     // (Triangle's -r: the .area file's bounds and the triangles' attributes
     // take their place).
-    const Pslg given{input.points,
-                     options.pslg ? input.segments : std::vector<Segment>{},
-                     options.pslg ? input.holes : std::vector<Point>{},
-                     {}};
+    const std::vector<Segment> no_segments;
+    const std::vector<Point> no_holes;
+    const std::vector<Region> no_regions;
+    const Pslg given{input.points, options.pslg ? input.segments : no_segments,
+                     options.pslg ? input.holes : no_holes, no_regions};
     refine.attributes = input.triangle_attribute_count > 0;
     constrained.keep_convex_hull = false;
     RefineResult result;
@@ -183,8 +184,10 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     mesh.statistics.refined = true;
     mesh.statistics.refinement = result.stats;
   } else {
+    // The mesh's copy of the points comes once the device's work is done.
+    DelaunayResult triangulation = delaunay(device, input.points, delaunay_options);
     take_points(mesh, input, {});
-    take_triangulation(mesh, delaunay(device, input.points, delaunay_options));
+    take_triangulation(mesh, std::move(triangulation));
   }
   const MeshView view = view_of(mesh);
   mesh.point_markers = output_vertex_markers(view);

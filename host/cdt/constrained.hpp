@@ -10,12 +10,14 @@
 
 namespace clmesh {
 
-// The constraints of a PSLG.
+// The constraints of a PSLG: a view of vectors held elsewhere (an Input's),
+// which outlive it; no copy of a large input's points is held while it is
+// meshed.
 struct Pslg {
-  std::vector<Point> points;
-  std::vector<Segment> segments;
-  std::vector<Point> holes;
-  std::vector<Region> regions;
+  const std::vector<Point> &points;
+  const std::vector<Segment> &segments;
+  const std::vector<Point> &holes;
+  const std::vector<Region> &regions;
 };
 
 struct ConstrainedOptions {

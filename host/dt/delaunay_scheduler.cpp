@@ -385,9 +385,8 @@ bool DelaunayScheduler::triangulate() {
   std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
   mesh.original_id.upload(device, original_id);
   mesh.clear_triangle_slots(); // marks and stamps set as the slots come into use
-  mesh.duplicate_of.fill(device, -1, mesh.point_capacity);
-  mesh.location.fill(device, 0, mesh.point_capacity);
-  mesh.constraint_start.fill(device, 0, mesh.point_capacity + 1);
+  mesh.fill_point_slots(device, mesh.point_count);
+  mesh.location.fill(device, 0, mesh.point_count); // added points come with theirs
   timer_->charge("upload");
 
   // Phases 1-3 build the first triangulation and list the missing points;
@@ -413,7 +412,7 @@ bool DelaunayScheduler::triangulate() {
     mesh.triangle_count = fan.vertices.size() / 3;
     mesh.clear_triangle_slots();
     mesh.fill_triangle_slots(device, mesh.triangle_count);
-    mesh.location.fill(device, 0, mesh.point_capacity);
+    mesh.location.fill(device, 0, mesh.point_count);
     std::vector<char> in_mesh(n, 0);
     for (const int32_t v : device_hull)
       in_mesh[v] = 1;
@@ -555,6 +554,7 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
     ids[i] = first + static_cast<cl_int>(i);
     original_id_.push_back(ids[i]);
   }
+  mesh.fill_point_slots(device_, mesh.point_count + count);
   mesh.point_count += count;
   MissingPointInsertion insertion(device_, mesh, *scan_);
   insertion.set_points(ids);

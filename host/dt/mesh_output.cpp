@@ -26,7 +26,13 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
                           const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   const std::size_t slots = mesh_.triangle_count;
   // The output is the last use of the mesh: arrays it no longer needs hold
-  // the output's intermediate results, so the peak memory stays low.
+  // the output's intermediate results, and the others give their memory
+  // back as soon as they are read for the last time, so the peak memory
+  // stays low. The points and the refinement's arrays are not read.
+  mesh_.discard_except(device_, {&mesh_.tri_vertex, &mesh_.tri_neighbor, &mesh_.tri_mark,
+                                 &mesh_.modified_stamp, &mesh_.children, &mesh_.vertex_triangle,
+                                 &mesh_.duplicate_of, &mesh_.location, &mesh_.location_edge,
+                                 &mesh_.original_id, &mesh_.tri_region});
   const DeviceArray<cl_int> &is_real = mesh_.tri_mark, &new_index = mesh_.modified_stamp;
   set_args(flag_real_, mesh_.tri_vertex.buffer(), removed ? removed->buffer() : is_real.buffer(),
            static_cast<cl_int>(removed != nullptr), is_real.buffer(), static_cast<cl_int>(slots));
@@ -45,6 +51,9 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
              out_vertex.buffer(), out_neighbor.buffer(), out_label.buffer(),
              static_cast<cl_int>(slots));
     launch(device_, write_real_, slots, kPhase);
+    for (const DeviceArray<cl_int> *read : std::initializer_list<const DeviceArray<cl_int> *>{
+             &is_real, &new_index, &mesh_.tri_region})
+      read->discard(device_, 0, kPhase);
     const std::size_t points = mesh_.point_count;
     const auto point_count = static_cast<cl_int>(points);
     DeviceArray<cl_int> input_duplicate_of(device_, points);
@@ -52,6 +61,7 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
     set_args(restore_numbering_, mesh_.duplicate_of.buffer(), mesh_.original_id.buffer(),
              input_duplicate_of.buffer(), point_count);
     launch(device_, restore_numbering_, points, kPhase);
+    mesh_.duplicate_of.discard(device_, 0, kPhase);
     set_args(fill_identity_, representative.buffer(), point_count);
     launch(device_, fill_identity_, points, kPhase);
     set_args(smallest_representative_, input_duplicate_of.buffer(), representative.buffer(),
@@ -91,15 +101,21 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
   // Triangle and the neighbour triples are three packed ints, as on the device.
   static_assert(sizeof(Triangle) == 3 * sizeof(cl_int));
   static_assert(sizeof(std::array<int32_t, 3>) == 3 * sizeof(cl_int));
+  // The host's copy comes as the device's goes: first every array but the
+  // sorted ones, then each of these once downloaded.
+  mesh_.discard_except(device_, {&sorted_vertex, &sorted_neighbor});
+  auto download = [&](const DeviceArray<cl_int> &from, void *to) {
+    if (count)
+      guarded(kPhase, "downloading the mesh", [&] {
+        device_.queue().enqueueReadBuffer(from.buffer(), CL_TRUE, 0, 3 * count * sizeof(cl_int),
+                                          to);
+      });
+    from.discard(device_, 0, kPhase);
+  };
   triangles.resize(count);
+  download(sorted_vertex, triangles.data());
   neighbors.resize(count);
-  if (count)
-    guarded(kPhase, "downloading the mesh", [&] {
-      device_.queue().enqueueReadBuffer(sorted_vertex.buffer(), CL_TRUE, 0,
-                                        3 * count * sizeof(cl_int), triangles.data());
-      device_.queue().enqueueReadBuffer(sorted_neighbor.buffer(), CL_TRUE, 0,
-                                        3 * count * sizeof(cl_int), neighbors.data());
-    });
+  download(sorted_neighbor, neighbors.data());
   if (label && labels)
     *labels = sorted_label.download(device_, count);
 }

@@ -8,7 +8,20 @@ namespace {
 const char *kFile = "missing_point_insertion.cl";
 }
 
-MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+namespace {
+// List k of `pool`, or a list of its own (a point's entry each).
+DeviceArray<cl_int> point_list(Device &device, const DeviceMesh &mesh, const ScratchPool *pool,
+                               std::size_t k) {
+  return pool ? pool->list<cl_int>(k) : DeviceArray<cl_int>(device, mesh.point_capacity);
+}
+} // namespace
+
+std::vector<std::size_t> MissingPointInsertion::scratch_lists(const DeviceMesh &mesh) {
+  return std::vector<std::size_t>(kLists, mesh.point_capacity * sizeof(cl_int));
+}
+
+MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
+                                             const ScratchPool *pool)
     : device_(device), mesh_(mesh), scan_(scan),
       locate_(device.kernel(kFile, "locate_points", kPhase)),
       mark_(device.kernel(kFile, "mark_containers", kPhase)),
@@ -17,10 +30,13 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       split_(device.kernel(kFile, "split_triangles", kPhase)),
       relink_(device.kernel(kFile, "relink_split_children", kPhase)),
       count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
-      remaining_(device, mesh.point_capacity), remaining_next_(device, mesh.point_capacity),
-      status_(device, mesh.point_capacity), winner_(device, mesh.point_capacity),
-      offset_(device, mesh.point_capacity), keep_(device, mesh.point_capacity),
-      changed_(device, mesh.list_capacity), failures_(device, 1) {
+      remaining_(point_list(device, mesh, pool, kRemaining)),
+      remaining_next_(point_list(device, mesh, pool, kRemainingNext)),
+      status_(point_list(device, mesh, pool, kStatus)),
+      winner_(point_list(device, mesh, pool, kWinner)),
+      offset_(point_list(device, mesh, pool, kOffset)),
+      keep_(point_list(device, mesh, pool, kKeep)), changed_(device, mesh.list_capacity),
+      failures_(device, 1), pooled_(pool != nullptr) {
   failures_.fill(device_, 0, 1);
 }
 
@@ -38,10 +54,19 @@ void MissingPointInsertion::set_points(const DeviceArray<cl_int> &points, std::s
   pending_ = count;
 }
 
+void MissingPointInsertion::trim_lists() {
+  changed_.discard(device_, 4 * round_points_, kPhase); // 4 entries per insertion
+  if (!pooled_)                                         // else the pool's owner trims them
+    for (const DeviceArray<cl_int> *list :
+         {&remaining_, &remaining_next_, &status_, &winner_, &offset_, &keep_})
+      list->discard(device_, round_points_, kPhase);
+}
+
 std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto n = static_cast<cl_int>(pending_);
   if (n == 0)
     return 0;
+  round_points_ = pending_;
   // Any walk in a Delaunay triangulation visits each triangle at most once.
   const auto max_steps = static_cast<cl_int>(mesh_.triangle_count + 8);
   if (walk) {

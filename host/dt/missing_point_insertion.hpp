@@ -3,6 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
+#include "runtime/scratch_pool.hpp"
 
 #include <vector>
 
@@ -12,7 +13,14 @@ class MissingPointInsertion {
 public:
   static constexpr const char *kPhase = "missing_point_insertion";
 
-  MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan);
+  // With a `pool`, the lists of a round but changed() are those of the pool
+  // (scratch_lists): no other user of the pool runs from set_points to the
+  // end of the round, and the lists' contents are not needed after it
+  // (refinement inserts its points in one round).
+  MissingPointInsertion(Device &device, DeviceMesh &mesh, PrefixScan &scan,
+                        const ScratchPool *pool = nullptr);
+  // The sizes in bytes of the lists it takes from a ScratchPool.
+  static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 
   // Points still to insert, each starting its walk from location[point].
   void set_points(const std::vector<cl_int> &points);
@@ -29,8 +37,17 @@ public:
   std::size_t run_round(int stamp, bool walk = true);
   const DeviceArray<cl_int> &changed() const { return changed_; }
   std::size_t duplicates() const { return duplicates_; }
+  // Points of the last round: the most entries a list took, but changed().
+  std::size_t entries_used() const { return round_points_; }
+  // With no point pending: changed() keeps the memory of the last round's
+  // entries, which the next round (of about the same size) writes again,
+  // and gives the rest back to the system (DeviceArray::discard); so do
+  // the other lists without a pool.
+  void trim_lists();
 
 private:
+  // The lists that a pool may hold, in the order of scratch_lists.
+  enum List { kRemaining, kRemainingNext, kStatus, kWinner, kOffset, kKeep, kLists };
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
@@ -39,6 +56,8 @@ private:
   DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
   DeviceArray<cl_int> keep_, changed_, failures_;
   std::size_t pending_ = 0;
+  std::size_t round_points_ = 0; // points of the last round
+  bool pooled_ = false;
   int located_since_ = 0; // stamp of the last walk: older triangles keep their points
   std::size_t duplicates_ = 0;
 };

@@ -14,8 +14,18 @@ const char *kFile = "flip_flop.cl";
 constexpr long kMaxPasses = 100000;
 } // namespace
 
-FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test,
-                   double lens, std::size_t group_pass_limit)
+std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
+  // The next list holds the pass's results and the redundant stars before
+  // duplicates are dropped; an active list has distinct live triangles.
+  const std::size_t list = mesh.list_capacity * sizeof(cl_int),
+                    point = mesh.point_capacity * sizeof(cl_int);
+  // In the order of List.
+  return {4 * list, 2 * list, 2 * list, 2 * list, 2 * list, list,
+          list,     list,     list,     point,    point,    point};
+}
+
+FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
+                   bool orthogonal_test, double lens, std::size_t group_pass_limit)
     : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan, lens),
       orthogonal_test_(orthogonal_test ? 1 : 0), group_pass_limit_(group_pass_limit),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
@@ -29,15 +39,13 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orth
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
       pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
       log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
-      // The next list holds the pass's results and the redundant stars before
-      // duplicates are dropped; an active list has distinct live triangles.
-      active_(device, 2 * mesh.list_capacity), next_active_(device, 2 * mesh.list_capacity),
-      exact_list_(device, mesh.list_capacity), operation_(device, mesh.list_capacity),
-      proposal_(device, mesh.list_capacity), star_(device, 4 * mesh.list_capacity),
-      applied_(device, mesh.list_capacity), count_(device, 2 * mesh.list_capacity),
-      offset_(device, 2 * mesh.list_capacity), redundant_mark_(device, mesh.point_capacity),
-      redundant_anchor_(device, mesh.point_capacity), star_size_(device, mesh.point_capacity),
-      star_offset_(device, mesh.point_capacity), tracked_(device, mesh.point_capacity),
+      active_(pool.list<cl_int>(kActive)), next_active_(pool.list<cl_int>(kNextActive)),
+      exact_list_(pool.list<cl_int>(kExactList)), operation_(pool.list<cl_int>(kOperation)),
+      proposal_(pool.list<cl_int>(kProposal)), star_(pool.list<cl_int>(kStar)),
+      applied_(pool.list<cl_int>(kApplied)), count_(pool.list<cl_int>(kCount)),
+      offset_(pool.list<cl_int>(kOffset)), redundant_mark_(device, mesh.point_capacity),
+      redundant_anchor_(device, mesh.point_capacity), star_size_(pool.list<cl_int>(kStarSize)),
+      star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
       marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
       failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
       pass_result_(device, 5) {
@@ -76,6 +84,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
+  run_entries_ = std::max(n, tracked_n_);
   for (long pass = 0; n > 0; ++pass) {
     if (pass == kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
@@ -86,6 +95,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                                   ? pass_in_group(n, any_redundant, pass_stamp, counts)
                                   : pass_by_kernels(n, any_redundant, pass_stamp, counts);
     rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
+    run_entries_ = std::max({run_entries_, result.next, result.length});
     ++counts.passes;
     if (result.looked_for_stars) {
       redundant_left_ = result.stars > 0;
@@ -146,6 +156,8 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     log.size += static_cast<std::size_t>(flips[2]);
   }
 }
+
+void FlipFlop::trim_lists() { encroachment_.trim_lists(); }
 
 cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
   return set_args_from(kernel, first, active_.buffer(), operation_.buffer(), proposal_.buffer(),

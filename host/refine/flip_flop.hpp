@@ -5,6 +5,7 @@
 #pragma once
 
 #include "refine/hull_encroachment.hpp"
+#include "runtime/scratch_pool.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -42,8 +43,12 @@ public:
   // when they are less than orthogonal) instead of GPU-QM (always).
   // lens: Triangle's encroachment test of hull edges (HullEncroachment).
   // group_pass_limit: Tuning::group_pass_limit.
-  FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, bool orthogonal_test, double lens,
-           std::size_t group_pass_limit);
+  // The lists of the passes are those of `pool` (scratch_lists, from
+  // kStar on): no other step runs while run() does.
+  FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
+           bool orthogonal_test, double lens, std::size_t group_pass_limit);
+  // The sizes in bytes of the lists it takes from a ScratchPool.
+  static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 
   // Step 3 of one iteration: from the triangles `changed` (n entries, -1
   // ignored), the points new_points[0 .. m) having just been inserted.
@@ -53,8 +58,28 @@ public:
   void run(const DeviceArray<cl_int> &changed, std::size_t n, const DeviceArray<cl_int> &new_points,
            std::size_t m, int &stamp, DeviceList<cl_int> &rewritten, DeletionLog &deleted,
            FlipFlopCounts &counts);
+  // The most entries a list took in the last run.
+  std::size_t entries_used() const { return run_entries_; }
+  // After run: the boundary routine's lists keep the memory of the entries
+  // the run took and give the rest back (HullEncroachment::trim_lists).
+  void trim_lists();
 
 private:
+  // The lists in the pool.
+  enum List {
+    kStar,
+    kActive,
+    kNextActive,
+    kCount,
+    kOffset,
+    kExactList,
+    kOperation,
+    kProposal,
+    kApplied,
+    kStarSize,
+    kStarOffset,
+    kTracked
+  };
   // What a pass leaves: `next` entries in next_active_ (its results and
   // losers); when stars were looked for, the next list (those and the
   // redundant points' stars, without repeats) in active_, `length` long.
@@ -99,6 +124,7 @@ private:
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
+  std::size_t run_entries_ = 0;  // the most entries of a list in the last run
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult

@@ -16,10 +16,16 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
       offset_(device, mesh.point_capacity) {}
 
+void HullEncroachment::trim_lists() {
+  owned_.discard(device_, new_points_, kPhase);
+  offset_.discard(device_, new_points_, kPhase);
+}
+
 std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
                                                const DeviceArray<cl_int> &redundant_mark,
                                                const DeviceArray<cl_int> &redundant_anchor,
                                                const DeviceArray<cl_int> &tracked) {
+  new_points_ = m;
   if (m == 0)
     return 0;
   // The claims of the points that came since the last call start empty.

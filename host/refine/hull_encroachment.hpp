@@ -26,6 +26,10 @@ public:
                                const DeviceArray<cl_int> &redundant_mark,
                                const DeviceArray<cl_int> &redundant_anchor,
                                const DeviceArray<cl_int> &tracked);
+  // Between calls: the per-new-point lists keep the memory of the last
+  // call's entries, which the next one (of about the same size) writes
+  // again, and give the rest back to the system (DeviceArray::discard).
+  void trim_lists();
 
 private:
   Device &device_;
@@ -37,6 +41,7 @@ private:
   DeviceArray<cl_int> claim_;
   std::size_t claims_filled_ = 0;      // claim_ is set (empty) below this point
   DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
+  std::size_t new_points_ = 0;         // of the last call
 };
 
 } // namespace clmesh

@@ -11,11 +11,20 @@ const char *kFile = "offcenter_insertion.cl";
 constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_CANDIDATE)
 } // namespace
 
-OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
-                                       double max_area, int filter_rings, int filter_distance_rings,
-                                       double filter_near, bool parallel_midpoints,
-                                       int election_rings, bool conforming, int protected_segments,
-                                       bool inward, const std::vector<double> &region_areas,
+std::vector<std::size_t> OffcenterInsertion::scratch_lists(const DeviceMesh &mesh) {
+  const std::size_t slots = mesh.triangle_capacity;
+  // In the order of List.
+  std::vector<std::size_t> bytes{slots * sizeof(cl_double2), slots * sizeof(cl_double)};
+  bytes.resize(kPriority + 1, slots * sizeof(cl_int));
+  return bytes;
+}
+
+OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool,
+                                       double min_angle, double max_area, int filter_rings,
+                                       int filter_distance_rings, double filter_near,
+                                       bool parallel_midpoints, int election_rings, bool conforming,
+                                       int protected_segments, bool inward,
+                                       const std::vector<double> &region_areas,
                                        const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
@@ -34,15 +43,17 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       filter_(device.kernel(kFile, "insertion_filter", kPhase)),
       clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
       append_(device.kernel(kFile, "append_survivors", kPhase)),
-      candidate_(device, mesh.triangle_capacity), bad_list_(device, mesh.triangle_capacity),
-      origin_(device, mesh.triangle_capacity), container_(device, mesh.triangle_capacity),
-      split_edge_(device, mesh.triangle_capacity), survive_(device, mesh.triangle_capacity),
-      keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
-      tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
-      priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
-      radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), splits_boundary_(device, mesh.triangle_capacity),
-      region_area_(device, region_areas.size()), size_bound_(size_bound) {
+      candidate_(pool.list<cl_double2>(kCandidate)), bad_list_(device, mesh.triangle_capacity),
+      origin_(pool.list<cl_int>(kOrigin)), container_(pool.list<cl_int>(kContainer)),
+      split_edge_(pool.list<cl_int>(kSplitEdge)), survive_(pool.list<cl_int>(kSurvive)),
+      keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)),
+      tie_mark_(device, mesh.triangle_capacity), listed_(pool.list<cl_int>(kListed)),
+      priority_(pool.list<cl_uint>(kPriority)), last_container_(device, mesh.triangle_capacity),
+      radius2_(pool.list<cl_double>(kRadius2)), stuck_(device, mesh.triangle_capacity),
+      stuck_count_(device, 1), splits_boundary_(pool.list<cl_int>(kContainer)),
+      splits_own_boundary_(pool.list<cl_int>(kSurvive)), region_area_(device, region_areas.size()),
+      size_bound_(size_bound), pooled_keep_(pool.list<cl_int>(kCandidate)),
+      pooled_offset_(pool.list<cl_int>(kRadius2)) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   stuck_count_.fill(device_, 0, 1);
@@ -110,14 +121,24 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
     search_.append(device_, bad_list_, bad_);
     if (changed->size > 0)
       search_.append(device_, changed->items, changed->size);
-    if (search_keep_.size() < search_.size) {
+    // The scan's scratch: two lists of the pool that hold candidates only
+    // later, when they are long enough (they nearly always are), else lists
+    // of its own.
+    const bool pooled = search_.size <= std::min(pooled_keep_.size(), pooled_offset_.size());
+    if (!pooled && search_keep_.size() < search_.size) {
       search_keep_ = DeviceArray<cl_int>(device_, search_.items.size());
       search_offset_ = DeviceArray<cl_int>(device_, search_.items.size());
     }
-    entries = static_cast<std::size_t>(scan.unique(search_.items, search_.size, mesh_.tri_mark,
-                                                   search_keep_, search_offset_, listed_, kPhase));
+    entries = static_cast<std::size_t>(scan.unique(
+        search_.items, search_.size, mesh_.tri_mark, pooled ? pooled_keep_ : search_keep_,
+        pooled ? pooled_offset_ : search_offset_, listed_, kPhase));
+    // The pages past this search's entries go back to the system (the next
+    // search, of about the same size, writes those it keeps again).
+    for (const DeviceArray<cl_int> *list : {&search_.items, &search_keep_, &search_offset_})
+      list->discard(device_, search_.size, kPhase);
   }
   searched_ = true;
+  searched_entries_ = entries;
   const auto items = static_cast<cl_int>(entries);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
                 static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
@@ -132,7 +153,8 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   if (bad_ == 0)
     return 0;
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
-           static_cast<cl_int>(use_list), bad_list_.buffer(), items);
+           static_cast<cl_int>(use_list), splits_boundary_.buffer(), bad_list_.buffer(),
+           splits_own_boundary_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   return bad_;
 }
@@ -143,7 +165,8 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
   set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           static_cast<cl_int>(election_rings_), splits_boundary_.buffer(), keep_.buffer(), bad);
+           static_cast<cl_int>(election_rings_), splits_own_boundary_.buffer(), keep_.buffer(),
+           bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
@@ -211,6 +234,7 @@ std::size_t OffcenterInsertion::append_survivors(std::size_t room, PrefixScan &s
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
   const std::size_t new_slots = free.take(count);
+  mesh_.fill_point_slots(device_, mesh_.point_count + new_slots);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : offset_.buffer();
   set_args_from(append_, mesh_.bind(append_, 0), candidate_.buffer(), container_.buffer(),
                 split_edge_.buffer(), radius2_.buffer(), priority_.buffer(), survive_.buffer(),

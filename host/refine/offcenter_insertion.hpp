@@ -3,6 +3,7 @@
 #pragma once
 
 #include "runtime/prefix_scan.hpp"
+#include "runtime/scratch_pool.hpp"
 
 #include "clmesh/geometry.hpp"
 
@@ -33,10 +34,13 @@ public:
   // region_areas: the maximum area of
   // each region of DeviceMesh::tri_region (<= 0: none; empty without regions);
   // size_bound: each triangle slot's own area bound (SizeBound; null: none).
-  OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
-                     int filter_rings, int filter_distance_rings, double filter_near,
-                     bool parallel_midpoints, int election_rings, bool conforming,
-                     int protected_segments, bool inward, const std::vector<double> &region_areas,
+  // The candidates' lists are those of `pool` (scratch_lists): no other step
+  // runs from find_bad_triangles to append_survivors.
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
+                     double max_area, int filter_rings, int filter_distance_rings,
+                     double filter_near, bool parallel_midpoints, int election_rings,
+                     bool conforming, int protected_segments, bool inward,
+                     const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -67,6 +71,10 @@ public:
   // how many were appended.
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
+  // The sizes in bytes of the lists it takes from a ScratchPool.
+  static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
+  // Triangles the last search examined: the most entries a list took.
+  std::size_t entries_used() const { return searched_entries_; }
 
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
@@ -79,6 +87,19 @@ public:
   double lens() const { return lens_; }
 
 private:
+  // The lists in the pool.
+  enum List {
+    kCandidate,
+    kRadius2,
+    kKeep,
+    kOffset,
+    kListed,
+    kOrigin,
+    kContainer,
+    kSplitEdge,
+    kSurvive,
+    kPriority
+  };
   // The filter's marks cleared, when append_survivors appends nothing.
   void clear_candidate_marks();
   Device &device_;
@@ -94,8 +115,13 @@ private:
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
       mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;
-  bool searched_ = false;     // the first search examines every slot
-  DeviceList<cl_int> search_; // the next search's triangles, with duplicates
+  bool searched_ = false;            // the first search examines every slot
+  std::size_t searched_entries_ = 0; // triangles the last search examined
+  DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
+  // The scratch of the scan that makes the search list: lists of the pool
+  // (those of candidate_ and radius2_, not used before the candidates are
+  // located; pooled_keep_, pooled_offset_), or these when the search list is
+  // longer.
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> bad_list_; // the bad triangles of the last search
@@ -114,10 +140,12 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
-  // Per triangle slot, set by the search for a bad one: does its candidate
-  // split an edge of its own on the boundary (splits_own_edge)? It is then
-  // elected whatever its neighbours' priorities.
-  DeviceArray<cl_int> splits_boundary_;
+  // Per entry of the search, set for a bad triangle, then per bad triangle
+  // (bad_list_'s order): does its candidate split an edge of its own on the
+  // boundary (splits_own_edge)? It is then elected whatever its neighbours'
+  // priorities. Lists of the pool that hold candidates only later (those of
+  // container_ and survive_).
+  DeviceArray<cl_int> splits_boundary_, splits_own_boundary_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).
@@ -130,6 +158,7 @@ private:
   // that the pages past the used slots are not touched (not resident).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
+  DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
 };
 
 } // namespace clmesh

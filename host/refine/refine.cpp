@@ -172,18 +172,24 @@ constexpr const char *kPrograms[] = {"offcenter_insertion.cl", "hull_encroachmen
 struct RefinementSteps {
   RefinementSteps(DelaunayScheduler &scheduler, const RefineOptions &options, bool inward,
                   const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
-      : offcenter(scheduler.device(), scheduler.mesh(), options.min_angle,
+      : scratch(scheduler.device(), {OffcenterInsertion::scratch_lists(scheduler.mesh()),
+                                     MissingPointInsertion::scratch_lists(scheduler.mesh()),
+                                     FlipFlop::scratch_lists(scheduler.mesh())}),
+        offcenter(scheduler.device(), scheduler.mesh(), scratch, options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.conforming,
                   options.protected_segments, inward, region_areas, size_bound),
-        insertion(scheduler.device(), scheduler.mesh(), scheduler.scan()),
-        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(),
+        insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
+        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}
+  // The lists of the off-centers' step, of the insertion and of flip-flop:
+  // one runs at a time.
+  ScratchPool scratch;
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
   FlipFlop flipflop;
@@ -382,10 +388,13 @@ private:
       for (int32_t &v : t)
         v = scheduler_.device_point(v);
     MeshReconstruction reconstruction(device_, mesh(), corners);
-    Pslg outline;
+    std::vector<Segment> outline_segments;
     for (const Segment &s : pslg_->segments)
       if (s.marker != kInnerEdge)
-        outline.segments.push_back(s);
+        outline_segments.push_back(s);
+    const std::vector<Point> no_points;
+    const std::vector<Region> no_regions;
+    const Pslg outline{no_points, outline_segments, no_points, no_regions};
     std::vector<Segment> constraints =
         insert_constraints(device_, scheduler_, outline, result_.constraints, crossings_);
     long missing = reconstruction.label();
@@ -602,6 +611,9 @@ private:
   std::size_t find_bad_triangles() {
     update_size_bounds();
     const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
+    // The pages past this list's entries go back to the system (the next
+    // one, of about the same size, writes those it keeps again).
+    changed_.items.discard(device_, changed_.size, OffcenterInsertion::kPhase);
     changed_.size = 0;
     stats_.remaining_bad = static_cast<long>(bad);
     last_bad_ = bad;
@@ -696,6 +708,11 @@ private:
     changed_.append(device_, insertion.changed(), 4 * inserted);
     steps_->flipflop.run(insertion.changed(), 4 * inserted, steps_->new_points, added,
                          scheduler_.stamp(), changed_, deletion_log_, flips_);
+    steps_->flipflop.trim_lists();
+    insertion.trim_lists();
+    steps_->scratch.trim(std::max({steps_->offcenter.entries_used(), insertion.entries_used(),
+                                   steps_->flipflop.entries_used()}),
+                         mesh().list_capacity, FlipFlop::kPhase);
     scheduler_.timer().charge(FlipFlop::kPhase);
     const auto deleted = static_cast<std::size_t>(flips_.deleted - deleted_before);
     deleted_since_collection_ = deleted_since_collection_ || deleted > 0;
@@ -810,9 +827,10 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
       index_of[i] = static_cast<int32_t>(kept.size());
       kept.push_back(static_cast<int32_t>(i));
     }
-  Pslg subset{{}, {}, pslg.holes, {}};
+  std::vector<Point> points;
+  points.reserve(kept.size());
   for (int32_t i : kept)
-    subset.points.push_back(pslg.points[static_cast<std::size_t>(i)]);
+    points.push_back(pslg.points[static_cast<std::size_t>(i)]);
   std::vector<Triangle> corners = triangles;
   for (Triangle &t : corners)
     for (int32_t &v : t)
@@ -822,7 +840,9 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
     s.a = index_of[static_cast<std::size_t>(s.a)];
     s.b = index_of[static_cast<std::size_t>(s.b)];
   }
-  subset.segments = mesh_constraints(corners, segments);
+  const std::vector<Segment> constraints = mesh_constraints(corners, segments);
+  const std::vector<Region> no_regions;
+  const Pslg subset{points, constraints, pslg.holes, no_regions};
 
   RefineResult result;
   check_area_bound(device, subset.points, options, result.stats);

@@ -26,7 +26,6 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   const std::size_t points_now = point_capacity + extra_points;
   const std::size_t triangles_now = 2 * points_now + 2;
-  const cl_int constraints_end = constraint_start.read(device, point_capacity);
   points = points.grown(device, points_now, cl_double2{{0, 0}});
   original_id = original_id.grown(device, points_now, 0);
   tri_vertex = tri_vertex.grown(device, 3 * triangles_now, 0);
@@ -36,10 +35,11 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   modified_stamp = modified_stamp.enlarged(device, triangles_now, triangles_filled);
   children = children.grown(device, 3 * triangles_now, -1);
   vertex_triangle = vertex_triangle.grown(device, points_now, 0);
-  duplicate_of = duplicate_of.grown(device, points_now, -1);
+  // Past points_filled: set when used (fill_point_slots).
+  duplicate_of = duplicate_of.enlarged(device, points_now, points_filled);
   location = location.grown(device, points_now, 0);
   location_edge = location_edge.grown(device, points_now, -1);
-  constraint_start = constraint_start.grown(device, points_now + 1, constraints_end);
+  constraint_start = constraint_start.enlarged(device, points_now + 1, points_filled + 1);
   if (has_regions)
     tri_region = tri_region.grown(device, triangles_now, -1);
   if (point_state.size() > 0) {
@@ -54,6 +54,33 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   point_capacity = points_now;
   triangle_capacity = triangles_now;
   list_capacity = 4 * triangle_capacity / 3 + 16;
+}
+
+void DeviceMesh::discard_except(Device &device,
+                                std::initializer_list<const DeviceArray<cl_int> *> kept) {
+  const char *phase = "download";
+  for (const DeviceArray<cl_int> *array :
+       {&original_id, &tri_vertex, &tri_neighbor, &tri_mark, &modified_stamp, &children,
+        &vertex_triangle, &duplicate_of, &location, &location_edge, &constraint_start,
+        &constraint_adjacent, &constraint_segment, &tri_region, &free_triangles.slots,
+        &free_points.slots, &point_state, &point_segment, &segment_end})
+    if (std::find(kept.begin(), kept.end(), array) == kept.end())
+      array->discard(device, 0, phase);
+  points.discard(device, 0, phase);
+  insertion_radius2.discard(device, 0, phase);
+  point_priority.discard(device, 0, phase);
+}
+
+void DeviceMesh::fill_point_slots(Device &device, std::size_t count) {
+  if (count <= points_filled)
+    return;
+  const std::size_t first = points_filled, added = std::min(count, point_capacity) - first;
+  if (first == 0)
+    constraint_start.fill_range(device, 0, 0, 1, "setup"); // the first row starts at 0
+  duplicate_of.fill_range(device, -1, first, added, "setup");
+  // A point's row ends where the next one starts: empty rows end with the last.
+  constraint_start.fill_range(device, constraint_entries, first + 1, added, "setup");
+  points_filled += added;
 }
 
 void DeviceMesh::fill_triangle_slots(Device &device, std::size_t slots) {
@@ -88,7 +115,8 @@ cl_uint DeviceMesh::bind(cl::Kernel &kernel, cl_uint first) const {
 }
 
 void DeviceMesh::set_constraint_rows(Device &device, const std::vector<Segment> &segments) {
-  const std::size_t n = point_capacity, m = segments.size();
+  // The rows of the points in use (the others end where the last one does).
+  const std::size_t n = points_filled, m = segments.size();
   std::vector<cl_int> start(n + 1, 0), adjacent(2 * m), segment(2 * m);
   for (const Segment &s : segments) {
     ++start[s.a + 1];
@@ -105,6 +133,7 @@ void DeviceMesh::set_constraint_rows(Device &device, const std::vector<Segment> 
     adjacent[cursor[s.b]++] = s.a;
   }
   constraint_start.upload(device, start);
+  constraint_entries = static_cast<cl_int>(adjacent.size());
   constraint_adjacent = DeviceArray<cl_int>(device, adjacent.size());
   constraint_adjacent.upload(device, adjacent);
   constraint_segment = DeviceArray<cl_int>(device, segment.size());
@@ -118,8 +147,10 @@ void DeviceMesh::enable_refinement(Device &device) {
   point_priority = DeviceArray<cl_uint>(device, point_capacity, kHugePages);
   point_segment = DeviceArray<cl_int>(device, point_capacity, kHugePages);
   segment_end = DeviceArray<cl_int>(device, 2);
-  point_state.fill(device, 0, point_capacity);    // every point so far is an input point
-  point_segment.fill(device, -1, point_capacity); // CLM_NO_SEGMENT
+  // Every point so far is an input point, on no segment (CLM_NO_SEGMENT);
+  // the ones added later set theirs.
+  point_state.fill(device, 0, point_count);
+  point_segment.fill(device, -1, point_count);
 }
 
 void DeviceMesh::set_segments(Device &device, const std::vector<Segment> &segments) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <initializer_list>
 #include <vector>
 
 namespace clmesh {
@@ -18,6 +19,13 @@ public:
       : size_(size), huge_pages_(huge_pages) {
     buffer_ = guarded("allocation", "allocating a device array",
                       [&] { return device.allocate(sizeof(T) * (size ? size : 1), huge_pages); });
+  }
+  // The memory of `memory` (a ScratchPool's list) as `size` entries.
+  static DeviceArray view(const cl::Buffer &memory, std::size_t size) {
+    DeviceArray array;
+    array.buffer_ = memory;
+    array.size_ = size;
+    return array;
   }
   std::size_t size() const { return size_; }
   const cl::Buffer &buffer() const { return buffer_; }
@@ -73,6 +81,12 @@ public:
   }
   void fill(Device &device, T value, std::size_t count) const {
     fill_range(device, value, 0, count, "setup");
+  }
+  // Entries from `first` on discarded: their memory goes back to the system
+  // (Device::discard) and they hold zeros or old values when next read.
+  void discard(Device &device, std::size_t first, const char *phase) const {
+    if (first < size_)
+      device.discard(buffer_, first * sizeof(T), (size_ - first) * sizeof(T), phase);
   }
   // Entries [first, first + count) set to `value`.
   void fill_range(Device &device, T value, std::size_t first, std::size_t count,
@@ -152,6 +166,7 @@ struct DeviceMesh {
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
   DeviceArray<cl_int> constraint_segment;  // per entry of constraint_adjacent: its constraint
   bool has_constraints = false;            // any row not empty
+  cl_int constraint_entries = 0;           // entries of constraint_adjacent: where rows end
   // The region of each triangle slot (-1: none; triangle_capacity entries)
   // once has_regions, else one unused entry (cl/mesh_params.h).
   DeviceArray<cl_int> tri_region;
@@ -160,6 +175,16 @@ struct DeviceMesh {
   // Uploads `segments` (device point numbers, distinct, none of zero length)
   // as the constraint rows.
   void set_constraint_rows(Device &device, const std::vector<Segment> &segments);
+
+  // duplicate_of (-1: none) and constraint_start (empty rows) hold their
+  // first values for the points below points_filled; those past it are set
+  // only when the points come into use (fill_point_slots, before
+  // point_count passes them), so that the pages past the points in use are
+  // not touched (not resident). The points added later write their other
+  // arrays themselves (location, the refinement's state...).
+  std::size_t points_filled = 0;
+  // Points [points_filled, count) set so.
+  void fill_point_slots(Device &device, std::size_t count);
 
   std::size_t triangle_count = 0; // slots in use or freed (DT and CDT never delete)
 
@@ -209,6 +234,10 @@ struct DeviceMesh {
   // and refinement swap the buffers.
   cl_uint bind_triangulation(cl::Kernel &kernel, cl_uint first) const;
   cl_uint bind(cl::Kernel &kernel, cl_uint first) const;
+
+  // Every array but those in `kept` gives its memory back to the system
+  // (DeviceArray::discard): the mesh's last use is over but for them.
+  void discard_except(Device &device, std::initializer_list<const DeviceArray<cl_int> *> kept);
 
   // Makes room for `extra_points` more points (and their triangles), keeping
   // every array's contents (thesis §3.6.1: arrays expand when slots run out).

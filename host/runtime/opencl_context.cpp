@@ -452,6 +452,24 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
   launch(*this, fill_words_, bytes / word, phase);
 }
 
+void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
+                     const std::string &phase) {
+  constexpr std::size_t page = 4096;
+  if (!cpu_paths_ || bytes < page)
+    return;
+  auto *host = static_cast<char *>(
+      guarded(phase, "querying a buffer", [&] { return buffer.getInfo<CL_MEM_HOST_PTR>(); }));
+  if (host == nullptr)
+    return;
+  const auto start = reinterpret_cast<std::uintptr_t>(host) + offset;
+  const std::uintptr_t first = (start + page - 1) / page * page,
+                       last = (start + bytes) / page * page;
+  if (last <= first)
+    return;
+  wait(phase); // no kernel writes the pages while they go
+  madvise(reinterpret_cast<void *>(first), last - first, MADV_DONTNEED);
+}
+
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase) {
   launch(device, kernel, items, phase, device.work_group());
 }

@@ -64,6 +64,13 @@ public:
   // buffer's start.
   void fill(const cl::Buffer &buffer, const void *pattern, std::size_t pattern_size,
             std::size_t offset, std::size_t bytes, const std::string &phase);
+  // Gives the pages of bytes [offset, offset + bytes) of `buffer` back to the
+  // system, once the device is done with everything queued: a scratch list's
+  // contents are lost, and its memory comes back (zeroed) when written
+  // again. Only for a buffer in a mapping of its own (allocate, on the CPU
+  // paths), and only whole pages; elsewhere nothing happens.
+  void discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
+               const std::string &phase);
 
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }

@@ -35,13 +35,14 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double 
       clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
       append_(device.kernel(kFile, "append_survivors", kPhase)),
       candidate_(device, mesh.triangle_capacity), bad_list_(device, mesh.triangle_capacity),
+      bad_mark_(device, election_rings > 0 ? mesh.triangle_capacity : 1),
       origin_(device, mesh.triangle_capacity), container_(device, mesh.triangle_capacity),
       split_edge_(device, mesh.triangle_capacity), survive_(device, mesh.triangle_capacity),
       keep_(device, mesh.triangle_capacity), offset_(device, mesh.triangle_capacity),
       tie_mark_(device, mesh.triangle_capacity), listed_(device, mesh.triangle_capacity),
       priority_(device, mesh.triangle_capacity), last_container_(device, mesh.triangle_capacity),
       radius2_(device, mesh.triangle_capacity), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), splits_boundary_(device, mesh.triangle_capacity),
+      stuck_count_(device, 1), notes_(device, mesh.triangle_capacity),
       region_area_(device, region_areas.size()), size_bound_(size_bound) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
@@ -98,11 +99,13 @@ std::size_t OffcenterInsertion::count_unfixable() {
 }
 
 std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
-                                                   const DeviceList<cl_int> *changed) {
+                                                   const DeviceList<cl_int> *changed, int stamp) {
   fill_new_slots();
   // The first search sweeps every slot; the later ones only the last bad
-  // triangles and the changed ones, without duplicates.
+  // triangles and the changed ones, without duplicates: the last bad ones
+  // first, in their order (each slot at its first place), carried.
   const bool use_list = searched_ && changed != nullptr;
+  const auto carried = static_cast<cl_int>(use_list ? bad_ : 0);
   std::size_t entries = mesh_.triangle_count;
   if (use_list) {
     search_.size = 0;
@@ -118,20 +121,23 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   }
   searched_ = true;
   const auto items = static_cast<cl_int>(entries);
+  const auto election = static_cast<cl_int>(election_rings_ > 0);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
-                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(use_list), carried, searched_stamp_, bad_mark_.buffer(),
+                ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(),
-                static_cast<cl_int>(election_rings_ > 0), lens_, splits_boundary_.buffer(), items);
+                static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(), election, lens_,
+                notes_.buffer(), items);
   launch(device_, find_bad_, entries, kPhase);
+  searched_stamp_ = stamp;
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
   if (bad_ == 0)
     return 0;
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
-           static_cast<cl_int>(use_list), bad_list_.buffer(), items);
+           static_cast<cl_int>(use_list), mesh_.tri_mark.buffer(), election, bad_list_.buffer(),
+           bad_mark_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   return bad_;
 }
@@ -142,7 +148,7 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
   set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           static_cast<cl_int>(election_rings_), splits_boundary_.buffer(), keep_.buffer(), bad);
+           static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
@@ -160,7 +166,7 @@ void OffcenterInsertion::locate_candidates(int stamp) {
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
                 candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
                 priority_.buffer(), radius2_.buffer(), lens_, static_cast<cl_int>(inward_),
-                static_cast<cl_int>(stamp), stuck_.buffer(), stuck_count_.buffer(),
+                static_cast<cl_int>(stamp), stuck_.buffer(), notes_.buffer(), stuck_count_.buffer(),
                 static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;

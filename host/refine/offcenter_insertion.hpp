@@ -42,8 +42,12 @@ public:
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
   // search and the triangles listed in `changed` (rewritten since,
-  // duplicates allowed; every slot when null). Returns how many are bad.
-  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed);
+  // duplicates allowed; every slot when null). `stamp`: the mesh's next
+  // modification stamp; a bad triangle of the last search that neither it
+  // nor a neighbour its verdict depends on has been rewritten since keeps
+  // that verdict (see find_bad_triangles in the kernels). Returns how many
+  // are bad.
+  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps
   // waiting (see elect_candidates). Returns how many; candidates() too.
@@ -99,6 +103,9 @@ private:
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> bad_list_; // the bad triangles of the last search
+  // With an election, each one's mark (priority) at that search.
+  DeviceArray<cl_uint> bad_mark_;
+  cl_int searched_stamp_ = 0; // the mesh's stamp at the last search
   // Per candidate: its bad triangle (the elected ones; bad_list_ without an
   // election), container, the edge it lies on, whether it survived the filter.
   DeviceArray<cl_int> origin_, container_, split_edge_, survive_;
@@ -114,10 +121,11 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
-  // Per triangle slot, set by the search for a bad one: does its candidate
-  // split an edge of its own on the boundary (splits_own_edge)? It is then
-  // elected whatever its neighbours' priorities.
-  DeviceArray<cl_int> splits_boundary_;
+  // Per triangle slot, set by the search that assessed a bad one: its notes
+  // (notes in the kernels): whether its candidate splits an edge of its own
+  // on the boundary (splits_own_edge; it is then elected whatever its
+  // neighbours' priorities), and what the next search asks again.
+  DeviceArray<cl_int> notes_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

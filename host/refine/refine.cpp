@@ -601,7 +601,8 @@ private:
   // and the bad ones then. Returns how many there are.
   std::size_t find_bad_triangles() {
     update_size_bounds();
-    const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
+    const std::size_t bad =
+        steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_, scheduler_.stamp());
     changed_.size = 0;
     stats_.remaining_bad = static_cast<long>(bad);
     last_bad_ = bad;

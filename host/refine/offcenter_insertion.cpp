@@ -14,14 +14,16 @@ constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle,
                                        double max_area, int filter_rings, int filter_distance_rings,
                                        double filter_near, bool parallel_midpoints,
-                                       int election_rings, bool conforming, int protected_segments,
-                                       bool inward, const std::vector<double> &region_areas,
+                                       int election_rings, bool carry_verdicts, bool conforming,
+                                       int protected_segments, bool inward,
+                                       const std::vector<double> &region_areas,
                                        const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
       parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
-      conforming_(conforming), protected_segments_(protected_segments), inward_(inward),
+      carry_verdicts_(carry_verdicts), conforming_(conforming),
+      protected_segments_(protected_segments), inward_(inward),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -105,7 +107,7 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   // triangles and the changed ones, without duplicates: the last bad ones
   // first, in their order (each slot at its first place), carried.
   const bool use_list = searched_ && changed != nullptr;
-  const auto carried = static_cast<cl_int>(use_list ? bad_ : 0);
+  const auto carried = static_cast<cl_int>(use_list && carry_verdicts_ ? bad_ : 0);
   std::size_t entries = mesh_.triangle_count;
   if (use_list) {
     search_.size = 0;

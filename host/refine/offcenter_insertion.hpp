@@ -22,7 +22,9 @@ public:
   // one out (0: at any distance); parallel_midpoints: hull midpoints never
   // keep each other out; election_rings: a bad triangle sends a candidate only
   // when none within that many rings has a better priority (0: every one, the
-  // thesis's way; see elect_candidates); conforming (-D): a triangle whose
+  // thesis's way; see elect_candidates); carry_verdicts: a search keeps the
+  // verdicts of the last search's bad triangles that are as it assessed them
+  // (see find_bad_triangles); conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
   // subsegment's diametral circle splits it; protected_segments (-Y 1, -YY 2):
   // boundary edges (and subsegments) no point may split: a candidate that
@@ -35,8 +37,9 @@ public:
   // size_bound: each triangle slot's own area bound (SizeBound; null: none).
   OffcenterInsertion(Device &device, DeviceMesh &mesh, double min_angle, double max_area,
                      int filter_rings, int filter_distance_rings, double filter_near,
-                     bool parallel_midpoints, int election_rings, bool conforming,
-                     int protected_segments, bool inward, const std::vector<double> &region_areas,
+                     bool parallel_midpoints, int election_rings, bool carry_verdicts,
+                     bool conforming, int protected_segments, bool inward,
+                     const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -92,6 +95,7 @@ private:
   double filter_near2_; // squared; infinite for any distance
   bool parallel_midpoints_;
   int election_rings_;
+  bool carry_verdicts_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside

@@ -507,19 +507,22 @@ inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
   return true;
 }
 
-// Prefetching for find_bad_triangles over a list (prefetch.h): an entry
-// carried from the last search (below `carried`) needs its stamp, notes and
-// mark when it is as assessed, the others their corners.
+// Prefetching for find_bad_triangles over a list (prefetch.h): every entry
+// needs its stamp, notes, stuck stamp and triangle; one carried from the last
+// search (below `carried`) that is as assessed needs its mark, the others
+// their corners.
 inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
                             __global const double2 *points, __global const int *point_state,
                             __global const int *tri_vertex, __global const int *modified_stamp,
-                            __global const int *notes, volatile __global const uint *tri_mark) {
+                            __global const int *notes, __global const int *stuck,
+                            volatile __global const uint *tri_mark) {
   const int far = entry_ahead(list, gid, 2, n);
-  if (far >= 0 && gid + 2 * CLM_AHEAD < carried) {
+  if (far >= 0) {
     warm(modified_stamp + far);
     warm(notes + far);
-  } else if (far >= 0)
+    warm(stuck + far);
     warm(tri_vertex + 3 * far);
+  }
   const int near = entry_ahead(list, gid, 1, n);
   if (near >= 0 && gid + CLM_AHEAD < carried && modified_stamp[near] < stamp)
     warm_for_write(tri_mark + near);
@@ -549,7 +552,7 @@ __kernel void find_bad_triangles(
     return;
   if (use_list)
     prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
-                    modified_stamp, notes, tri_mark);
+                    modified_stamp, notes, stuck, tri_mark);
   else
     warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;

@@ -583,8 +583,8 @@ __kernel void find_bad_triangles(
   is_bad[gid] = bad;
   if (!bad)
     return;
-  int note = behind << CLM_NOTE_BEHIND_SHIFT | apex_dependent_edges(CLM_MESH_ARGS, tri)
-                                                   << CLM_NOTE_APEX_SHIFT;
+  int note = (behind << CLM_NOTE_BEHIND_SHIFT) |
+             (apex_dependent_edges(CLM_MESH_ARGS, tri) << CLM_NOTE_APEX_SHIFT);
   if (election) {
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
     if (splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect))

@@ -389,18 +389,33 @@ inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split
          orient_point(points, a, across, s) > 0;
 }
 
+// The edges of real triangle t that bound the domain and that candidate c
+// lies on or beyond, bit i for edge i.
+inline int edges_behind(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
+  double2 p[3];
+  for (int i = 0; i < 3; ++i)
+    p[i] = points[tri.v[i]];
+  int mask = 0;
+  for (int i = 0; i < 3; ++i)
+    if (beyond_edges(p, 1 << i, c) && bounds_domain(CLM_MESH_ARGS, t, i))
+      mask |= 1 << i;
+  return mask;
+}
+
+// Can an edge of real triangle t in mask not be split (splittable)?
+inline bool unsplittable_edge(CLM_MESH_PARAMS, int inward, int t, int mask) {
+  double2 split;
+  for (int i = 0; i < 3; ++i)
+    if ((mask >> i & 1) && !splittable(CLM_MESH_ARGS, inward, t, i, &split))
+      return true;
+  return false;
+}
+
 // Does candidate c of bad real triangle t lie on or beyond an edge of t
 // that bounds the domain and cannot be split (splittable)? No point then
 // mends t: it is left and counted.
 inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, double2 c) {
-  double2 p[3], split;
-  for (int i = 0; i < 3; ++i)
-    p[i] = points[tri.v[i]];
-  for (int i = 0; i < 3; ++i)
-    if (beyond_edges(p, 1 << i, c) && bounds_domain(CLM_MESH_ARGS, t, i) &&
-        !splittable(CLM_MESH_ARGS, inward, t, i, &split))
-      return true;
-  return false;
+  return unsplittable_edge(CLM_MESH_ARGS, inward, t, edges_behind(CLM_MESH_ARGS, t, tri, c));
 }
 
 // stuck[t]: the stamp of the location that dropped the candidate of bad
@@ -408,7 +423,8 @@ inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, doubl
 // (splittable), not one of t's own; valid while t is not rewritten since.
 // Such a triangle is left and counted as a stranded one is, until a
 // compaction or growth renews the steps (the array) and its candidate is
-// located again.
+// located again. (The location also sets the stuck bit of t's notes, which a
+// search reads instead while t is as it assessed it: see find_bad_triangles.)
 inline bool is_stuck(__global const int *modified_stamp, __global const int *stuck, int t) {
   return modified_stamp[t] < stuck[t];
 }
@@ -433,12 +449,6 @@ inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c,
   return false;
 }
 
-// Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
-// slot gid. The list holds the bad triangles of the last search and the
-// triangles changed since: the others are still good (thesis §3.3.2). With an
-// election, each bad triangle also marks its slot with its priority, ranked as
-// a midpoint's when a corner is on the hull, and sets splits_boundary[gid]
-// (splits_own_edge; see elect_candidates).
 // -D (conforming Delaunay): does real triangle t have an edge on a subsegment
 // or the boundary whose diametral circle holds the opposite vertex (the angle
 // there is obtuse)? Its circumcenter then lies beyond that edge, so the walk
@@ -455,38 +465,132 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
   return false;
 }
 
-__kernel void find_bad_triangles(CLM_MESH_PARAMS, __global const int *list, const int use_list,
-                                 const double ratio_bound_squared, const double max_area,
-                                 __global const double *region_area,
-                                 __global const double *size_bound, const int sized,
-                                 const double offconstant, const int conforming, const int protect,
-                                 const int inward, __global const int *stuck, __global int *is_bad,
-                                 const int election, const double lens,
-                                 __global int *splits_boundary, const int n) {
+// notes[t] of a bad triangle slot, set by the search that assessed it:
+// whether its candidate splits an edge of its own on the boundary
+// (splits_own_edge, with an election; see elect_candidates), the edges that
+// bound the domain and its candidate lies on or beyond (edges_behind: the
+// triangle is stranded once one of them cannot be split), the edges whose
+// subsegment test reads the apex across them (apex_dependent_edges), and
+// whether a location since found it stuck (is_stuck; set by
+// locate_candidates).
+#define CLM_NOTE_SPLITS_OWN_EDGE 1
+#define CLM_NOTE_BEHIND_SHIFT 1 // 3 bits
+#define CLM_NOTE_APEX_SHIFT 4   // 3 bits
+#define CLM_NOTE_STUCK 0x80
+
+// The edges of real triangle t whose subsegment test (is_subsegment) reads
+// the apex across them: an end was added on a segment. The test of the
+// others, and whether an edge lies on the domain's boundary (a ghost
+// across), stay as they are while t is not rewritten.
+inline int apex_dependent_edges(CLM_MESH_PARAMS, VertexTriple tri) {
+  int mask = 0;
+  for (int i = 0; i < 3 && constrained; ++i)
+    if (point_segment[tri.v[next3(i)]] >= 0 || point_segment[tri.v[prev3(i)]] >= 0)
+      mask |= 1 << i;
+  return mask;
+}
+
+// Is bad triangle t as the last search assessed it (stamp: that search's
+// stamp)? Neither t nor a triangle across an apex-dependent edge of its
+// notes is rewritten since: its corners, their points and segments, its
+// area bound and its edges' subsegment tests are the same, and so are the
+// states of its corners: a Steiner point marked redundant since was either
+// deleted, which rewrote t, or kept as it was (points added since are corners
+// of rewritten triangles only).
+inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
+  if (modified_stamp[t] >= stamp)
+    return false;
+  for (int i = 0; i < 3; ++i)
+    if ((note >> (CLM_NOTE_APEX_SHIFT + i) & 1) &&
+        modified_stamp[link_triangle(tri_neighbor[3 * t + i])] >= stamp)
+      return false;
+  return true;
+}
+
+// Prefetching for find_bad_triangles over a list (prefetch.h): every entry
+// needs its stamp, notes, stuck stamp and triangle; one carried from the last
+// search (below `carried`) that is as assessed needs its mark, the others
+// their corners.
+inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
+                            __global const double2 *points, __global const int *point_state,
+                            __global const int *tri_vertex, __global const int *modified_stamp,
+                            __global const int *notes, __global const int *stuck,
+                            volatile __global const uint *tri_mark) {
+  const int far = entry_ahead(list, gid, 2, n);
+  if (far >= 0) {
+    warm(modified_stamp + far);
+    warm(notes + far);
+    warm(stuck + far);
+    warm(tri_vertex + 3 * far);
+  }
+  const int near = entry_ahead(list, gid, 1, n);
+  if (near >= 0 && gid + CLM_AHEAD < carried && modified_stamp[near] < stamp)
+    warm_for_write(tri_mark + near);
+  else
+    warm_corners(points, point_state, tri_vertex, near);
+}
+
+// Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
+// slot gid. The list holds the bad triangles of the last search, first, in
+// its order (the first `carried` entries), and the triangles changed since:
+// the others are still good (thesis §3.3.2). A carried one that is as that
+// search assessed it (assessed_as_is; searched_stamp: its stamp) keeps its
+// verdict: only whether an edge behind its candidate can still be split and
+// whether it got stuck are asked again, and with an election its mark is the
+// one kept in carried_mark[gid]. Every other triangle is assessed. With an
+// election, each bad triangle marks its slot with its priority, ranked as a
+// midpoint's when a corner is on the hull; each one assessed sets notes[slot].
+__kernel void find_bad_triangles(
+    CLM_MESH_PARAMS, __global const int *list, const int use_list, const int carried,
+    const int searched_stamp, __global const uint *carried_mark, const double ratio_bound_squared,
+    const double max_area, __global const double *region_area, __global const double *size_bound,
+    const int sized, const double offconstant, const int conforming, const int protect,
+    const int inward, __global const int *stuck, __global int *is_bad, const int election,
+    const double lens, __global int *notes, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n)
     return;
   if (use_list)
-    prefetch_corners(list, gid, n, points, point_state, tri_vertex);
+    prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
+                    modified_stamp, notes, stuck, tri_mark);
   else
     warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;
+  if (gid < carried) {
+    const int note = notes[t];
+    if (assessed_as_is(CLM_MESH_ARGS, t, note, searched_stamp)) {
+      const bool bad =
+          !unsplittable_edge(CLM_MESH_ARGS, inward, t, note >> CLM_NOTE_BEHIND_SHIFT & 7) &&
+          !(note & CLM_NOTE_STUCK);
+      is_bad[gid] = bad;
+      if (bad && election)
+        tri_mark[t] = carried_mark[gid];
+      return;
+    }
+  }
   const VertexTriple tri = load_vertices(tri_vertex, t);
   double2 steiner;
   uint priority;
-  const bool bad =
-      !is_ghost(tri) && !is_dead(tri) &&
-      bad_triangle_candidate(
-          points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
-          area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
-          offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
-          protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority) &&
-      !stranded(CLM_MESH_ARGS, inward, t, tri, steiner) && !is_stuck(modified_stamp, stuck, t);
+  bool bad = !is_ghost(tri) && !is_dead(tri) &&
+             bad_triangle_candidate(
+                 points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+                 area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
+                 offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
+                 protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
+  const int behind = bad ? edges_behind(CLM_MESH_ARGS, t, tri, steiner) : 0;
+  bad = bad && !unsplittable_edge(CLM_MESH_ARGS, inward, t, behind) &&
+        !is_stuck(modified_stamp, stuck, t);
   is_bad[gid] = bad;
-  if (bad && election) {
+  if (!bad)
+    return;
+  int note = (behind << CLM_NOTE_BEHIND_SHIFT) |
+             (apex_dependent_edges(CLM_MESH_ARGS, tri) << CLM_NOTE_APEX_SHIFT);
+  if (election) {
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
-    splits_boundary[gid] = splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect);
+    if (splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect))
+      note |= CLM_NOTE_SPLITS_OWN_EDGE;
   }
+  notes[t] = note;
 }
 
 // counts[0]: the bad triangles left as they are, counted at the end over
@@ -529,17 +633,19 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
 
 // The bad triangles as a list in the order of the search (offsets by prefix
 // sum), so that candidate k is the same on every device and for every
-// work-group size.
+// work-group size; with an election, each one's mark in carried_mark, for
+// the next search (find_bad_triangles).
 __kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
                                    __global const int *list, const int use_list,
-                                   __global const int *splits_boundary, __global int *origin,
-                                   __global int *splits_own_boundary, const int n) {
+                                   __global const uint *tri_mark, const int election,
+                                   __global int *origin, __global uint *carried_mark, const int n) {
   const int gid = get_global_id(0);
   if (gid >= n || !is_bad[gid])
     return;
-  origin[offset[gid]] = use_list ? list[gid] : gid;
-  // Set by the search only with an election, read only then.
-  splits_own_boundary[offset[gid]] = splits_boundary[gid];
+  const int t = use_list ? list[gid] : gid;
+  origin[offset[gid]] = t;
+  if (election)
+    carried_mark[offset[gid]] = tri_mark[t];
 }
 
 // Prefetching for a kernel that reads the marks of two rings of triangles
@@ -578,7 +684,7 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // iteration without being located, which saves most of the location and
 // filtering work. The best bad triangle always sends its candidate, so the
 // refinement goes on. So do those whose candidate splits an edge of their
-// own on the boundary (splits_boundary[k], set by find_bad_triangles): hull
+// own on the boundary (notes, set by find_bad_triangles): hull
 // midpoints never keep each other out, so the bad triangles along the hull
 // do not wait for each other in turn. The others with a corner on the
 // boundary rank before the rest but take part: along a PSLG's jagged
@@ -586,8 +692,7 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // off-centers, and most of those would lose in the filter.
 __kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
                                __global const uint *tri_mark, const int rings,
-                               __global const int *splits_boundary, __global int *elected,
-                               const int n) {
+                               __global const int *notes, __global int *elected, const int n) {
   const int k = get_global_id(0);
   prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
   if (k >= n)
@@ -595,7 +700,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
   const int t = bad[k];
   const uint mine = tri_mark[t];
   bool best = true;
-  for (int i = 0; i < 3 && best && !splits_boundary[k]; ++i) {
+  for (int i = 0; i < 3 && best && !(notes[t] & CLM_NOTE_SPLITS_OWN_EDGE); ++i) {
     const int u = link_triangle(tri_neighbor[3 * t + i]);
     best = tri_mark[u] >= mine;
     for (int j = 0; j < 3 && best && rings > 1; ++j) {
@@ -697,14 +802,16 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void locate_candidates(
-    CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
-    const double ratio_bound_squared, const double max_area, __global const double *region_area,
-    __global const double *size_bound, const int sized, const double offconstant,
-    const int conforming, const int protect, __global double2 *candidate, __global int *container,
-    __global int *split_edge, __global const int *origin, __global uint *priority,
-    __global double *radius2, const double lens, const int inward, const int stamp,
-    __global int *stuck, volatile __global int *stuck_count, const int max_steps, const int n) {
+__kernel void
+locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
+                  const double ratio_bound_squared, const double max_area,
+                  __global const double *region_area, __global const double *size_bound,
+                  const int sized, const double offconstant, const int conforming,
+                  const int protect, __global double2 *candidate, __global int *container,
+                  __global int *split_edge, __global const int *origin, __global uint *priority,
+                  __global double *radius2, const double lens, const int inward, const int stamp,
+                  __global int *stuck, __global int *notes, volatile __global int *stuck_count,
+                  const int max_steps, const int n) {
   const int k = get_global_id(0);
   prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
                       last_container);
@@ -732,6 +839,7 @@ __kernel void locate_candidates(
   else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, inward, t, hull_edge, &split)) {
     hull_edge = -1; // beyond an edge no point can split: dropped, and bad stuck
     stuck[bad] = stamp;
+    notes[bad] |= CLM_NOTE_STUCK;
     atomic_inc(stuck_count);
   } else if (hull_edge < 0 && touches_hull(point_state, tri)) {
     // A hull edge or subsegment of the container, or of a neighbour that

@@ -208,6 +208,44 @@ TEST_CASE("quality pslg: along coastlines the election sends few of the off-cent
   }
 }
 
+TEST_CASE("quality pslg: a search that keeps unchanged bad triangles' verdicts meshes the same") {
+  // Each search keeps the verdicts of the last search's bad triangles that
+  // nothing their assessment reads has rewritten since (the triangle, and
+  // across edges that end on a segment's added vertex the triangle there);
+  // what can change (can an edge behind the candidate still be split, did a
+  // location find it stuck) is asked again. Assessing every triangle again
+  // must give the very same mesh: with segments and shells, -D's obtuse
+  // triangles, -Y's and -YY's protected edges, regional bounds and splits
+  // that cannot be made within precision (clusters, overlapping constraints).
+  clmesh::Tuning assess_all;
+  assess_all.carry_verdicts = false;
+  for (const char *name :
+       {"water", "simplified-us-border", "clusters", "overlapping_constraints", "kidney"})
+    for (const char *switches : {"pq30", "pcq30", "pq30D", "pq30Y", "pq30YY", "pAq30a"}) {
+      INFO(std::string(name) << " -" << switches);
+      const clmesh::Input pslg = load("pslg", name);
+      clmesh::Options options = clmesh::parse_switches(switches);
+      const clmesh::Mesh carried = clmesh::triangulate(device(), pslg, options);
+      options.tuning = assess_all;
+      const clmesh::Mesh assessed = clmesh::triangulate(device(), pslg, options);
+      CHECK(carried.triangles == assessed.triangles);
+      REQUIRE(carried.segments.size() == assessed.segments.size());
+      bool same_segments = true;
+      for (std::size_t i = 0; i < carried.segments.size(); ++i)
+        same_segments = same_segments && carried.segments[i].a == assessed.segments[i].a &&
+                        carried.segments[i].b == assessed.segments[i].b;
+      CHECK(same_segments);
+      REQUIRE(carried.points.size() == assessed.points.size());
+      bool same_points = true;
+      for (std::size_t i = 0; i < carried.points.size(); ++i)
+        same_points = same_points && carried.points[i].x == assessed.points[i].x &&
+                      carried.points[i].y == assessed.points[i].y;
+      CHECK(same_points);
+      CHECK(carried.statistics.refinement.remaining_bad ==
+            assessed.statistics.refinement.remaining_bad);
+    }
+}
+
 TEST_CASE("quality pslg: tiny input angles, cracks and hanging edges finish") {
   for (const char *name : {"img1", "butterfly", "clusters", "simplified-us-border", "island",
                            "kidney", "square_with_crack", "ditch", "overlapping_constraints"})

@@ -395,6 +395,15 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     tuning.group_pass_limit = clmesh::Tuning{}.group_pass_limit;
     CHECK(first.triangles == by_kernels.triangles);
     CHECK(first.triangles == in_group.triangles);
+    // Nor on whether a search keeps the verdicts of unchanged bad triangles.
+    tuning.carry_verdicts = false;
+    const auto assessed = refine(points, options);
+    tuning.carry_verdicts = true;
+    CHECK(first.triangles == assessed.triangles);
+    REQUIRE(first.points.size() == assessed.points.size());
+    for (std::size_t i = 0; i < first.points.size(); ++i)
+      CHECK(
+          (first.points[i].x == assessed.points[i].x && first.points[i].y == assessed.points[i].y));
   }
 }
 

@@ -22,15 +22,16 @@ std::vector<std::size_t> OffcenterInsertion::scratch_lists(const DeviceMesh &mes
 OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool,
                                        double min_angle, double max_area, int filter_rings,
                                        int filter_distance_rings, double filter_near,
-                                       bool parallel_midpoints, int election_rings, bool conforming,
-                                       int protected_segments, bool inward,
-                                       const std::vector<double> &region_areas,
+                                       bool parallel_midpoints, int election_rings,
+                                       bool carry_verdicts, bool conforming, int protected_segments,
+                                       bool inward, const std::vector<double> &region_areas,
                                        const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
       parallel_midpoints_(parallel_midpoints), election_rings_(election_rings),
-      conforming_(conforming), protected_segments_(protected_segments), inward_(inward),
+      carry_verdicts_(carry_verdicts), conforming_(conforming),
+      protected_segments_(protected_segments), inward_(inward),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
@@ -44,16 +45,16 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const S
       clear_(device.kernel(kFile, "clear_candidate_marks", kPhase)),
       append_(device.kernel(kFile, "append_survivors", kPhase)),
       candidate_(pool.list<cl_double2>(kCandidate)), bad_list_(device, mesh.triangle_capacity),
+      bad_mark_(device, election_rings > 0 ? mesh.triangle_capacity : 1),
       origin_(pool.list<cl_int>(kOrigin)), container_(pool.list<cl_int>(kContainer)),
       split_edge_(pool.list<cl_int>(kSplitEdge)), survive_(pool.list<cl_int>(kSurvive)),
       keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)),
       tie_mark_(device, mesh.triangle_capacity), listed_(pool.list<cl_int>(kListed)),
       priority_(pool.list<cl_uint>(kPriority)), last_container_(device, mesh.triangle_capacity),
       radius2_(pool.list<cl_double>(kRadius2)), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), splits_boundary_(pool.list<cl_int>(kContainer)),
-      splits_own_boundary_(pool.list<cl_int>(kSurvive)), region_area_(device, region_areas.size()),
-      size_bound_(size_bound), pooled_keep_(pool.list<cl_int>(kCandidate)),
-      pooled_offset_(pool.list<cl_int>(kRadius2)) {
+      stuck_count_(device, 1), notes_(device, mesh.triangle_capacity),
+      region_area_(device, region_areas.size()), size_bound_(size_bound),
+      pooled_keep_(pool.list<cl_int>(kCandidate)), pooled_offset_(pool.list<cl_int>(kRadius2)) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
   stuck_count_.fill(device_, 0, 1);
@@ -110,11 +111,13 @@ std::size_t OffcenterInsertion::count_unfixable() {
 }
 
 std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
-                                                   const DeviceList<cl_int> *changed) {
+                                                   const DeviceList<cl_int> *changed, int stamp) {
   fill_new_slots();
   // The first search sweeps every slot; the later ones only the last bad
-  // triangles and the changed ones, without duplicates.
+  // triangles and the changed ones, without duplicates: the last bad ones
+  // first, in their order (each slot at its first place), carried.
   const bool use_list = searched_ && changed != nullptr;
+  const auto carried = static_cast<cl_int>(use_list && carry_verdicts_ ? bad_ : 0);
   std::size_t entries = mesh_.triangle_count;
   if (use_list) {
     search_.size = 0;
@@ -140,21 +143,23 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   searched_ = true;
   searched_entries_ = entries;
   const auto items = static_cast<cl_int>(entries);
+  const auto election = static_cast<cl_int>(election_rings_ > 0);
   set_args_from(find_bad_, mesh_.bind(find_bad_, 0), listed_.buffer(),
-                static_cast<cl_int>(use_list), ratio_bound_squared_, max_area_,
-                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(use_list), carried, searched_stamp_, bad_mark_.buffer(),
+                ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
                 static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(),
-                static_cast<cl_int>(election_rings_ > 0), lens_, splits_boundary_.buffer(), items);
+                static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(), election, lens_,
+                notes_.buffer(), items);
   launch(device_, find_bad_, entries, kPhase);
+  searched_stamp_ = stamp;
   bad_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, entries, kPhase));
   candidates_ = 0;
   if (bad_ == 0)
     return 0;
   set_args(gather_bad_, keep_.buffer(), offset_.buffer(), listed_.buffer(),
-           static_cast<cl_int>(use_list), splits_boundary_.buffer(), bad_list_.buffer(),
-           splits_own_boundary_.buffer(), items);
+           static_cast<cl_int>(use_list), mesh_.tri_mark.buffer(), election, bad_list_.buffer(),
+           bad_mark_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   return bad_;
 }
@@ -165,8 +170,7 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
   set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-           static_cast<cl_int>(election_rings_), splits_own_boundary_.buffer(), keep_.buffer(),
-           bad);
+           static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
@@ -184,7 +188,7 @@ void OffcenterInsertion::locate_candidates(int stamp) {
                 static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
                 candidate_.buffer(), container_.buffer(), split_edge_.buffer(), origin.buffer(),
                 priority_.buffer(), radius2_.buffer(), lens_, static_cast<cl_int>(inward_),
-                static_cast<cl_int>(stamp), stuck_.buffer(), stuck_count_.buffer(),
+                static_cast<cl_int>(stamp), stuck_.buffer(), notes_.buffer(), stuck_count_.buffer(),
                 static_cast<cl_int>(mesh_.triangle_count + 8), static_cast<cl_int>(candidates_));
   launch(device_, locate_, candidates_, kPhase);
   located_stamp_ = stamp;

@@ -23,7 +23,9 @@ public:
   // one out (0: at any distance); parallel_midpoints: hull midpoints never
   // keep each other out; election_rings: a bad triangle sends a candidate only
   // when none within that many rings has a better priority (0: every one, the
-  // thesis's way; see elect_candidates); conforming (-D): a triangle whose
+  // thesis's way; see elect_candidates); carry_verdicts: a search keeps the
+  // verdicts of the last search's bad triangles that are as it assessed them
+  // (see find_bad_triangles); conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
   // subsegment's diametral circle splits it; protected_segments (-Y 1, -YY 2):
   // boundary edges (and subsegments) no point may split: a candidate that
@@ -39,15 +41,19 @@ public:
   OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
                      double max_area, int filter_rings, int filter_distance_rings,
                      double filter_near, bool parallel_midpoints, int election_rings,
-                     bool conforming, int protected_segments, bool inward,
+                     bool carry_verdicts, bool conforming, int protected_segments, bool inward,
                      const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
   // search examines every slot; a later one the bad triangles of the last
   // search and the triangles listed in `changed` (rewritten since,
-  // duplicates allowed; every slot when null). Returns how many are bad.
-  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed);
+  // duplicates allowed; every slot when null). `stamp`: the mesh's next
+  // modification stamp; a bad triangle of the last search that neither it
+  // nor a neighbour its verdict depends on has been rewritten since keeps
+  // that verdict (see find_bad_triangles in the kernels). Returns how many
+  // are bad.
+  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps
   // waiting (see elect_candidates). Returns how many; candidates() too.
@@ -109,6 +115,7 @@ private:
   double filter_near2_; // squared; infinite for any distance
   bool parallel_midpoints_;
   int election_rings_;
+  bool carry_verdicts_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
@@ -125,6 +132,9 @@ private:
   DeviceArray<cl_int> search_keep_, search_offset_;
   DeviceArray<cl_double2> candidate_;
   DeviceArray<cl_int> bad_list_; // the bad triangles of the last search
+  // With an election, each one's mark (priority) at that search.
+  DeviceArray<cl_uint> bad_mark_;
+  cl_int searched_stamp_ = 0; // the mesh's stamp at the last search
   // Per candidate: its bad triangle (the elected ones; bad_list_ without an
   // election), container, the edge it lies on, whether it survived the filter.
   DeviceArray<cl_int> origin_, container_, split_edge_, survive_;
@@ -140,12 +150,11 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
-  // Per entry of the search, set for a bad triangle, then per bad triangle
-  // (bad_list_'s order): does its candidate split an edge of its own on the
-  // boundary (splits_own_edge)? It is then elected whatever its neighbours'
-  // priorities. Lists of the pool that hold candidates only later (those of
-  // container_ and survive_).
-  DeviceArray<cl_int> splits_boundary_, splits_own_boundary_;
+  // Per triangle slot, set by the search that assessed a bad one: its notes
+  // (notes in the kernels): whether its candidate splits an edge of its own
+  // on the boundary (splits_own_edge; it is then elected whatever its
+  // neighbours' priorities), and what the next search asks again.
+  DeviceArray<cl_int> notes_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
   // The kernels' size_bound argument (region_area_ stands in, unread, without one).

@@ -179,8 +179,8 @@ struct RefinementSteps {
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
-                  options.delaunay.tuning.election_rings, options.conforming,
-                  options.protected_segments, inward, region_areas, size_bound),
+                  options.delaunay.tuning.election_rings, options.delaunay.tuning.carry_verdicts,
+                  options.conforming, options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
@@ -610,7 +610,8 @@ private:
   // and the bad ones then. Returns how many there are.
   std::size_t find_bad_triangles() {
     update_size_bounds();
-    const std::size_t bad = steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_);
+    const std::size_t bad =
+        steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_, scheduler_.stamp());
     // The pages past this list's entries go back to the system (the next
     // one, of about the same size, writes those it keeps again).
     changed_.items.discard(device_, changed_.size, OffcenterInsertion::kPhase);

@@ -53,6 +53,11 @@ struct Tuning {
   // many rings (0, 1 or 2) has a better priority; 0: every bad triangle sends
   // one (the thesis).
   int election_rings = 2;
+  // A search keeps the verdict of a bad triangle of the last search that
+  // nothing its assessment reads has rewritten since, and asks only what can
+  // change; false assesses every listed triangle again. The mesh never
+  // depends on it.
+  bool carry_verdicts = true;
 
   // Selects a refinement algorithm with its own values of the refinement
   // fields: GPU-QM-V (filter 2 rings, dependent pairs 1 ring further, near 16,

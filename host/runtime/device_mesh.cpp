@@ -74,7 +74,7 @@ void DeviceMesh::discard_except(Device &device,
 void DeviceMesh::fill_point_slots(Device &device, std::size_t count) {
   if (count <= points_filled)
     return;
-  const std::size_t first = points_filled, added = std::min(count, point_capacity) - first;
+  const std::size_t first = points_filled, added = fill_ahead(count, point_capacity) - first;
   if (first == 0)
     constraint_start.fill_range(device, 0, 0, 1, "setup"); // the first row starts at 0
   duplicate_of.fill_range(device, -1, first, added, "setup");

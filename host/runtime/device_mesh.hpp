@@ -179,8 +179,8 @@ struct DeviceMesh {
   // duplicate_of (-1: none) and constraint_start (empty rows) hold their
   // first values for the points below points_filled; those past it are set
   // only when the points come into use (fill_point_slots, before
-  // point_count passes them), so that the pages past the points in use are
-  // not touched (not resident). The points added later write their other
+  // point_count passes them, kFillAhead ahead), so that the pages past the
+  // points in use are not touched (not resident). The points added later write their other
   // arrays themselves (location, the refinement's state...).
   std::size_t points_filled = 0;
   // Points [points_filled, count) set so.
@@ -190,8 +190,9 @@ struct DeviceMesh {
 
   // tri_mark holds no mark and modified_stamp 0 in the slots that were never
   // used, below triangles_filled; the slots past it are set only when they
-  // come into use (fill_triangle_slots, before triangle_count passes them),
-  // so that their pages are not touched (not resident) before.
+  // come into use (fill_triangle_slots, before triangle_count passes them,
+  // kFillAhead ahead), so that their pages are not touched (not resident)
+  // before.
   std::size_t triangles_filled = 0;
   // Slots [triangles_filled, slots) set so (from the first slot after
   // clear_triangle_slots).

@@ -96,6 +96,24 @@ TEST_CASE("size field: every triangle meets the field at its centroid, graded wi
   }
 }
 
+TEST_CASE("size field: a mesh that outgrows its first room, several times") {
+  // The first room knows nothing of the field, which asks for thousands of
+  // times the input's points: the arrays grow while candidates wait, and the
+  // search starts over on the grown mesh.
+  auto field = std::make_shared<clmesh::SizeField>(*halving_field(1e-4));
+  const clmesh::Input input = unit_square();
+  clmesh::Options options = clmesh::parse_switches("pq25");
+  options.size_field = field;
+  const clmesh::Mesh mesh = clmesh::triangulate(device(), input, options);
+  CHECK(mesh.statistics.refinement.stop_reason == clmesh::RefineStop::done);
+  CHECK(mesh.statistics.refinement.growths >= 2);
+  CHECK(mesh.points.size() > 10000);
+  const auto report = clmesh::check_mesh(input, mesh, options);
+  INFO(problems(report));
+  CHECK(report.ok);
+  check_meets_field(mesh, *field);
+}
+
 TEST_CASE("size field: a callback that asks what the field asks gives the same mesh") {
   const auto field = halving_field(0.004);
   const clmesh::Input input = unit_square();

@@ -150,16 +150,27 @@ std::size_t steiner_limit(std::size_t n, const RefineOptions &options, const Ref
 // search after it sweeps every slot, so the first room is what refinement to
 // the angle bound usually takes: point sets gain about 0.6 n Steiner points
 // at 20 degrees and 1.8 n at 30 (uniform, Gaussian, disk; a thin circle up to
-// 3.4 n), and deleted points hold their slots for a while. A growth adds
-// half the room at least, so that few follow.
-std::size_t first_room(const Device &device, std::size_t n, const RefineOptions &options) {
+// 3.4 n), and deleted points hold their slots for a while. With -a, room
+// for a quarter more than the points the area bound needs at least
+// (area_points, check_area_bound): a mesh of the convex hull takes about
+// that many, a domain with holes fewer. A growth adds half the room at
+// least, so that few follow.
+std::size_t first_room(const Device &device, std::size_t n, const RefineOptions &options,
+                       double area_points) {
   const double bound = std::min(options.min_angle, 30.0) / 30.0;
-  auto room = static_cast<std::size_t>(static_cast<double>(n) * std::max(1.0, 2.2 * bound * bound));
-  if (options.max_steiner)
-    room = std::min(room, std::max(n, static_cast<std::size_t>(*options.max_steiner)));
-  if (!device_holds(device, n + room + 4096))
-    room = n;
-  return room + 4096;
+  const auto angle_room =
+      static_cast<std::size_t>(static_cast<double>(n) * std::max(1.0, 2.2 * bound * bound));
+  const auto area_room = static_cast<std::size_t>(std::min(1.25 * area_points, 1e18));
+  const std::size_t cap = options.max_steiner
+                              ? std::max(n, static_cast<std::size_t>(*options.max_steiner))
+                              : std::numeric_limits<std::size_t>::max();
+  // The largest of these the device holds.
+  for (std::size_t room : {std::max(angle_room, area_room), angle_room, n}) {
+    room = std::min(room, cap);
+    if (room == n || device_holds(device, n + room + 4096))
+      return room + 4096;
+  }
+  return n + 4096;
 }
 
 // The programs of the refinement's phases, built with the setup.
@@ -228,7 +239,8 @@ public:
         // the triangles a layout that depends on them alone, whichever
         // construction (and grid) built them.
         scheduler_(device, points, options.delaunay, result.mesh.stats,
-                   first_room(device, points.size(), options) + (pslg ? crossing_room(*pslg) : 0)),
+                   first_room(device, points.size(), options, result.stats.area_bound_points) +
+                       (pslg ? crossing_room(*pslg) : 0)),
         limit_(steiner_limit(points.size(), options, result.stats)) {}
 
   // GPU-DT, and for a PSLG GPU-CDT and its domain; false when all points

@@ -229,18 +229,14 @@ TEST_CASE("quality pslg: a search that keeps unchanged bad triangles' verdicts m
       options.tuning = assess_all;
       const clmesh::Mesh assessed = clmesh::triangulate(device(), pslg, options);
       CHECK(carried.triangles == assessed.triangles);
-      REQUIRE(carried.segments.size() == assessed.segments.size());
-      bool same_segments = true;
-      for (std::size_t i = 0; i < carried.segments.size(); ++i)
-        same_segments = same_segments && carried.segments[i].a == assessed.segments[i].a &&
-                        carried.segments[i].b == assessed.segments[i].b;
-      CHECK(same_segments);
-      REQUIRE(carried.points.size() == assessed.points.size());
-      bool same_points = true;
-      for (std::size_t i = 0; i < carried.points.size(); ++i)
-        same_points = same_points && carried.points[i].x == assessed.points[i].x &&
-                      carried.points[i].y == assessed.points[i].y;
-      CHECK(same_points);
+      const auto same_segment = [](const clmesh::Segment &s, const clmesh::Segment &t) {
+        return s.a == t.a && s.b == t.b;
+      };
+      CHECK(std::equal(carried.segments.begin(), carried.segments.end(), assessed.segments.begin(),
+                       assessed.segments.end(), same_segment));
+      const auto same_point = [](Point p, Point q) { return p.x == q.x && p.y == q.y; };
+      CHECK(std::equal(carried.points.begin(), carried.points.end(), assessed.points.begin(),
+                       assessed.points.end(), same_point));
       CHECK(carried.statistics.refinement.remaining_bad ==
             assessed.statistics.refinement.remaining_bad);
     }

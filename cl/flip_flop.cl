@@ -558,13 +558,16 @@ __kernel void emit_redundant_stars(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const i
 // stars are looked for, tracking, stars and duplicate removal into active),
 // with barriers between them instead of launches: most passes list a few
 // hundred triangles, for which a launch costs more than the work. Entry by
-// entry the results are those of the kernels.
+// entry the results are those of the kernels. The pass's entries in
+// next_active are also appended to `rewritten` from rewritten_size on (the
+// host leaves room for 2 n), as FlipFlop::run does after the kernels.
 // result: [0] the pass's entries in next_active, [1] points marked, [2]
 // stars listed (-1: not looked for, -2: no room for them), [3] the next
 // list's length, [4] exact proposals.
 __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
                                      const int orthogonal_test, const int any_redundant,
                                      const int next_capacity, const int m, const int find_stars,
+                                     __global int *rewritten, const int rewritten_size,
                                      __local int *scratch, volatile __global int *result,
                                      const int stamp, const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
@@ -599,6 +602,10 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
   if (exact > 0)
     atomic_add(&result[4], exact);
   const int marked = marked_count[0];
+  // The pass's entries (results and losers) appended to `rewritten`.
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < next; k += size)
+    rewritten[rewritten_size + k] = next_active[k];
   int stars = -1, length = next;
   if (marked > 0 || find_stars) {
     barrier(CLK_GLOBAL_MEM_FENCE);

@@ -91,10 +91,10 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                           " passes");
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
-    const PassResult result = n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
-                                  ? pass_in_group(n, any_redundant, pass_stamp, counts)
-                                  : pass_by_kernels(n, any_redundant, pass_stamp, counts);
-    rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
+    const PassResult result =
+        n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
+            ? pass_in_group(n, any_redundant, pass_stamp, rewritten, counts)
+            : pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
     run_entries_ = std::max({run_entries_, result.next, result.length});
     ++counts.passes;
     if (result.looked_for_stars) {
@@ -169,6 +169,7 @@ cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
 }
 
 FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
+                                               DeviceList<cl_int> &rewritten,
                                                FlipFlopCounts &counts) {
   const auto items = static_cast<cl_int>(n);
   marked_count_.fill(device_, 0, 1);
@@ -185,6 +186,7 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   result.next = static_cast<std::size_t>(scan_.exclusive_scan(count_, offset_, n, kPhase));
   set_args_from(gather_next_, bind_lists(gather_next_, 0), items);
   launch(device_, gather_next_, n, kPhase);
+  rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
   result.marked = marked;
   result.looked_for_stars = result.marked > 0 || redundant_left_;
   if (result.looked_for_stars)
@@ -193,11 +195,14 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
 }
 
 FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
+                                             DeviceList<cl_int> &rewritten,
                                              FlipFlopCounts &counts) {
   // The group may have to be smaller for this large kernel than for the others.
   const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
+  rewritten.reserve(device_, 2 * n); // each entry passes on two at most
   bind(pass_in_group_, orthogonal_test_, any_redundant, static_cast<cl_int>(next_active_.size()),
        static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
+       rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
        cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
   launch(device_, pass_in_group_, group, kPhase, group);
   const std::vector<cl_int> values = pass_result_.download(device_, 5);
@@ -210,6 +215,7 @@ FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant
   result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
   result.length = static_cast<std::size_t>(values[3]);
   counts.exact_checks += values[4];
+  rewritten.size += result.next;
   return result;
 }
 

@@ -91,12 +91,13 @@ private:
     std::size_t length = 0;
   };
   // Short lists take one work-group for the whole pass (flipflop_pass_in_group)
-  // when the points to track are few too.
+  // when the points to track are few too. Either way the pass's entries in
+  // next_active_ are appended to `rewritten`.
   static constexpr std::size_t kTrackedInGroup = 8192;
   PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
-                             FlipFlopCounts &counts);
+                             DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
   PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                           FlipFlopCounts &counts);
+                           DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.

@@ -164,10 +164,11 @@ std::size_t first_room(const Device &device, std::size_t n, const RefineOptions 
   const std::size_t cap = options.max_steiner
                               ? std::max(n, static_cast<std::size_t>(*options.max_steiner))
                               : std::numeric_limits<std::size_t>::max();
-  // The largest of these the device holds.
-  for (std::size_t room : {std::max(angle_room, area_room), angle_room, n}) {
+  // The larger room when the device holds it, else the angle bound's, else
+  // the input's.
+  for (std::size_t room : {std::max(angle_room, area_room), angle_room}) {
     room = std::min(room, cap);
-    if (room == n || device_holds(device, n + room + 4096))
+    if (device_holds(device, n + room + 4096))
       return room + 4096;
   }
   return n + 4096;

@@ -129,6 +129,11 @@ private:
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
+  // Per triangle slot: the smallest entry proposing a removal whose star's
+  // smallest slot it is, which applies it (removal_claim in the kernels);
+  // kNoClaim between passes, set below claims_filled_.
+  DeviceArray<cl_int> removal_claim_;
+  std::size_t claims_filled_ = 0;
   // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
   // totals, not cleared each iteration.
   static constexpr std::size_t kTotals = 5;

@@ -1,17 +1,20 @@
 // clmesh — the boundary routine of thesis §3.4.1 (Mechanisms for GPU-QM to
-// handle boundary refining), run at the start of step 3: the old Steiner
-// points that encroach a hull edge split in this iteration are marked
-// redundant, for flip-flop (flip_flop.cl) to delete.
+// handle boundary refining), run at the start of step 3: the Steiner points
+// in the diametral circle of a hull edge split in this iteration are marked
+// redundant, for flip-flop (flip_flop.cl) to delete, as Triangle deletes the
+// free vertices in the diametral circle of a subsegment it splits.
 #include "common.h"
 #include "mesh_params.h"
 #include "refinement.h"
 #include "vertex_star.h"
 
 // For each hull midpoint v of this iteration, on the former hull edge a-b with apex c, the
-// off-centers among c and c's neighbours that encroach a-b are marked
-// redundant (Triangle would not have inserted them: it splits the edge
-// instead). Three kernels over the new points, so that the list of the old
-// points marked is the same on every run: each encroacher is claimed by the
+// off-centers among c and c's neighbours that lie in a-b's diametral circle (see a-b at an
+// obtuse angle) are marked redundant. Triangle would not have inserted the new ones among
+// them (it splits the edge instead), and deletes the old ones when it splits the edge: near
+// the boundary they were put where the halves and their triangles need none, and a bad
+// triangle left by the deletion sends its point again. Three kernels over the new points, so that
+// the list of the old points marked is the same on every run: each encroacher is claimed by the
 // smallest midpoint (claim), the midpoints count the old ones they own
 // (count), and write them after a prefix sum (write).
 #define CLM_ENCROACH_CLAIM 0
@@ -19,11 +22,10 @@
 #define CLM_ENCROACH_WRITE 2
 
 __kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_points,
-                                      const double lens, const int step,
-                                      volatile __global int *claim, __global int *redundant_mark,
-                                      __global int *redundant_anchor, __global int *owned,
-                                      __global const int *offset, __global int *tracked,
-                                      const int first, const int n) {
+                                      const int step, volatile __global int *claim,
+                                      __global int *redundant_mark, __global int *redundant_anchor,
+                                      __global int *owned, __global const int *offset,
+                                      __global int *tracked, const int first, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
@@ -53,7 +55,7 @@ __kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_p
     if (q >= 0) {
       const int state = point_state[q];
       if ((state == CLM_POINT_STEINER || state == CLM_POINT_NEW) &&
-          in_lens(points[a], points[b], points[q], lens)) {
+          in_lens(points[a], points[b], points[q], 0.0)) {
         if (step == CLM_ENCROACH_CLAIM) {
           atomic_min(&claim[q], k);
         } else if (claim[q] == k) {

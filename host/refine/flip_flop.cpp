@@ -26,8 +26,8 @@ std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
 }
 
 FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-                   bool orthogonal_test, double lens, std::size_t group_pass_limit)
-    : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan, lens),
+                   bool orthogonal_test, std::size_t group_pass_limit)
+    : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan),
       orthogonal_test_(orthogonal_test ? 1 : 0), group_pass_limit_(group_pass_limit),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
       propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),

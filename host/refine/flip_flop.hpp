@@ -41,12 +41,11 @@ public:
 
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
-  // lens: Triangle's encroachment test of hull edges (HullEncroachment).
   // group_pass_limit: Tuning::group_pass_limit.
   // The lists of the passes are those of `pool` (scratch_lists, from
   // kStar on): no other step runs while run() does.
   FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-           bool orthogonal_test, double lens, std::size_t group_pass_limit);
+           bool orthogonal_test, std::size_t group_pass_limit);
   // The sizes in bytes of the lists it takes from a ScratchPool.
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 

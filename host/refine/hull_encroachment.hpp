@@ -1,6 +1,6 @@
 // clmesh — the boundary routine of thesis §3.4.1, at the start of step 3:
-// the Steiner points in the diametral circle of a hull edge split in this
-// iteration are marked redundant, for flip-flop to delete (as Triangle
+// the Steiner points in the diametral circle of a hull edge or subsegment
+// split in this iteration are marked redundant, for flip-flop to delete (as Triangle
 // deletes them when it splits a subsegment). Kernels:
 // cl/hull_encroachment.cl.
 #pragma once
@@ -15,13 +15,12 @@ public:
 
   HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // `tracked` starts with new_points[0 .. m). For each hull midpoint among
-  // them, the off-centers around the apex of its former hull edge that lie
-  // in the edge's diametral circle are marked
-  // redundant (redundant_mark, redundant_anchor), and the old ones among
-  // them are appended to `tracked` from entry m on. Returns how many were
-  // appended. Which midpoint claims an encroacher is decided by index, so
-  // the list is the same on every run.
+  // `tracked` starts with new_points[0 .. m). For each midpoint among them,
+  // the off-centers around the apexes of its former hull edge or subsegment
+  // that lie in the edge's diametral circle are marked redundant (redundant_mark,
+  // redundant_anchor), and the old ones among them are appended to `tracked` from entry m on.
+  // Returns how many were appended. Which midpoint claims an encroacher is decided by index, so the
+  // list is the same on every run.
   std::size_t mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
                                const DeviceArray<cl_int> &redundant_mark,
                                const DeviceArray<cl_int> &redundant_anchor,

@@ -711,26 +711,6 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
   elected[k] = best;
 }
 
-// The single election: while few triangles are bad, only the best of them
-// sends its candidate, the one with the best mark (find_bad_triangles), of
-// equal ones the first in the search's order. The last bad triangles are so
-// mended one point at a time, as Triangle mends them: a point mends the bad
-// triangles around it before they send points of their own, where the
-// election lets several neighbours through when they are far apart in rings
-// yet near in space. One work-item.
-__kernel void elect_best(__global const int *bad, __global const uint *tri_mark,
-                         __global int *elected, const int n) {
-  if (get_global_id(0) != 0)
-    return;
-  int best = 0;
-  for (int k = 0; k < n; ++k) {
-    elected[k] = 0;
-    if (tri_mark[bad[k]] < tri_mark[bad[best]])
-      best = k;
-  }
-  elected[best] = 1;
-}
-
 // The elected bad triangles as the candidates' origins (offsets by prefix sum),
 // each bad triangle's mark cleared. One left waiting forgets where its last
 // candidate was: it may be rewritten before the next search that locates it.

@@ -300,8 +300,6 @@ TEST_CASE("api: validate(Options) refuses choices that do not go together or are
   CHECK(tuning_error([](clmesh::Tuning &t) { t.election_rings = 0; }) == "");
   CHECK(tuning_error([](clmesh::Tuning &t) { t.election_rings = -1; }) != "");
   CHECK(tuning_error([](clmesh::Tuning &t) { t.election_rings = 3; }) != "");
-  CHECK(tuning_error([](clmesh::Tuning &t) { t.single_election = 0; }) == "");
-  CHECK(tuning_error([](clmesh::Tuning &t) { t.single_election = -1; }) != "");
   CHECK(tuning_error([](clmesh::Tuning &t) { t.filter_near = 0; }) == "");
   CHECK(tuning_error([](clmesh::Tuning &t) { t.filter_near = 1; }) == "");
   CHECK(tuning_error([](clmesh::Tuning &t) { t.filter_near = 0.5; }) != "");
@@ -731,7 +729,6 @@ TEST_CASE("api: a quality mesh is the same on every run; GPU-QM and GPU-QM-V bot
   CHECK(qmv.filter_distance_rings == defaults.filter_distance_rings);
   CHECK(qmv.filter_near == defaults.filter_near);
   CHECK(qmv.election_rings == defaults.election_rings);
-  CHECK(qmv.single_election == defaults.single_election);
   // GPU-QM: the thesis's filter, no election.
   clmesh::Options qm_options = options;
   qm_options.tuning = clmesh::Tuning{}.use(clmesh::RefineAlgorithm::qm);
@@ -740,7 +737,6 @@ TEST_CASE("api: a quality mesh is the same on every run; GPU-QM and GPU-QM-V bot
   CHECK(qm_options.tuning.filter_distance_rings == 0);
   CHECK(qm_options.tuning.filter_near == 0);
   CHECK(qm_options.tuning.election_rings == 0);
-  CHECK(qm_options.tuning.single_election == 0);
   const clmesh::Mesh qm = clmesh::triangulate(device(), input, qm_options);
   for (const clmesh::Mesh *mesh : {&first, &qm}) {
     const auto report = clmesh::check_mesh(input, *mesh, options);

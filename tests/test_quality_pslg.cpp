@@ -180,9 +180,11 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
     // At most 5% more vertices than Triangle. Fewer is no fault as long as every bound holds
     // (refine_checked: every triangle below the bound is one of those counted) and no more
     // triangles are left below it than Triangle leaves (up to 5%): concentric shells around
-    // the sharper end of each segment and the triangles left across small input angles make
-    // clmesh's meshes up to 17% smaller there; far fewer would mean refinement stopped early.
-    CHECK(ratio > 0.75);
+    // the sharper end of each segment, the triangles left across small input angles and the
+    // points deleted beside split segments make clmesh's meshes up to 26% smaller there
+    // (clusters -pcq30: 51 vertices and 21 triangles left, Triangle 69 and 27); far fewer
+    // would mean refinement stopped early.
+    CHECK(ratio > 0.7);
     CHECK(ratio < 1.05);
     CHECK(below <= 1.05 * c.triangle_below);
   }
@@ -193,16 +195,13 @@ TEST_CASE("quality pslg: along coastlines the election sends few of the off-cent
   // candidates are off-centers that would lose in the insertion filter. Only
   // those that split an edge of their own on the boundary are sent whatever
   // their neighbours' priorities; the others take part in the election.
-  // The single election of the last few bad triangles is left out: it adds
-  // iterations of one point each, which the ring election is not about.
-  clmesh::Tuning every_one, rings;
+  clmesh::Tuning every_one;
   every_one.election_rings = 0;
-  rings.single_election = 0;
   for (const char *name : {"water", "water-huge2", "simplified-us-border"}) {
     INFO(std::string(name));
     const clmesh::Input coast = load("pslg", name);
     const auto all = refine_checked(coast, "pq30", &every_one).statistics.refinement;
-    const auto elected = refine_checked(coast, "pq30", &rings).statistics.refinement;
+    const auto elected = refine_checked(coast, "pq30").statistics.refinement;
     MESSAGE(std::string(name) << ": candidates, iterations, points: every bad triangle "
                               << all.candidates << ", " << all.iterations << ", " << all.inserted
                               << "; elected " << elected.candidates << ", " << elected.iterations

@@ -233,15 +233,11 @@ TEST_CASE("refine: midpoints of different hull edges go in the same iteration") 
   std::vector<Point> points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (const Point &p : fixtures::uniform(20000, 82))
     points.push_back({0.01 + 0.98 * p.x, 0.01 + 0.98 * p.y});
-  // The single election of the last few bad triangles is left out: its
-  // iterations of one point each are not the midpoints'.
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
-    clmesh::Tuning tuning = tuning_of(algorithm);
-    tuning.single_election = 0;
-    clmesh::Options options = refine_options(20, -1, tuning);
+    clmesh::Options options = refine_options(20, -1, tuning_of(algorithm));
     options.tuning.parallel_midpoints = false;
     const auto one_by_one = refine(points, options);
-    const auto parallel = refine_checked(points, 20, -1, tuning);
+    const auto parallel = refine_checked(points, 20, -1, tuning_of(algorithm));
     MESSAGE("midpoints kept out by better ones: "
             << one_by_one.statistics.refinement.iterations << " iterations, "
             << one_by_one.statistics.refinement.inserted
@@ -266,16 +262,12 @@ TEST_CASE("refine: GPU-QM-V's election locates fewer candidates for the same mes
   const auto qmv = clmesh::RefineAlgorithm::qmv;
   for (const double angle : {20.0, 30.0}) {
     INFO("angle " << angle);
-    // The single election of the last few bad triangles is left out: its
-    // iterations of one point each are not the rings'.
     clmesh::Tuning tuning = tuning_of(qmv);
-    tuning.single_election = 0;
-    const clmesh::Tuning two = tuning;
     tuning.election_rings = 0;
     const auto all = refine_checked(points, angle, -1, tuning);
     tuning.election_rings = 1;
     const auto one_ring = refine_checked(points, angle, -1, tuning);
-    const auto two_rings = refine_checked(points, angle, -1, two);
+    const auto two_rings = refine_checked(points, angle, -1, tuning_of(qmv));
     MESSAGE("candidates, iterations, points: every bad triangle "
             << all.statistics.refinement.candidates << ", " << all.statistics.refinement.iterations
             << ", " << all.statistics.refinement.inserted << "; elected in one ring "

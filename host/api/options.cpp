@@ -220,8 +220,6 @@ void validate(const Options &options) {
     throw OptionError("the insertion filter looks 0 or 1 ring further for dependent pairs");
   if (tuning.election_rings < 0 || tuning.election_rings > 2)
     throw OptionError("the election looks at 0, 1 or 2 rings of triangles");
-  if (tuning.single_election < 0)
-    throw OptionError("the single election's bound on bad triangles cannot be negative");
   if (tuning.filter_near != 0 && !(tuning.filter_near >= 1))
     throw OptionError("the insertion filter's nearness is 0 (any distance) or at least 1");
 }

@@ -37,7 +37,6 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const S
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
       elect_(device.kernel(kFile, "elect_candidates", kPhase)),
-      elect_best_(device.kernel(kFile, "elect_best", kPhase)),
       gather_elected_(device.kernel(kFile, "gather_elected", kPhase)),
       locate_(device.kernel(kFile, "locate_candidates", kPhase)),
       mark_(device.kernel(kFile, "mark_candidate_containers", kPhase)),
@@ -165,19 +164,14 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
   return bad_;
 }
 
-std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan, bool single) {
+std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
   candidates_ = bad_;
   if (bad_ == 0 || election_rings_ == 0)
     return candidates_;
   const auto bad = static_cast<cl_int>(bad_);
-  if (single) {
-    set_args(elect_best_, bad_list_.buffer(), mesh_.tri_mark.buffer(), keep_.buffer(), bad);
-    launch(device_, elect_best_, 1, kPhase);
-  } else {
-    set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
-             static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
-    launch(device_, elect_, bad_, kPhase);
-  }
+  set_args(elect_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
+           static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
+  launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
            mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);

@@ -56,9 +56,8 @@ public:
   std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps
-  // waiting (see elect_candidates); with `single`, the best one only (see
-  // elect_best). Returns how many; candidates() too.
-  std::size_t elect_candidates(PrefixScan &scan, bool single);
+  // waiting (see elect_candidates). Returns how many; candidates() too.
+  std::size_t elect_candidates(PrefixScan &scan);
   std::size_t candidates() const { return candidates_; }
   // Each candidate's off-center, or the hull midpoint where it falls outside
   // or encroaches the hull, and the triangle that contains it. `stamp`: the
@@ -120,8 +119,8 @@ private:
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
-  cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, elect_best_,
-      gather_elected_, locate_, mark_, ties_, filter_, clear_, append_;
+  cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
+      mark_, ties_, filter_, clear_, append_;
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false;            // the first search examines every slot
   std::size_t searched_entries_ = 0; // triangles the last search examined

@@ -283,24 +283,18 @@ public:
   }
 
   // The iterations, until no triangle is bad or a limit is reached.
-  // Single elections (one bad triangle sends its candidate) have a bound
-  // of their own, so that they never take the others' iterations.
   void iterate() {
-    long single_iterations = 0;
     for (long iteration = 0;; ++iteration) {
       if (iteration == 0 || compaction_pays())
         compact();
       const std::size_t bad = find_bad_triangles();
-      const bool single = single_election(bad);
-      const std::size_t candidates = elect_candidates(single);
+      const std::size_t candidates = elect_candidates();
       if (bad == 0)
         break;
-      if ((single ? single_iterations : iteration - single_iterations) == kMaxIterations ||
-          steiner_ >= limit_) {
+      if (iteration == kMaxIterations || steiner_ >= limit_) {
         stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
         break;
       }
-      single_iterations += single;
       const Room room = make_room(candidates);
       if (room == Room::grown)
         continue; // the candidates are found again in the larger arrays
@@ -313,11 +307,6 @@ public:
       const std::size_t added = append_survivors();
       if (added == 0 && steps_->offcenter.stuck_since_last_asked())
         continue; // the next search leaves out the triangles just found stuck
-      if (added == 0 && single) {
-        full_election_ = true; // the best one's candidate fell on a vertex or was dropped
-        continue;
-      }
-      full_election_ = false;
       if (added == 0) {
         // The arrays did not grow past the -S limit, or every candidate fell
         // on a vertex.
@@ -661,18 +650,9 @@ private:
                                                size_bound_ ? &size_bound_->bounds() : nullptr);
   }
 
-  // Whether the election of an iteration that finds `bad` bad triangles
-  // sends the best one only (Tuning::single_election): while few are bad,
-  // unless the last one's candidate went nowhere.
-  bool single_election(std::size_t bad) const {
-    const int below = options_.delaunay.tuning.single_election;
-    return !full_election_ && bad > 0 && bad <= static_cast<std::size_t>(std::max(below, 0));
-  }
-
-  // Step 1: the bad triangles that send a candidate (all, without an
-  // election; the best one only with `single`).
-  std::size_t elect_candidates(bool single) {
-    const std::size_t candidates = steps_->offcenter.elect_candidates(scheduler_.scan(), single);
+  // Step 1: the bad triangles that send a candidate (all, without an election).
+  std::size_t elect_candidates() {
+    const std::size_t candidates = steps_->offcenter.elect_candidates(scheduler_.scan());
     scheduler_.timer().charge(OffcenterInsertion::kPhase);
     return candidates;
   }
@@ -770,7 +750,6 @@ private:
   // ones): split points of boundary edges are kept inside (inside_edge).
   bool inward_ = false;
   std::size_t first_steiner_ = 0;             // slot of the first Steiner point
-  bool full_election_ = false;                // the last single election inserted nothing
   std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
   std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback
   bool sizes_stale_ = true;                   // every slot's size bound is to be set again

@@ -53,12 +53,6 @@ struct Tuning {
   // many rings (0, 1 or 2) has a better priority; 0: every bad triangle sends
   // one (the thesis).
   int election_rings = 2;
-  // With an election: while at most this many triangles are bad, it sends
-  // the best one only (the best mark, then the first in the search's order),
-  // so that the last bad triangles are mended one point at a time, as
-  // Triangle mends them, each insertion mending its neighbours before they
-  // send points of their own; 0: never.
-  int single_election = 16;
   // A search keeps the verdict of a bad triangle of the last search that
   // nothing its assessment reads has rewritten since, and asks only what can
   // change; false assesses every listed triangle again. The mesh never
@@ -67,9 +61,8 @@ struct Tuning {
 
   // Selects a refinement algorithm with its own values of the refinement
   // fields: GPU-QM-V (filter 2 rings, dependent pairs 1 ring further, near 16,
-  // election 2 rings, single below 16 bad triangles: the fast one) or the
-  // thesis's GPU-QM (filter 3 rings, no dependent-pair ring, any distance,
-  // no election: the fewest points).
+  // election 2 rings: the fast one) or the thesis's GPU-QM (filter 3 rings,
+  // no dependent-pair ring, any distance, no election: the fewest points).
   Tuning &use(RefineAlgorithm refine_algorithm) {
     const bool qmv = refine_algorithm == RefineAlgorithm::qmv;
     algorithm = refine_algorithm;
@@ -77,7 +70,6 @@ struct Tuning {
     filter_distance_rings = qmv ? 1 : 0;
     filter_near = qmv ? 16 : 0;
     election_rings = qmv ? 2 : 0;
-    single_election = qmv ? 16 : 0;
     return *this;
   }
 };

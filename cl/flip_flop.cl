@@ -32,7 +32,6 @@
 #define CLM_OP_MARKED 4   // marked a point redundant: stays active, nothing flipped
 
 #define CLM_DELAUNAY_KEYS 0x80000000u // Delaunay flips after every non-Delaunay one
-#define CLM_APPLIED 0xfffffffeu       // a 3-1 flip taken by one of its proposers
 
 #define CLM_NO_POINT 0x7fffffff
 
@@ -43,19 +42,21 @@
 // undecided; per tracked point (this iteration's and the boundary routine's):
 // star_size, star_offset; per point: redundant_mark, redundant_anchor;
 // counters: exact_count, marked_count, flip_counts (Delaunay flips, flops,
-// removals), failures (stars lost).
+// removals), failures (stars lost); per triangle slot: removal_claim (the
+// smallest entry proposing a removal whose star's smallest slot it is; empty,
+// 0x7fffffff, between passes).
 #define CLM_FLIPFLOP_PARAMS                                                                        \
   __global int *active, __global int *operation, __global int *proposal, __global int *star,       \
       __global int *applied, __global int *count, __global int *offset, __global int *next_active, \
       __global int *exact_list, volatile __global int *exact_count, __global int *redundant_mark,  \
       __global int *redundant_anchor, volatile __global int *marked_count, __global int *tracked,  \
       __global int *star_size, __global int *star_offset, volatile __global int *flip_counts,      \
-      volatile __global int *failures
+      volatile __global int *failures, volatile __global int *removal_claim
 
 #define CLM_FLIPFLOP_ARGS                                                                          \
   active, operation, proposal, star, applied, count, offset, next_active, exact_list, exact_count, \
       redundant_mark, redundant_anchor, marked_count, tracked, star_size, star_offset,             \
-      flip_counts, failures
+      flip_counts, failures, removal_claim
 
 // The triangles around p, counter-clockwise, in star[0 .. 3] when there are
 // three or four, all real (star[3] = -1 for three). Returns the
@@ -203,6 +204,7 @@ inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS, C
             atomic_min(&tri_mark[s[k]], key);
           star[4 * gid + k] = s[k];
         }
+        atomic_min(&removal_claim[smallest_slot(s)], gid);
         operation[gid] = CLM_OP_REMOVE;
         proposal[gid] = smallest;
         return true;
@@ -319,8 +321,11 @@ inline void apply_operation(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, int *
     bool owned = true;
     for (int k = 0; k < 4; ++k)
       owned = owned && (s[k] < 0 || tri_mark[s[k]] == key);
-    // Up to four proposers share this flip: the first to take the mark applies it.
-    if (owned && atomic_cmpxchg(&tri_mark[smallest], key, CLM_APPLIED) == key) {
+    // Up to four proposers share this flip (and proposers of another point's
+    // removal may share its key): the smallest entry applies it, so that the
+    // results go to the same place in the next list whatever the schedule.
+    // The proposers of the smallest key all own their marks, so one applies.
+    if (owned && removal_claim[smallest] == gid) {
       const int p = proposal[gid];
       remove_point(points, tri_vertex, tri_neighbor, modified_stamp, children, s, p, stamp);
       applied[gid] = smallest;
@@ -407,15 +412,20 @@ inline int next_entries(__global const int *active, __global const int *operatio
   return op != CLM_OP_NONE && modified_stamp[active[gid]] != stamp ? 1 : 0;
 }
 
-// This pass's marks are cleared (apply, the last kernel to read them, has run).
+// This pass's marks and removal claims are cleared (apply, the last kernel to
+// read them, has run).
 inline void clear_pass_marks(__global const int *active, __global const int *operation,
                              __global const int *proposal, __global const int *star,
-                             volatile __global uint *tri_mark, int gid) {
+                             volatile __global uint *tri_mark, volatile __global int *removal_claim,
+                             int gid) {
   const int op = operation[gid];
   if (op == CLM_OP_REMOVE) {
+    int s[4];
+    load_star(star, gid, s);
+    removal_claim[smallest_slot(s)] = CLM_NO_POINT;
     for (int k = 0; k < 4; ++k)
-      if (star[4 * gid + k] >= 0)
-        tri_mark[star[4 * gid + k]] = CLM_NO_MARK;
+      if (s[k] >= 0)
+        tri_mark[s[k]] = CLM_NO_MARK;
   } else if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
     tri_mark[active[gid]] = CLM_NO_MARK;
     tri_mark[link_triangle(proposal[gid])] = CLM_NO_MARK;
@@ -425,7 +435,7 @@ inline void clear_pass_marks(__global const int *active, __global const int *ope
 // Entry gid's count of next entries, its marks cleared, its results linked.
 inline void relink_results(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp) {
   count[gid] = next_entries(active, operation, star, applied, modified_stamp, stamp, gid);
-  clear_pass_marks(active, operation, proposal, star, tri_mark, gid);
+  clear_pass_marks(active, operation, proposal, star, tri_mark, removal_claim, gid);
   if (applied[gid] < 0)
     return;
   const int t = applied[gid];

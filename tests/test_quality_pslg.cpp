@@ -149,22 +149,28 @@ TEST_CASE("quality pslg: segment markers go to the points and subsegments that s
 TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triangle's") {
   // Vertex counts of the native Triangle 1.6 (../shared/tools/build-triangle.sh) on the same
   // files: `triangle -<switches> name.poly`, first number of name.1.node; and how many of its
-  // triangles have an angle below the bound (at small input angles, which it leaves).
+  // triangles have an angle below the bound (at small input angles, which it leaves). The
+  // small lake (water3) and letters (a few dozen vertices) are where several points going in
+  // at once, and old points kept beside a split segment, cost the most.
   struct Case {
     const char *name;
     const char *switches;
     long triangle_vertices, triangle_below;
+    const char *folder = "pslg";
   };
-  const Case cases[] = {{"water", "pq20", 5422, 272},         {"water", "pq25", 7497, 382},
-                        {"water", "pq30", 11604, 529},        {"water2", "pq20", 2084, 69},
-                        {"water2", "pq25", 2622, 89},         {"water2", "pq30", 3570, 100},
-                        {"water-huge2", "pq20", 12883, 684},  {"water-huge2", "pq25", 18007, 931},
-                        {"water-huge2", "pq30", 28018, 1283}, {"water4", "pq20", 1134, 23},
-                        {"water", "pcq30", 21673, 799},       {"water2", "pcq30", 7114, 159},
-                        {"water4", "pcq30", 2848, 54},        {"clusters", "pcq30", 69, 27}};
+  const Case cases[] = {
+      {"water", "pq20", 5422, 272},         {"water", "pq25", 7497, 382},
+      {"water", "pq30", 11604, 529},        {"water2", "pq20", 2084, 69},
+      {"water2", "pq25", 2622, 89},         {"water2", "pq30", 3570, 100},
+      {"water-huge2", "pq20", 12883, 684},  {"water-huge2", "pq25", 18007, 931},
+      {"water-huge2", "pq30", 28018, 1283}, {"water4", "pq20", 1134, 23},
+      {"water", "pcq30", 21673, 799},       {"water2", "pcq30", 7114, 159},
+      {"water4", "pcq30", 2848, 54},        {"clusters", "pcq30", 69, 27},
+      {"water3", "pq30", 876, 11},          {"Capital_A", "pq20", 56, 0},
+      {"lettre_A", "pq20", 56, 0},          {"A", "pq20", 56, 0, "triangle-examples/inputs"}};
   for (const Case &c : cases) {
     INFO(std::string(c.name) << " -" << std::string(c.switches));
-    const clmesh::Mesh mesh = refine_checked(load("pslg", c.name), c.switches);
+    const clmesh::Mesh mesh = refine_checked(load(c.folder, c.name), c.switches);
     const double ratio = static_cast<double>(mesh.points.size()) / c.triangle_vertices;
     const long below = mesh.statistics.refinement.remaining_bad;
     MESSAGE(std::string(c.name) << " -" << std::string(c.switches) << ": " << mesh.points.size()
@@ -174,9 +180,11 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
     // At most 5% more vertices than Triangle. Fewer is no fault as long as every bound holds
     // (refine_checked: every triangle below the bound is one of those counted) and no more
     // triangles are left below it than Triangle leaves (up to 5%): concentric shells around
-    // the sharper end of each segment and the triangles left across small input angles make
-    // clmesh's meshes up to 17% smaller there; far fewer would mean refinement stopped early.
-    CHECK(ratio > 0.75);
+    // the sharper end of each segment, the triangles left across small input angles and the
+    // points deleted beside split segments make clmesh's meshes up to 26% smaller there
+    // (clusters -pcq30: 51 vertices and 21 triangles left, Triangle 69 and 27); far fewer
+    // would mean refinement stopped early.
+    CHECK(ratio > 0.7);
     CHECK(ratio < 1.05);
     CHECK(below <= 1.05 * c.triangle_below);
   }
@@ -199,12 +207,15 @@ TEST_CASE("quality pslg: along coastlines the election sends few of the off-cent
                               << "; elected " << elected.candidates << ", " << elected.iterations
                               << ", " << elected.inserted);
     // Under half the candidates (sending every bad triangle with a corner on
-    // the boundary located three quarters of them or more), no more
-    // iterations, and at most 5% more points but on the smallest coastline.
+    // the boundary located three quarters of them or more), and but on the
+    // smallest coastline (a few hundred points, where the points deleted
+    // beside split segments and sent again make the last iterations) no more
+    // iterations and at most 5% more points.
     CHECK(elected.candidates * 2 < all.candidates);
-    CHECK(elected.iterations <= all.iterations);
-    if (all.inserted > 1000)
+    if (all.inserted > 1000) {
+      CHECK(elected.iterations <= all.iterations);
       CHECK(elected.inserted * 100 <= all.inserted * 105);
+    }
   }
 }
 

@@ -12,6 +12,7 @@ const char *kFile = "flip_flop.cl";
 // A pass deletes a redundant point or flips; far more passes than any mesh
 // needs means a bug, reported instead of a hang.
 constexpr long kMaxPasses = 100000;
+constexpr cl_int kNoClaim = 0x7fffffff; // an empty removal claim (CLM_NO_POINT)
 } // namespace
 
 std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
@@ -25,8 +26,8 @@ std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
 }
 
 FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-                   bool orthogonal_test, double lens, std::size_t group_pass_limit)
-    : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan, lens),
+                   bool orthogonal_test, std::size_t group_pass_limit)
+    : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan),
       orthogonal_test_(orthogonal_test ? 1 : 0), group_pass_limit_(group_pass_limit),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
       propose_exact_(device.kernel(kFile, "flipflop_propose_exact", kPhase)),
@@ -48,7 +49,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
       marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
       failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
-      pass_result_(device, 5) {
+      pass_result_(device, 5), removal_claim_(device, mesh.triangle_capacity) {
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
     return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
@@ -69,6 +70,11 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       device_.queue().enqueueCopyBuffer(changed.buffer(), active_.buffer(), 0, 0,
                                         n * sizeof(cl_int));
     });
+  if (mesh_.triangle_count > claims_filled_) { // the slots that came since: unclaimed
+    const std::size_t end = fill_ahead(mesh_.triangle_count, mesh_.triangle_capacity);
+    removal_claim_.fill_range(device_, kNoClaim, claims_filled_, end - claims_filled_, kPhase);
+    claims_filled_ = end;
+  }
   if (mesh_.point_count > marks_filled_) { // the points that came since: not marked
     const std::size_t end = fill_ahead(mesh_.point_count, mesh_.point_capacity);
     redundant_mark_.fill_range(device_, 0, marks_filled_, end - marks_filled_, kPhase);
@@ -165,7 +171,7 @@ cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
                        next_active_.buffer(), exact_list_.buffer(), exact_count_.buffer(),
                        redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
                        tracked_.buffer(), star_size_.buffer(), star_offset_.buffer(),
-                       flip_counts_.buffer(), failures_.buffer());
+                       flip_counts_.buffer(), failures_.buffer(), removal_claim_.buffer());
 }
 
 FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,

@@ -41,12 +41,11 @@ public:
 
   // orthogonal_test: GPU-QM-V (delete one of two connected new points only
   // when they are less than orthogonal) instead of GPU-QM (always).
-  // lens: Triangle's encroachment test of hull edges (HullEncroachment).
   // group_pass_limit: Tuning::group_pass_limit.
   // The lists of the passes are those of `pool` (scratch_lists, from
   // kStar on): no other step runs while run() does.
   FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-           bool orthogonal_test, double lens, std::size_t group_pass_limit);
+           bool orthogonal_test, std::size_t group_pass_limit);
   // The sizes in bytes of the lists it takes from a ScratchPool.
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 
@@ -129,6 +128,11 @@ private:
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
   DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
+  // Per triangle slot: the smallest entry proposing a removal whose star's
+  // smallest slot it is, which applies it (removal_claim in the kernels);
+  // kNoClaim between passes, set below claims_filled_.
+  DeviceArray<cl_int> removal_claim_;
+  std::size_t claims_filled_ = 0;
   // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
   // totals, not cleared each iteration.
   static constexpr std::size_t kTotals = 5;

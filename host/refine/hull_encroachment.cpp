@@ -9,8 +9,8 @@ constexpr cl_int kNoClaim = 0x7fffffff;
 constexpr cl_int kClaim = 0, kCount = 1, kWrite = 2;
 } // namespace
 
-HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan, double lens)
-    : device_(device), mesh_(mesh), scan_(scan), lens_(lens),
+HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan)
+    : device_(device), mesh_(mesh), scan_(scan),
       mark_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
@@ -36,7 +36,7 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
   }
   const auto items = static_cast<cl_int>(m);
   auto run_step = [&](cl_int step) {
-    set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), lens_, step, claim_.buffer(),
+    set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), step, claim_.buffer(),
                   redundant_mark.buffer(), redundant_anchor.buffer(), owned_.buffer(),
                   offset_.buffer(), tracked.buffer(), items, items);
     launch(device_, mark_, m, kPhase);

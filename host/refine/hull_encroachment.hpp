@@ -1,6 +1,7 @@
 // clmesh — the boundary routine of thesis §3.4.1, at the start of step 3:
-// the old Steiner points that encroach a hull edge split in this iteration
-// are marked redundant, for flip-flop to delete. Kernels:
+// the Steiner points in the diametral circle of a hull edge or subsegment
+// split in this iteration are marked redundant, for flip-flop to delete (as Triangle
+// deletes them when it splits a subsegment). Kernels:
 // cl/hull_encroachment.cl.
 #pragma once
 
@@ -12,16 +13,14 @@ class HullEncroachment {
 public:
   static constexpr const char *kPhase = "flipflop_deletion"; // timed with step 3
 
-  // lens: Triangle's encroachment test of hull edges (OffcenterInsertion::lens).
-  HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan, double lens);
+  HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // `tracked` starts with new_points[0 .. m). For each hull midpoint among
-  // them, the off-centers around
-  // the apex of its former hull edge that encroach the edge are marked
-  // redundant (redundant_mark, redundant_anchor), and the old ones among
-  // them are appended to `tracked` from entry m on. Returns how many were
-  // appended. Which midpoint claims an encroacher is decided by index, so
-  // the list is the same on every run.
+  // `tracked` starts with new_points[0 .. m). For each midpoint among them,
+  // the off-centers around the apexes of its former hull edge or subsegment
+  // that lie in the edge's diametral circle are marked redundant (redundant_mark,
+  // redundant_anchor), and the old ones among them are appended to `tracked` from entry m on.
+  // Returns how many were appended. Which midpoint claims an encroacher is decided by index, so the
+  // list is the same on every run.
   std::size_t mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
                                const DeviceArray<cl_int> &redundant_mark,
                                const DeviceArray<cl_int> &redundant_anchor,
@@ -35,7 +34,6 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  double lens_;
   cl::Kernel mark_, clear_claims_;
   // Per point: the smallest midpoint claiming it (empty: 0x7fffffff between calls).
   DeviceArray<cl_int> claim_;

@@ -195,7 +195,7 @@ struct RefinementSteps {
                   options.conforming, options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
-                 options.delaunay.tuning.algorithm == RefineAlgorithm::qmv, offcenter.lens(),
+                 options.delaunay.tuning.algorithm == RefineAlgorithm::qmv,
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
         new_points(scheduler.device(), scheduler.mesh().point_capacity) {}

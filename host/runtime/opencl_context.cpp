@@ -431,6 +431,7 @@ cl::Kernel Device::kernel(const std::string &file, const std::string &name,
 }
 
 void Device::wait(const std::string &phase) {
+  profile_wait("finish");
   guarded(phase, "waiting for the device", [&] { queue_.finish(); });
 }
 
@@ -466,7 +467,9 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
                        last = (start + bytes) / page * page;
   if (last <= first)
     return;
-  wait(phase); // no kernel writes the pages while they go
+  // No kernel writes the pages while they go.
+  profile_wait("discard");
+  guarded(phase, "waiting for the device", [&] { queue_.finish(); });
   madvise(reinterpret_cast<void *>(first), last - first, MADV_DONTNEED);
 }
 
@@ -474,12 +477,48 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
   launch(device, kernel, items, phase, device.work_group());
 }
 
+namespace {
+
+// CLMESH_PROFILE=1 (development aid): per kernel its seconds (each launch
+// waited for), launches and work-items, and the host's waits for the device
+// by cause, on stderr at exit.
+const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
+
+struct ProfileTotal {
+  double seconds = 0;
+  long launches = 0;
+  double items = 0;
+};
+
+struct Profile {
+  std::map<std::string, ProfileTotal> kernels;
+  std::map<std::string, long> waits;
+  ~Profile() {
+    for (const auto &[name, total] : kernels)
+      std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
+                   total.seconds, total.launches, total.items);
+    for (const auto &[cause, count] : waits)
+      std::fprintf(stderr, "wait: %-26s %7ld waits\n", cause.c_str(), count);
+  }
+};
+
+Profile &profile_totals() {
+  static Profile totals;
+  return totals;
+}
+
+} // namespace
+
+void profile_wait(const char *cause) {
+  if (profile)
+    ++profile_totals().waits[cause];
+}
+
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group) {
   if (items == 0)
     return;
   const std::size_t global = (items + group - 1) / group * group;
-  static const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
   const auto start = std::chrono::steady_clock::now();
   try {
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
@@ -490,22 +529,7 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
     throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
   if (profile) {
-    // CLMESH_PROFILE=1: per-kernel seconds, launches and work-items on
-    // stderr at exit (development aid).
-    struct Total {
-      double seconds = 0;
-      long launches = 0;
-      double items = 0;
-    };
-    static std::map<std::string, Total> totals;
-    static struct Report {
-      ~Report() {
-        for (const auto &[name, total] : totals)
-          std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
-                       total.seconds, total.launches, total.items);
-      }
-    } report;
-    Total &total = totals[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
+    ProfileTotal &total = profile_totals().kernels[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
     total.seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++total.launches;

@@ -111,6 +111,10 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group);
 
+// With CLMESH_PROFILE set (see launch), counts one wait of the host for the
+// device (a blocking transfer, a finish) under `cause`.
+void profile_wait(const char *cause);
+
 // Sets kernel arguments in order from index `first`; returns the index after
 // the last one set.
 template <typename... Args>

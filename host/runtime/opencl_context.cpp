@@ -456,7 +456,10 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
 void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
                      const std::string &phase) {
   constexpr std::size_t page = 4096;
-  if (!cpu_paths_ || bytes < page)
+  // Fewer pages are not worth the wait for the device (and the faults
+  // that bring them back when written again).
+  constexpr std::size_t least = std::size_t{1} << 20;
+  if (!cpu_paths_ || bytes < least)
     return;
   auto *host = static_cast<char *>(
       guarded(phase, "querying a buffer", [&] { return buffer.getInfo<CL_MEM_HOST_PTR>(); }));
@@ -465,7 +468,7 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
   const auto start = reinterpret_cast<std::uintptr_t>(host) + offset;
   const std::uintptr_t first = (start + page - 1) / page * page,
                        last = (start + bytes) / page * page;
-  if (last <= first)
+  if (last < first + least)
     return;
   // No kernel writes the pages while they go.
   profile_wait("discard");

@@ -68,7 +68,8 @@ public:
   // system, once the device is done with everything queued: a scratch list's
   // contents are lost, and its memory comes back (zeroed) when written
   // again. Only for a buffer in a mapping of its own (allocate, on the CPU
-  // paths), and only whole pages; elsewhere nothing happens.
+  // paths), only whole pages, and only 1 MiB of them or more (fewer are not
+  // worth a wait); elsewhere nothing happens.
   void discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
                const std::string &phase);
 

@@ -52,10 +52,12 @@
       __global int *star_size, __global int *star_offset, volatile __global int *flip_counts,      \
       volatile __global int *failures
 
-#define CLM_FLIPFLOP_ARGS                                                                          \
-  active, operation, proposal, star, applied, count, offset, next_active, exact_list, exact_count, \
-      redundant_mark, redundant_anchor, marked_count, tracked, star_size, star_offset,             \
-      flip_counts, failures
+#define CLM_FLIPFLOP_ARGS CLM_FLIPFLOP_ARGS_WITH_LISTS(active, next_active)
+// The same with other active and next lists.
+#define CLM_FLIPFLOP_ARGS_WITH_LISTS(active_list, next_list)                                       \
+  active_list, operation, proposal, star, applied, count, offset, next_list, exact_list,           \
+      exact_count, redundant_mark, redundant_anchor, marked_count, tracked, star_size,             \
+      star_offset, flip_counts, failures
 
 // The triangles around p, counter-clockwise, in star[0 .. 3] when there are
 // three or four, all real (star[3] = -1 for three). Returns the
@@ -559,22 +561,19 @@ __kernel void emit_redundant_stars(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const i
 // with barriers between them instead of launches: most passes list a few
 // hundred triangles, for which a launch costs more than the work. Entry by
 // entry the results are those of the kernels. The pass's entries in
-// next_active are also appended to `rewritten` from rewritten_size on (the
-// host leaves room for 2 n), as FlipFlop::run does after the kernels.
-// result: [0] the pass's entries in next_active, [1] points marked, [2]
-// stars listed (-1: not looked for, -2: no room for them), [3] the next
-// list's length, [4] exact proposals.
-__kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
-                                     const int orthogonal_test, const int any_redundant,
-                                     const int next_capacity, const int m, const int find_stars,
-                                     __global int *rewritten, const int rewritten_size,
-                                     __local int *scratch, volatile __global int *result,
-                                     const int stamp, const int n) {
+// next_active are also appended to `rewritten` from rewritten_size on (room
+// for 2 n), as FlipFlop::run does after the kernels. Returns (the pass's
+// entries in next_active, points marked, stars listed (-1: not looked for,
+// -2: no room for them), the next list's length), the same to every
+// work-item; exact proposals are added to exact[0].
+inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test,
+                          const int any_redundant, const int next_capacity, const int m,
+                          const int find_stars, __global int *rewritten, const int rewritten_size,
+                          __local int *scratch, volatile __global int *exact_total, const int stamp,
+                          const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
-  if (lid == 0) {
+  if (lid == 0)
     marked_count[0] = 0;
-    result[4] = 0;
-  }
   barrier(CLK_GLOBAL_MEM_FENCE);
   int exact = 0;
   for (int k = lid; k < n; k += size) {
@@ -585,10 +584,18 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
       ++exact;
     }
   }
+  if (exact > 0)
+    atomic_add(exact_total, exact);
   barrier(CLK_GLOBAL_MEM_FENCE);
+  // The counts are added before the next barrier: PoCL's CPU device
+  // miscompiles a private array that lives across barriers in a loop
+  // (flipflop_passes_in_group's).
   int done[3] = {0, 0, 0};
   for (int k = lid; k < n; k += size)
     apply_operation(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
+  for (int j = 0; j < 3; ++j)
+    if (done[j] > 0)
+      atomic_add(&flip_counts[j], done[j]);
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
@@ -596,49 +603,114 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
   const int next = group_exclusive_scan(count, offset, n, scratch);
   for (int k = lid; k < n; k += size)
     gather_results(k, CLM_FLIPFLOP_ARGS);
-  for (int j = 0; j < 3; ++j)
-    if (done[j] > 0)
-      atomic_add(&flip_counts[j], done[j]);
-  if (exact > 0)
-    atomic_add(&result[4], exact);
   const int marked = marked_count[0];
   // The pass's entries (results and losers) appended to `rewritten`.
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < next; k += size)
     rewritten[rewritten_size + k] = next_active[k];
-  int stars = -1, length = next;
-  if (marked > 0 || find_stars) {
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    for (int k = lid; k < m; k += size)
-      track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
-    barrier(CLK_GLOBAL_MEM_FENCE);
-    stars = group_exclusive_scan(star_size, star_offset, m, scratch);
-    if (next + stars > next_capacity) {
-      stars = -2;
-    } else {
-      for (int k = lid; k < m; k += size)
-        emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
-      barrier(CLK_GLOBAL_MEM_FENCE);
-      length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
-    }
-  }
-  if (lid == 0) {
-    result[0] = next;
-    result[1] = marked;
-    result[2] = stars;
-    result[3] = length;
-  }
+  // Every barrier is met whether stars are looked for or not (the passes
+  // run in a loop): what is not needed works on empty ranges.
+  const bool look = marked > 0 || find_stars;
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; look && k < m; k += size)
+    track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int stars = group_exclusive_scan(star_size, star_offset, look ? m : 0, scratch);
+  const bool room = next + stars <= next_capacity;
+  for (int k = lid; look && room && k < m; k += size)
+    emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int length = group_unique(next_active, look && room ? next + stars : 0, tri_mark, count,
+                                  offset, active, scratch);
+  return (int4)(next, marked, !look ? -1 : room ? stars : -2, look && room ? length : next);
 }
 
 // A stall (no operation left, yet redundant points remain, in degenerate
-// stars where neither a flop nor a removal is possible): they are kept, as
-// Steiner points of earlier iterations, after their stars were listed.
+// stars where neither a flop nor a removal is possible): the tracked point
+// k, when redundant, is kept, as a Steiner point of earlier iterations,
+// after its star was listed.
+inline void keep_stuck_point(__global const int *tracked, __global int *point_state,
+                             volatile __global int *kept, int k) {
+  if (point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
+    point_state[tracked[k]] = CLM_POINT_STEINER;
+    atomic_inc(kept);
+  }
+}
+
 __kernel void keep_stuck_points(__global const int *tracked, __global int *point_state,
                                 volatile __global int *kept, const int n) {
   const int k = get_global_id(0);
-  if (k < n && point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
-    point_state[tracked[k]] = CLM_POINT_STEINER;
-    atomic_inc(kept);
+  if (k < n)
+    keep_stuck_point(tracked, point_state, kept, k);
+}
+
+// Pass after pass by one work-group (pass_in_group), as FlipFlop::run goes
+// on from a pass: while the active list is not empty and holds at most
+// group_pass_limit entries, at most max_passes passes, each while
+// `rewritten` (rewritten_capacity entries) has room for 2 n more. The
+// first pass of the run (first_pass) looks at no redundant point; the
+// passes take the stamps stamp, stamp + 1, ... A pass that did not look for
+// stars leaves the next list in next_active: the two lists swap places; a
+// stall keeps the stuck points (keep_stuck_point). result: [0] the active
+// list's length, [1] passes, [2] 0, or -2: no room for the stars, -3: the
+// next list longer than list_capacity, [3] whether redundant points are
+// left, [4] exact proposals, [5] whether the lists swapped places (an odd
+// number of times), [6] entries appended to `rewritten`, [7] the most
+// entries a pass's lists took.
+__kernel void flipflop_passes_in_group(
+    CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test, const int first_pass,
+    const int next_capacity, const int list_capacity, const int group_pass_limit,
+    const int max_passes, const int m, const int redundant_at_start, __global int *rewritten,
+    const int rewritten_at_start, const int rewritten_capacity, volatile __global int *kept,
+    __local int *scratch, volatile __global int *result, const int stamp, const int entries) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  if (lid == 0)
+    result[4] = 0;
+  // The arguments stay as they are: every work-item keeps its own copy of
+  // what changes from pass to pass (the same in all).
+  int n = entries, redundant_left = redundant_at_start, rewritten_size = rewritten_at_start;
+  int passes = 0, status = 0, swapped = 0, appended = 0, most = 0;
+  while (status == 0 && n > 0 && n <= group_pass_limit && passes < max_passes &&
+         rewritten_size + 2 * n <= rewritten_capacity) {
+    const int any_redundant = redundant_left && (passes > 0 || !first_pass);
+    __global int *const from = swapped ? next_active : active;
+    __global int *const to = swapped ? active : next_active;
+    const int4 pass =
+        pass_in_group(CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS_WITH_LISTS(from, to), orthogonal_test,
+                      any_redundant, next_capacity, m, redundant_left, rewritten, rewritten_size,
+                      scratch, &result[4], stamp + passes, n);
+    ++passes;
+    rewritten_size += pass.s0;
+    appended += pass.s0;
+    most = max(most, max(pass.s0, pass.s3));
+    if (pass.s2 == -2) {
+      status = -2;
+    } else if (pass.s2 < 0) { // no stars looked for: the next list is in `to`
+      swapped ^= 1;
+      n = pass.s0;
+    } else {
+      redundant_left = pass.s2 > 0;
+      n = pass.s3;
+      if (n > list_capacity) {
+        status = -3;
+      }
+    }
+    // Stalled: what is left cannot be deleted. Their stars are listed.
+    const bool stalled = status == 0 && pass.s2 > 0 && pass.s0 == 0 && pass.s1 == 0;
+    for (int k = lid; stalled && k < m; k += size)
+      keep_stuck_point(tracked, point_state, kept, k);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    if (stalled)
+      redundant_left = 0;
+  }
+  if (lid == 0) {
+    result[0] = n;
+    result[1] = passes;
+    result[2] = status;
+    result[3] = redundant_left;
+    result[5] = swapped;
+    result[6] = appended;
+    result[7] = most;
   }
 }
 

@@ -37,7 +37,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
       finish_(device.kernel(kFile, "finish_iteration", kPhase)),
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
-      pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
+      passes_in_group_(device.kernel(kFile, "flipflop_passes_in_group", kPhase)),
       log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
       active_(pool.list<cl_int>(kActive)), next_active_(pool.list<cl_int>(kNextActive)),
       exact_list_(pool.list<cl_int>(kExactList)), operation_(pool.list<cl_int>(kOperation)),
@@ -48,9 +48,9 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
       marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
       failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
-      pass_result_(device, 5) {
+      pass_result_(device, kGroupResults) {
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
-    return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
+    return passes_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
   failures_.fill(device_, 0, 1);
   // Running totals, never reset: each iteration takes the difference.
@@ -85,18 +85,20 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
-  for (long pass = 0; n > 0; ++pass) {
-    if (pass == kMaxPasses)
+  for (long pass = 0; n > 0;) {
+    if (pass >= kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
                           " passes");
+    if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
+      n = passes_in_group(n, pass, stamp, rewritten, counts);
+      continue;
+    }
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
-    const PassResult result =
-        n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
-            ? pass_in_group(n, any_redundant, pass_stamp, rewritten, counts)
-            : pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
+    const PassResult result = pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
     run_entries_ = std::max({run_entries_, result.next, result.length});
     ++counts.passes;
+    ++pass;
     if (result.looked_for_stars) {
       redundant_left_ = result.stars > 0;
       n = result.length;
@@ -194,29 +196,33 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   return result;
 }
 
-FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                                             DeviceList<cl_int> &rewritten,
-                                             FlipFlopCounts &counts) {
+std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
+                                      DeviceList<cl_int> &rewritten, FlipFlopCounts &counts) {
   // The group may have to be smaller for this large kernel than for the others.
   const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
   rewritten.reserve(device_, 2 * n); // each entry passes on two at most
-  bind(pass_in_group_, orthogonal_test_, any_redundant, static_cast<cl_int>(next_active_.size()),
+  bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
+       static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),
+       static_cast<cl_int>(group_pass_limit_), static_cast<cl_int>(kMaxPasses - pass),
        static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
-       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
-  launch(device_, pass_in_group_, group, kPhase, group);
-  const std::vector<cl_int> values = pass_result_.download(device_, 5);
-  if (values[2] == -2)
+       static_cast<cl_int>(rewritten.items.size()), kept_.buffer(),
+       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), static_cast<cl_int>(stamp),
+       static_cast<cl_int>(n));
+  launch(device_, passes_in_group_, group, kPhase, group);
+  const std::vector<cl_int> values = pass_result_.download(device_, kGroupResults);
+  if (values[2] != 0)
     throw InternalError("flip-flop: the active list is longer than its arrays");
-  PassResult result;
-  result.next = static_cast<std::size_t>(values[0]);
-  result.marked = values[1];
-  result.looked_for_stars = values[2] >= 0;
-  result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
-  result.length = static_cast<std::size_t>(values[3]);
+  pass += values[1];
+  stamp += values[1];
+  counts.passes += values[1];
+  redundant_left_ = values[3] != 0;
   counts.exact_checks += values[4];
-  rewritten.size += result.next;
-  return result;
+  if (values[5] != 0)
+    std::swap(active_, next_active_);
+  rewritten.size += static_cast<std::size_t>(values[6]);
+  run_entries_ = std::max(run_entries_, static_cast<std::size_t>(values[7]));
+  return static_cast<std::size_t>(values[0]);
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the

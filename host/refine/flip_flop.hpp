@@ -90,14 +90,17 @@ private:
     std::size_t stars = 0;
     std::size_t length = 0;
   };
-  // Short lists take one work-group for the whole pass (flipflop_pass_in_group)
-  // when the points to track are few too. Either way the pass's entries in
-  // next_active_ are appended to `rewritten`.
+  // Short lists take one work-group for pass after pass
+  // (flipflop_passes_in_group) when the points to track are few too. Either
+  // way the pass's entries in next_active_ are appended to `rewritten`.
   static constexpr std::size_t kTrackedInGroup = 8192;
   PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
-  PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                           DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
+  // Passes from pass `pass` of the run on, by one work-group, while the
+  // active list (n entries) stays short; advances pass and stamp by the
+  // passes it made and returns the active list's length.
+  std::size_t passes_in_group(std::size_t n, long &pass, int &stamp, DeviceList<cl_int> &rewritten,
+                              FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.
@@ -116,11 +119,11 @@ private:
   HullEncroachment encroachment_;
   cl_int orthogonal_test_;
   std::size_t group_pass_limit_;
-  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_pass_in_group
+  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_passes_in_group
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,
-      keep_stuck_, pass_in_group_, log_deleted_;
+      keep_stuck_, passes_in_group_, log_deleted_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
@@ -128,7 +131,9 @@ private:
   std::size_t run_entries_ = 0;  // the most entries of a list in the last run
   DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
       logged_;
-  DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
+  // flipflop_passes_in_group's result (see the kernel).
+  static constexpr std::size_t kGroupResults = 8;
+  DeviceArray<cl_int> pass_result_;
   // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
   // totals, not cleared each iteration.
   static constexpr std::size_t kTotals = 5;

@@ -225,14 +225,19 @@ __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int
   relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[gid], 2);
 }
 
-// keep[gid] = 1 for points still waiting (neither inserted nor duplicate);
-// counts lost walks, which would be a bug, in failures[0].
+// keep[gid] = 1 for points still waiting (neither inserted nor duplicate),
+// added up in counters[1] (a running total); counts lost walks, which would
+// be a bug, in counters[0]. Reads what select_winners leaves.
 __kernel void count_remaining(__global const int *status, __global const int *winner,
-                              __global int *keep, volatile __global int *failures, const int n) {
+                              __global int *keep, volatile __global int *counters, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  keep[gid] = status[gid] == CLM_PENDING && !winner[gid];
-  if (status[gid] == CLM_LOST)
-    atomic_inc(failures);
+  int waiting = 0;
+  if (gid < n) {
+    waiting = status[gid] == CLM_PENDING && !winner[gid];
+    keep[gid] = waiting;
+    if (status[gid] == CLM_LOST)
+      atomic_inc(&counters[0]);
+  }
+  volatile __local int scratch[2];
+  reserve_in_group(waiting, scratch, &counters[1]);
 }

@@ -1,5 +1,6 @@
 #include "dt/missing_point_insertion.hpp"
 
+#include <array>
 #include <utility>
 
 namespace clmesh {
@@ -36,8 +37,8 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       winner_(point_list(device, mesh, pool, kWinner)),
       offset_(point_list(device, mesh, pool, kOffset)),
       keep_(point_list(device, mesh, pool, kKeep)), changed_(device, mesh.list_capacity),
-      failures_(device, 1), pooled_(pool != nullptr) {
-  failures_.fill(device_, 0, 1);
+      counters_(device, 2), pooled_(pool != nullptr) {
+  counters_.fill(device_, 0, 2);
 }
 
 void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
@@ -86,8 +87,20 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
                 status_.buffer(), n);
   launch(device_, clear_marks_, pending_, kPhase);
+  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), counters_.buffer(),
+           n);
+  launch(device_, count_remaining_, pending_, kPhase);
 
+  // The counters come back with the winners' total: one wait.
+  std::array<cl_int, 2> counters{};
+  counters_.download_later(device_, counters.data(), counters.size());
   const int winners = scan_.exclusive_scan(winner_, offset_, pending_, kPhase);
+  if (counters[0] != 0)
+    throw InternalError("missing-point insertion: a point location walk did not end");
+  // The points still waiting: the running total less the last one (modulo
+  // 2^32, as the device's counter wraps).
+  const auto kept = static_cast<std::size_t>(static_cast<cl_uint>(counters[1]) - waiting_total_);
+  waiting_total_ = static_cast<cl_uint>(counters[1]);
   const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
   DeviceMesh::FreeList &free = mesh_.free_triangles;
   const auto free_first = static_cast<cl_int>(free.first),
@@ -107,15 +120,12 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
                 static_cast<cl_int>(stamp), static_cast<cl_int>(4 * winners));
   launch(device_, relink_, 4 * static_cast<std::size_t>(winners), kPhase);
 
-  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),
-           n);
-  launch(device_, count_remaining_, pending_, kPhase);
-  const int kept = scan_.compact(remaining_, keep_, offset_, remaining_next_, pending_, kPhase);
-  if (failures_.read(device_, 0) != 0)
-    throw InternalError("missing-point insertion: a point location walk did not end");
-  duplicates_ += pending_ - static_cast<std::size_t>(kept) - static_cast<std::size_t>(winners);
-  std::swap(remaining_, remaining_next_);
-  pending_ = static_cast<std::size_t>(kept);
+  if (kept > 0) { // after split_triangles, the last reader of offset_
+    scan_.compact(remaining_, keep_, offset_, remaining_next_, pending_, kPhase);
+    std::swap(remaining_, remaining_next_);
+  }
+  duplicates_ += pending_ - kept - static_cast<std::size_t>(winners);
+  pending_ = kept;
   return static_cast<std::size_t>(winners);
 }
 

@@ -54,7 +54,10 @@ private:
   cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_;
   DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_;
   DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
-  DeviceArray<cl_int> keep_, changed_, failures_;
+  DeviceArray<cl_int> keep_, changed_;
+  // Lost walks and the running total of points left waiting (count_remaining).
+  DeviceArray<cl_int> counters_;
+  cl_uint waiting_total_ = 0; // counters_[1] as last read
   std::size_t pending_ = 0;
   std::size_t round_points_ = 0; // points of the last round
   bool pooled_ = false;

@@ -1,5 +1,7 @@
 #include "refine/hull_encroachment.hpp"
 
+#include <algorithm>
+
 namespace clmesh {
 
 namespace {
@@ -13,8 +15,14 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
     : device_(device), mesh_(mesh), scan_(scan), lens_(lens),
       mark_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
+      mark_in_group_(device.kernel(kFile, "mark_encroaching_in_group", kPhase)),
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
-      offset_(device, mesh.point_capacity) {}
+      offset_(device, mesh.point_capacity), appended_(device, 1) {
+  group_ = std::min(device.work_group(), guarded(kPhase, "querying the work-group size", [&] {
+                      return mark_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(
+                          device.cl_device());
+                    }));
+}
 
 void HullEncroachment::trim_lists() {
   owned_.discard(device_, new_points_, kPhase);
@@ -35,6 +43,14 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
     claims_filled_ = end;
   }
   const auto items = static_cast<cl_int>(m);
+  if (m <= kInGroup) {
+    set_args_from(mark_in_group_, mesh_.bind(mark_in_group_, 0), new_points.buffer(), lens_,
+                  claim_.buffer(), redundant_mark.buffer(), redundant_anchor.buffer(),
+                  owned_.buffer(), offset_.buffer(), tracked.buffer(),
+                  cl::Local(sizeof(cl_int) * group_), appended_.buffer(), items);
+    launch(device_, mark_in_group_, group_, kPhase, group_);
+    return static_cast<std::size_t>(appended_.read(device_, 0));
+  }
   auto run_step = [&](cl_int step) {
     set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), lens_, step, claim_.buffer(),
                   redundant_mark.buffer(), redundant_anchor.buffer(), owned_.buffer(),

@@ -36,28 +36,35 @@
 
 #define CLM_NO_POINT 0x7fffffff
 
+// The running totals (FlipFlop reads them once an iteration): Delaunay
+// flips, flops and removals (0 to 2, CLM_OP_* - 1), the hull midpoints that
+// survived their iteration, the redundant points kept in degenerate stars,
+// the stars lost (a bug).
+#define CLM_TOTAL_MIDPOINTS 3
+#define CLM_TOTAL_KEPT 4
+#define CLM_TOTAL_FAILURES 5
+
 // The flip-flop's lists and per-point arrays, FlipFlop's buffers, bound by
 // FlipFlop::bind_lists in this order. Per entry of the active list:
 // operation, proposal, star (4 per entry), applied, count and offset (of its
 // entries in next_active); exact_list: the entries the filter left
 // undecided; per tracked point (this iteration's and the boundary routine's):
 // star_size, star_offset; per point: redundant_mark, redundant_anchor;
-// counters: exact_count, marked_count, flip_counts (Delaunay flips, flops,
-// removals), failures (stars lost).
+// counters: exact_count, marked_count, totals (running totals, never
+// cleared: CLM_TOTAL_*).
 #define CLM_FLIPFLOP_PARAMS                                                                        \
   __global int *active, __global int *operation, __global int *proposal, __global int *star,       \
       __global int *applied, __global int *count, __global int *offset, __global int *next_active, \
       __global int *exact_list, volatile __global int *exact_count, __global int *redundant_mark,  \
       __global int *redundant_anchor, volatile __global int *marked_count, __global int *tracked,  \
-      __global int *star_size, __global int *star_offset, volatile __global int *flip_counts,      \
-      volatile __global int *failures
+      __global int *star_size, __global int *star_offset, volatile __global int *totals
 
 #define CLM_FLIPFLOP_ARGS CLM_FLIPFLOP_ARGS_WITH_LISTS(active, next_active)
 // The same with other active and next lists.
 #define CLM_FLIPFLOP_ARGS_WITH_LISTS(active_list, next_list)                                       \
   active_list, operation, proposal, star, applied, count, offset, next_list, exact_list,           \
       exact_count, redundant_mark, redundant_anchor, marked_count, tracked, star_size,             \
-      star_offset, flip_counts, failures
+      star_offset, totals
 
 // The triangles around p, counter-clockwise, in star[0 .. 3] when there are
 // three or four, all real (star[3] = -1 for three). Returns the
@@ -383,8 +390,8 @@ inline void prefetch_relink(__global const int *operation, __global const int *p
   }
 }
 
-// Applies the operations that own every mark they wrote. flip_counts:
-// Delaunay flips, flops, removals.
+// Applies the operations that own every mark they wrote; counts them in
+// totals[0 .. 2] (Delaunay flips, flops, removals).
 __kernel void flipflop_apply(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp, const int n) {
   const int gid = get_global_id(0);
   int done[3] = {0, 0, 0}; // Delaunay flips, flops, removals by this work-item
@@ -394,7 +401,7 @@ __kernel void flipflop_apply(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int sta
     apply_operation(gid, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
   volatile __local int scratch[2];
   for (int k = 0; k < 3; ++k)
-    reserve_in_group(done[k], scratch, &flip_counts[k]);
+    reserve_in_group(done[k], scratch, &totals[k]);
 }
 
 // Entries passed to the next list (count[gid]): the triangles an operation
@@ -513,7 +520,7 @@ inline void track_point(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int s
     }
   }
   if (index_in(tri_vertex, t, p) < 0) {
-    atomic_inc(failures);
+    atomic_inc(&totals[CLM_TOTAL_FAILURES]);
     return;
   }
   // The star's smallest slot becomes the anchor, where its listing starts:
@@ -595,7 +602,7 @@ inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthog
     apply_operation(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
   for (int j = 0; j < 3; ++j)
     if (done[j] > 0)
-      atomic_add(&flip_counts[j], done[j]);
+      atomic_add(&totals[j], done[j]);
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
@@ -630,18 +637,18 @@ inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthog
 // k, when redundant, is kept, as a Steiner point of earlier iterations,
 // after its star was listed.
 inline void keep_stuck_point(__global const int *tracked, __global int *point_state,
-                             volatile __global int *kept, int k) {
+                             volatile __global int *totals, int k) {
   if (point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
     point_state[tracked[k]] = CLM_POINT_STEINER;
-    atomic_inc(kept);
+    atomic_inc(&totals[CLM_TOTAL_KEPT]);
   }
 }
 
 __kernel void keep_stuck_points(__global const int *tracked, __global int *point_state,
-                                volatile __global int *kept, const int n) {
+                                volatile __global int *totals, const int n) {
   const int k = get_global_id(0);
   if (k < n)
-    keep_stuck_point(tracked, point_state, kept, k);
+    keep_stuck_point(tracked, point_state, totals, k);
 }
 
 // Pass after pass by one work-group (pass_in_group), as FlipFlop::run goes
@@ -661,8 +668,8 @@ __kernel void flipflop_passes_in_group(
     CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test, const int first_pass,
     const int next_capacity, const int list_capacity, const int group_pass_limit,
     const int max_passes, const int m, const int redundant_at_start, __global int *rewritten,
-    const int rewritten_at_start, const int rewritten_capacity, volatile __global int *kept,
-    __local int *scratch, volatile __global int *result, const int stamp, const int entries) {
+    const int rewritten_at_start, const int rewritten_capacity, __local int *scratch,
+    volatile __global int *result, const int stamp, const int entries) {
   const int lid = get_local_id(0), size = get_local_size(0);
   if (lid == 0)
     result[4] = 0;
@@ -698,7 +705,7 @@ __kernel void flipflop_passes_in_group(
     // Stalled: what is left cannot be deleted. Their stars are listed.
     const bool stalled = status == 0 && pass.s2 > 0 && pass.s0 == 0 && pass.s1 == 0;
     for (int k = lid; stalled && k < m; k += size)
-      keep_stuck_point(tracked, point_state, kept, k);
+      keep_stuck_point(tracked, point_state, totals, k);
     barrier(CLK_GLOBAL_MEM_FENCE);
     if (stalled)
       redundant_left = 0;
@@ -714,16 +721,16 @@ __kernel void flipflop_passes_in_group(
   }
 }
 
-// End of an iteration: its points become points of earlier iterations.
-// midpoints[0] counts the surviving hull midpoints.
+// End of an iteration: its points become points of earlier iterations;
+// the surviving hull midpoints are counted in totals.
 __kernel void finish_iteration(__global const int *new_points, __global int *point_state,
-                               volatile __global int *midpoints, const int n) {
+                               volatile __global int *totals, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int p = new_points[k], state = point_state[p];
   if (state == CLM_POINT_NEW_MIDPOINT) {
-    atomic_inc(midpoints);
+    atomic_inc(&totals[CLM_TOTAL_MIDPOINTS]);
     point_state[p] = CLM_POINT_MIDPOINT;
   } else if (state == CLM_POINT_NEW) {
     point_state[p] = CLM_POINT_STEINER;

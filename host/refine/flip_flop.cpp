@@ -46,17 +46,13 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       offset_(pool.list<cl_int>(kOffset)), redundant_mark_(device, mesh.point_capacity),
       redundant_anchor_(device, mesh.point_capacity), star_size_(pool.list<cl_int>(kStarSize)),
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
-      marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
-      failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
-      pass_result_(device, kGroupResults) {
+      marked_count_(device, 1), exact_count_(device, 1), logged_(device, 1),
+      pass_result_(device, kGroupResults), totals_(device, kTotals) {
   pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
     return passes_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
-  failures_.fill(device_, 0, 1);
   // Running totals, never reset: each iteration takes the difference.
-  flip_counts_.fill(device_, 0, 3);
-  midpoints_.fill(device_, 0, 1);
-  kept_.fill(device_, 0, 1);
+  totals_.fill(device_, 0, kTotals);
 }
 
 void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
@@ -106,7 +102,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
         throw InternalError("flip-flop: the active list is longer than its arrays");
       if (result.next == 0 && result.marked == 0 && redundant_left_) {
         // Stalled: what is left cannot be deleted. Their stars are listed.
-        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), kept_.buffer(),
+        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
                  static_cast<cl_int>(tracked_n_));
         launch(device_, keep_stuck_, tracked_n_, kPhase);
         redundant_left_ = false;
@@ -117,21 +113,16 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     }
   }
   if (m > 0) {
-    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
+    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
              static_cast<cl_int>(m));
     launch(device_, finish_, m, kPhase);
   }
-  // The iteration's counts, read with one wait: the running totals less
-  // the last ones (modulo 2^32, as the device's counters wrap).
-  cl_int failures = 0;
-  std::array<cl_int, kTotals> totals{};
-  failures_.download_later(device_, &failures, 1);
-  flip_counts_.download_later(device_, &totals[0], 3);
-  midpoints_.download_later(device_, &totals[3], 1);
-  kept_.download_later(device_, &totals[4], 1);
-  device_.wait(kPhase);
-  std::array<cl_int, kTotals> since{};
-  for (std::size_t k = 0; k < kTotals; ++k) {
+  // The iteration's counts, read at once: the running totals less the last
+  // ones (modulo 2^32, as the device's counters wrap).
+  const std::vector<cl_int> totals = totals_.download(device_, kTotals);
+  const cl_int failures = totals[kFailures];
+  std::array<cl_int, kFailures> since{};
+  for (std::size_t k = 0; k < kFailures; ++k) {
     since[k] = static_cast<cl_int>(static_cast<cl_uint>(totals[k]) -
                                    static_cast<cl_uint>(last_totals_[k]));
     last_totals_[k] = totals[k];
@@ -167,7 +158,7 @@ cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
                        next_active_.buffer(), exact_list_.buffer(), exact_count_.buffer(),
                        redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
                        tracked_.buffer(), star_size_.buffer(), star_offset_.buffer(),
-                       flip_counts_.buffer(), failures_.buffer());
+                       totals_.buffer());
 }
 
 FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
@@ -206,9 +197,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
        static_cast<cl_int>(group_pass_limit_), static_cast<cl_int>(kMaxPasses - pass),
        static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
-       static_cast<cl_int>(rewritten.items.size()), kept_.buffer(),
-       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), static_cast<cl_int>(stamp),
-       static_cast<cl_int>(n));
+       static_cast<cl_int>(rewritten.items.size()), cl::Local(sizeof(cl_int) * group),
+       pass_result_.buffer(), static_cast<cl_int>(stamp), static_cast<cl_int>(n));
   launch(device_, passes_in_group_, group, kPhase, group);
   const std::vector<cl_int> values = pass_result_.download(device_, kGroupResults);
   if (values[2] != 0)

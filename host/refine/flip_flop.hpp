@@ -129,15 +129,16 @@ private:
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
   std::size_t run_entries_ = 0;  // the most entries of a list in the last run
-  DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
-      logged_;
+  DeviceArray<cl_int> marked_count_, exact_count_, logged_;
   // flipflop_passes_in_group's result (see the kernel).
   static constexpr std::size_t kGroupResults = 8;
   DeviceArray<cl_int> pass_result_;
-  // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
-  // totals, not cleared each iteration.
-  static constexpr std::size_t kTotals = 5;
-  std::array<cl_int, kTotals> last_totals_{};
+  // The running totals of the kernels (CLM_TOTAL_* in cl/flip_flop.cl):
+  // Delaunay flips, flops, removals, surviving midpoints, points kept, then
+  // (kFailures) stars lost; those before it as last read.
+  static constexpr std::size_t kFailures = 5, kTotals = kFailures + 1;
+  DeviceArray<cl_int> totals_;
+  std::array<cl_int, kFailures> last_totals_{};
 };
 
 } // namespace clmesh

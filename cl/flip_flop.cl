@@ -738,16 +738,16 @@ __kernel void finish_iteration(__global const int *new_points, __global int *poi
 }
 
 // The coordinates of the points this iteration deleted (the followed ones,
-// tracked[0 .. n), of state deleted) after the `logged` earlier ones, to
-// count the points inserted more than once at the end. A worklist counter
-// places them: their order reaches nothing.
+// tracked[0 .. n), of state deleted) after the earlier ones, to count the
+// points inserted more than once at the end; logged[0]: the entries so far.
+// A worklist counter places them: their order reaches nothing.
 __kernel void log_deleted_points(__global const int *tracked, __global const int *point_state,
                                  __global const double2 *points, __global double2 *deletion_log,
-                                 const int logged, volatile __global int *count, const int n) {
+                                 volatile __global int *logged, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int p = tracked[k];
   if (point_state[p] == CLM_POINT_DELETED)
-    deletion_log[logged + atomic_inc(count)] = points[p];
+    deletion_log[atomic_inc(logged)] = points[p];
 }

@@ -141,12 +141,13 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     // After finish_iteration, which leaves the deleted points' state alone.
     DeviceList<cl_double2> &log = deleted.coordinates;
     log.reserve(device_, static_cast<std::size_t>(flips[2]));
-    logged_.fill(device_, 0, 1);
+    if (logged_size_ != log.size) // set once for these steps: the kernel counts on
+      logged_.fill(device_, static_cast<cl_int>(log.size), 1);
     set_args(log_deleted_, tracked_.buffer(), mesh_.point_state.buffer(), mesh_.points.buffer(),
-             log.items.buffer(), static_cast<cl_int>(log.size), logged_.buffer(),
-             static_cast<cl_int>(tracked_n_));
+             log.items.buffer(), logged_.buffer(), static_cast<cl_int>(tracked_n_));
     launch(device_, log_deleted_, tracked_n_, kPhase);
     log.size += static_cast<std::size_t>(flips[2]);
+    logged_size_ = log.size;
   }
 }
 

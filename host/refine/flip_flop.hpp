@@ -10,6 +10,7 @@
 #include "clmesh/geometry.hpp"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace clmesh {
@@ -129,7 +130,11 @@ private:
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
   std::size_t run_entries_ = 0;  // the most entries of a list in the last run
-  DeviceArray<cl_int> marked_count_, exact_count_, logged_;
+  DeviceArray<cl_int> marked_count_, exact_count_;
+  // The deletion log's length as log_deleted_points counts it, and as the
+  // host last set or advanced it (SIZE_MAX: never set).
+  DeviceArray<cl_int> logged_;
+  std::size_t logged_size_ = SIZE_MAX;
   // flipflop_passes_in_group's result (see the kernel).
   static constexpr std::size_t kGroupResults = 8;
   DeviceArray<cl_int> pass_result_;

@@ -10,6 +10,7 @@
 // phase restores the Delaunay property after each round, so walks always run
 // in a Delaunay triangulation, where the visibility walk cannot cycle.
 #include "common.h"
+#include "group_scan.h"
 #include "mesh_params.h"
 #include "prefetch.h"
 
@@ -60,11 +61,8 @@ inline int next_visible_ghost(__global const double2 *points, __global const int
 // Marks the triangle(s) each pending point would split with its priority.
 // placed: the points were not walked to (no locate_points), all pending
 // where they stand; their status is set here.
-__kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global int *status, const int placed, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                           __global int *status, const int placed) {
   if (placed)
     status[gid] = CLM_PENDING;
   else if (status[gid] != CLM_PENDING)
@@ -81,12 +79,16 @@ __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *rema
         atomic_min(&tri_mark[g], key);
 }
 
-// winner[gid] = 1 when every mark written by the point survived.
-__kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                             __global const int *status, __global int *winner, const int n) {
+__kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global int *status, const int placed, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+  if (gid < n)
+    mark_container(gid, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+}
+
+// winner[gid] = 1 when every mark written by the point survived.
+inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                          __global const int *status, __global int *winner) {
   int wins = 0;
   if (status[gid] == CLM_PENDING) {
     const int p = remaining[gid], t = location[p], edge = location_edge[p];
@@ -103,11 +105,17 @@ __kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remai
   winner[gid] = wins;
 }
 
-// Clears the marks of this round (before the topology changes).
-__kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                    __global const int *status, const int n) {
+__kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                             __global const int *status, __global int *winner, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || status[gid] != CLM_PENDING)
+  if (gid < n)
+    select_winner(gid, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+}
+
+// Clears the marks of this round (before the topology changes).
+inline void clear_container_mark(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                 __global const int *status) {
+  if (status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   tri_mark[t] = CLM_NO_MARK;
@@ -118,6 +126,13 @@ __kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int
       for (int g = t;
            (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, t, p, dir)) >= 0;)
         tri_mark[g] = CLM_NO_MARK;
+}
+
+__kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                    __global const int *status, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    clear_container_mark(gid, CLM_TRIANGULATION_ARGS, remaining, status);
 }
 
 // Prefetching for split_triangles (prefetch.h): a winner's location, then
@@ -225,19 +240,53 @@ __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int
   relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[gid], 2);
 }
 
-// keep[gid] = 1 for points still waiting (neither inserted nor duplicate),
-// added up in counters[1] (a running total); counts lost walks, which would
-// be a bug, in counters[0]. Reads what select_winners leaves.
+// keep[gid] = 1 for points still waiting (neither inserted nor duplicate);
+// counts lost walks, which would be a bug, in counters[0]. Reads what
+// select_winners leaves. Returns keep[gid].
+inline int count_waiting(int gid, __global const int *status, __global const int *winner,
+                         __global int *keep, volatile __global int *counters) {
+  const int waiting = status[gid] == CLM_PENDING && !winner[gid];
+  keep[gid] = waiting;
+  if (status[gid] == CLM_LOST)
+    atomic_inc(&counters[0]);
+  return waiting;
+}
+
+// The same for every point, the waiting ones added up in counters[1] (a
+// running total).
 __kernel void count_remaining(__global const int *status, __global const int *winner,
                               __global int *keep, volatile __global int *counters, const int n) {
   const int gid = get_global_id(0);
-  int waiting = 0;
-  if (gid < n) {
-    waiting = status[gid] == CLM_PENDING && !winner[gid];
-    keep[gid] = waiting;
-    if (status[gid] == CLM_LOST)
-      atomic_inc(&counters[0]);
-  }
+  const int waiting = gid < n ? count_waiting(gid, status, winner, keep, counters) : 0;
   volatile __local int scratch[2];
   reserve_in_group(waiting, scratch, &counters[1]);
+}
+
+// For a short round, by one work-group in one launch: mark_containers,
+// select_winners, clear_container_marks and count_remaining in turn, then
+// the winners' prefix sum into offset (split_triangles' slots), its total
+// in counters[2].
+__kernel void claim_containers_in_group(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                        __global int *status, __global int *winner,
+                                        __global int *offset, __global int *keep,
+                                        volatile __global int *counters, __local int *scratch,
+                                        const int placed, const int n) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  for (int k = lid; k < n; k += size)
+    mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    select_winner(k, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int waiting = 0;
+  for (int k = lid; k < n; k += size) {
+    clear_container_mark(k, CLM_TRIANGULATION_ARGS, remaining, status);
+    waiting += count_waiting(k, status, winner, keep, counters);
+  }
+  if (waiting > 0)
+    atomic_add(&counters[1], waiting);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int winners = group_exclusive_scan(winner, offset, n, scratch);
+  if (lid == 0)
+    counters[2] = winners;
 }

@@ -1,5 +1,6 @@
 #include "dt/missing_point_insertion.hpp"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -31,14 +32,19 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       split_(device.kernel(kFile, "split_triangles", kPhase)),
       relink_(device.kernel(kFile, "relink_split_children", kPhase)),
       count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
+      claim_in_group_(device.kernel(kFile, "claim_containers_in_group", kPhase)),
       remaining_(point_list(device, mesh, pool, kRemaining)),
       remaining_next_(point_list(device, mesh, pool, kRemainingNext)),
       status_(point_list(device, mesh, pool, kStatus)),
       winner_(point_list(device, mesh, pool, kWinner)),
       offset_(point_list(device, mesh, pool, kOffset)),
       keep_(point_list(device, mesh, pool, kKeep)), changed_(device, mesh.list_capacity),
-      counters_(device, 2), pooled_(pool != nullptr) {
-  counters_.fill(device_, 0, 2);
+      counters_(device, kCounters), pooled_(pool != nullptr) {
+  counters_.fill(device_, 0, kCounters);
+  group_ = std::min(device.work_group(), guarded(kPhase, "querying the work-group size", [&] {
+                      return claim_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(
+                          device.cl_device());
+                    }));
 }
 
 void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
@@ -78,23 +84,34 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
     located_since_ = stamp; // this round's changes and later ones move points
   }
   // Without a walk mark_containers sets every status to pending.
-  set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
-                static_cast<cl_int>(!walk), n);
-  launch(device_, mark_, pending_, kPhase);
-  set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
-                status_.buffer(), winner_.buffer(), n);
-  launch(device_, select_, pending_, kPhase);
-  set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
-                status_.buffer(), n);
-  launch(device_, clear_marks_, pending_, kPhase);
-  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), counters_.buffer(),
-           n);
-  launch(device_, count_remaining_, pending_, kPhase);
-
-  // The counters come back with the winners' total: one wait.
-  std::array<cl_int, 2> counters{};
-  counters_.download_later(device_, counters.data(), counters.size());
-  const int winners = scan_.exclusive_scan(winner_, offset_, pending_, kPhase);
+  std::array<cl_int, kCounters> counters{};
+  int winners = 0;
+  if (pending_ <= kInGroup) {
+    set_args_from(claim_in_group_, mesh_.bind_triangulation(claim_in_group_, 0),
+                  remaining_.buffer(), status_.buffer(), winner_.buffer(), offset_.buffer(),
+                  keep_.buffer(), counters_.buffer(), cl::Local(sizeof(cl_int) * group_),
+                  static_cast<cl_int>(!walk), n);
+    launch(device_, claim_in_group_, group_, kPhase, group_);
+    const std::vector<cl_int> read = counters_.download(device_, kCounters);
+    std::copy(read.begin(), read.end(), counters.begin());
+    winners = counters[2];
+  } else {
+    set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
+                  static_cast<cl_int>(!walk), n);
+    launch(device_, mark_, pending_, kPhase);
+    set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
+                  status_.buffer(), winner_.buffer(), n);
+    launch(device_, select_, pending_, kPhase);
+    set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
+                  status_.buffer(), n);
+    launch(device_, clear_marks_, pending_, kPhase);
+    set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(),
+             counters_.buffer(), n);
+    launch(device_, count_remaining_, pending_, kPhase);
+    // The counters come back with the winners' total: one wait.
+    counters_.download_later(device_, counters.data(), 2);
+    winners = scan_.exclusive_scan(winner_, offset_, pending_, kPhase);
+  }
   if (counters[0] != 0)
     throw InternalError("missing-point insertion: a point location walk did not end");
   // The points still waiting: the running total less the last one (modulo

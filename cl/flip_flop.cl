@@ -615,21 +615,24 @@ inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthog
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < next; k += size)
     rewritten[rewritten_size + k] = next_active[k];
-  // Every barrier is met whether stars are looked for or not (the passes
-  // run in a loop): what is not needed works on empty ranges.
-  const bool look = marked > 0 || find_stars;
+  int stars = -1, length = next;
+  if (marked > 0 || find_stars) {
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    for (int k = lid; k < m; k += size)
+      track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    stars = group_exclusive_scan(star_size, star_offset, m, scratch);
+    if (next + stars > next_capacity) {
+      stars = -2;
+    } else {
+      for (int k = lid; k < m; k += size)
+        emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
+      barrier(CLK_GLOBAL_MEM_FENCE);
+      length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
+    }
+  }
   barrier(CLK_GLOBAL_MEM_FENCE);
-  for (int k = lid; look && k < m; k += size)
-    track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
-  barrier(CLK_GLOBAL_MEM_FENCE);
-  const int stars = group_exclusive_scan(star_size, star_offset, look ? m : 0, scratch);
-  const bool room = next + stars <= next_capacity;
-  for (int k = lid; look && room && k < m; k += size)
-    emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
-  barrier(CLK_GLOBAL_MEM_FENCE);
-  const int length = group_unique(next_active, look && room ? next + stars : 0, tri_mark, count,
-                                  offset, active, scratch);
-  return (int4)(next, marked, !look ? -1 : room ? stars : -2, look && room ? length : next);
+  return (int4)(next, marked, stars, length);
 }
 
 // A stall (no operation left, yet redundant points remain, in degenerate

@@ -41,10 +41,7 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       keep_(point_list(device, mesh, pool, kKeep)), changed_(device, mesh.list_capacity),
       counters_(device, kCounters), pooled_(pool != nullptr) {
   counters_.fill(device_, 0, kCounters);
-  group_ = std::min(device.work_group(), guarded(kPhase, "querying the work-group size", [&] {
-                      return claim_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(
-                          device.cl_device());
-                    }));
+  group_ = device.single_group(claim_in_group_, kPhase);
 }
 
 void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {

@@ -48,9 +48,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
       marked_count_(device, 1), exact_count_(device, 1), logged_(device, 1),
       pass_result_(device, kGroupResults), totals_(device, kTotals) {
-  pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
-    return passes_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
-  });
+  pass_group_ = device.single_group(passes_in_group_, kPhase);
   // Running totals, never reset: each iteration takes the difference.
   totals_.fill(device_, 0, kTotals);
 }
@@ -190,8 +188,7 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
 
 std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
                                       DeviceList<cl_int> &rewritten, FlipFlopCounts &counts) {
-  // The group may have to be smaller for this large kernel than for the others.
-  const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
+  const std::size_t group = pass_group_;
   rewritten.reserve(device_, 2 * n); // each entry passes on two at most
   bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
        static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),

@@ -120,7 +120,7 @@ private:
   HullEncroachment encroachment_;
   cl_int orthogonal_test_;
   std::size_t group_pass_limit_;
-  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_passes_in_group
+  std::size_t pass_group_ = 1; // flipflop_passes_in_group's work-group size (Device::single_group)
   std::size_t tracked_n_ = 0;
   bool redundant_left_ = false;
   cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,

@@ -1,7 +1,5 @@
 #include "refine/hull_encroachment.hpp"
 
-#include <algorithm>
-
 namespace clmesh {
 
 namespace {
@@ -17,12 +15,8 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
       mark_in_group_(device.kernel(kFile, "mark_encroaching_in_group", kPhase)),
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
-      offset_(device, mesh.point_capacity), appended_(device, 1) {
-  group_ = std::min(device.work_group(), guarded(kPhase, "querying the work-group size", [&] {
-                      return mark_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(
-                          device.cl_device());
-                    }));
-}
+      offset_(device, mesh.point_capacity), appended_(device, 1),
+      group_(device.single_group(mark_in_group_, kPhase)) {}
 
 void HullEncroachment::trim_lists() {
   owned_.discard(device_, new_points_, kPhase);

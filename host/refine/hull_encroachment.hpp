@@ -40,13 +40,13 @@ private:
   // one launch (mark_encroaching_in_group), more by a launch a step.
   static constexpr std::size_t kInGroup = 4096;
   cl::Kernel mark_, clear_claims_, mark_in_group_;
-  std::size_t group_ = 1; // mark_encroaching_in_group's work-group size
   // Per point: the smallest midpoint claiming it (empty: 0x7fffffff between calls).
   DeviceArray<cl_int> claim_;
   std::size_t claims_filled_ = 0;      // claim_ is set (empty) below this point
   DeviceArray<cl_int> owned_, offset_; // per new point: old encroachers it claims
   std::size_t new_points_ = 0;         // of the last call
   DeviceArray<cl_int> appended_;       // mark_encroaching_in_group's result
+  std::size_t group_;                  // and its work-group size
 };
 
 } // namespace clmesh

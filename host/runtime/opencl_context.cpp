@@ -377,6 +377,14 @@ std::size_t Device::global_memory() const {
   return host ? std::min(global, *host) : global;
 }
 
+std::size_t Device::single_group(const cl::Kernel &kernel, const std::string &phase) const {
+  if (cpu_paths_)
+    return 1;
+  return std::min(work_group_, guarded(phase, "querying the work-group size", [&] {
+                    return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_);
+                  }));
+}
+
 void Device::set_work_group(std::size_t size) {
   const std::size_t max_size = max_work_group();
   if (size == 0 || size > max_size)

@@ -75,6 +75,12 @@ public:
 
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }
+  // The work-group size of `kernel` launched as one work-group (a short
+  // step in one launch, barriers between its parts): one work-item on the
+  // CPU paths, whose work-items run in turn (each barrier would cost a loop
+  // over the group for nothing), else work_group() within the kernel's own
+  // limit. Results never depend on it.
+  std::size_t single_group(const cl::Kernel &kernel, const std::string &phase) const;
   void set_work_group(std::size_t size);
   std::size_t max_work_group() const;
   std::size_t compute_units() const;

@@ -20,12 +20,7 @@ PrefixScan::PrefixScan(Device &device, Method method)
       group_(std::min<std::size_t>(256, device.max_work_group())),
       by_runs_(method == Method::runs || (method == Method::device_default && device.cpu_paths())),
       max_runs_(4 * device.compute_units()), run_sums_(device, max_runs_), run_total_(device, 1),
-      unique_length_(device, 1) {
-  unique_group_ = std::min(
-      device.work_group(), guarded("scan", "querying the work-group size", [&] {
-        return unique_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
-      }));
-}
+      unique_length_(device, 1), unique_group_(device.single_group(unique_in_group_, "scan")) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   auto it = levels_.find(level);

@@ -65,7 +65,7 @@ private:
   std::size_t max_runs_;
   DeviceArray<cl_int> run_sums_, run_total_;
   DeviceArray<cl_int> unique_length_; // unique_in_group's result
-  std::size_t unique_group_ = 1;      // its work-group size
+  std::size_t unique_group_;          // its work-group size
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned
 };
 

@@ -43,6 +43,7 @@
 #define CLM_TOTAL_MIDPOINTS 3
 #define CLM_TOTAL_KEPT 4
 #define CLM_TOTAL_FAILURES 5
+#define CLM_TOTALS 6
 
 // The flip-flop's lists and per-point arrays, FlipFlop's buffers, bound by
 // FlipFlop::bind_lists in this order. Per entry of the active list:
@@ -654,6 +655,26 @@ __kernel void keep_stuck_points(__global const int *tracked, __global int *point
     keep_stuck_point(tracked, point_state, totals, k);
 }
 
+// End of an iteration: its points become points of earlier iterations;
+// the surviving hull midpoints are counted in totals.
+inline void finish_point(__global const int *new_points, __global int *point_state,
+                         volatile __global int *totals, int k) {
+  const int p = new_points[k], state = point_state[p];
+  if (state == CLM_POINT_NEW_MIDPOINT) {
+    atomic_inc(&totals[CLM_TOTAL_MIDPOINTS]);
+    point_state[p] = CLM_POINT_MIDPOINT;
+  } else if (state == CLM_POINT_NEW) {
+    point_state[p] = CLM_POINT_STEINER;
+  }
+}
+
+__kernel void finish_iteration(__global const int *new_points, __global int *point_state,
+                               volatile __global int *totals, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    finish_point(new_points, point_state, totals, k);
+}
+
 // Pass after pass by one work-group (pass_in_group), as FlipFlop::run goes
 // on from a pass: while the active list is not empty and holds at most
 // group_pass_limit entries, at most max_passes passes, each while
@@ -666,13 +687,16 @@ __kernel void keep_stuck_points(__global const int *tracked, __global int *point
 // next list longer than list_capacity, [3] whether redundant points are
 // left, [4] exact proposals, [5] whether the lists swapped places (an odd
 // number of times), [6] entries appended to `rewritten`, [7] the most
-// entries a pass's lists took.
+// entries a pass's lists took, [8] whether the run ended here: the list
+// empty, finish_iteration's work done over new_points[0 .. new_count) in
+// the same launch, and the totals then in result[9 ..].
 __kernel void flipflop_passes_in_group(
     CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test, const int first_pass,
     const int next_capacity, const int list_capacity, const int group_pass_limit,
     const int max_passes, const int m, const int redundant_at_start, __global int *rewritten,
     const int rewritten_at_start, const int rewritten_capacity, __local int *scratch,
-    volatile __global int *result, const int stamp, const int entries) {
+    volatile __global int *result, __global const int *new_points, const int new_count,
+    const int stamp, const int entries) {
   const int lid = get_local_id(0), size = get_local_size(0);
   if (lid == 0)
     result[4] = 0;
@@ -713,7 +737,14 @@ __kernel void flipflop_passes_in_group(
     if (stalled)
       redundant_left = 0;
   }
+  const bool finished = status == 0 && n == 0;
+  for (int k = lid; finished && k < new_count; k += size)
+    finish_point(new_points, point_state, totals, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
   if (lid == 0) {
+    result[8] = finished;
+    for (int j = 0; finished && j < CLM_TOTALS; ++j)
+      result[9 + j] = totals[j];
     result[0] = n;
     result[1] = passes;
     result[2] = status;
@@ -721,22 +752,6 @@ __kernel void flipflop_passes_in_group(
     result[5] = swapped;
     result[6] = appended;
     result[7] = most;
-  }
-}
-
-// End of an iteration: its points become points of earlier iterations;
-// the surviving hull midpoints are counted in totals.
-__kernel void finish_iteration(__global const int *new_points, __global int *point_state,
-                               volatile __global int *totals, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
-  const int p = new_points[k], state = point_state[p];
-  if (state == CLM_POINT_NEW_MIDPOINT) {
-    atomic_inc(&totals[CLM_TOTAL_MIDPOINTS]);
-    point_state[p] = CLM_POINT_MIDPOINT;
-  } else if (state == CLM_POINT_NEW) {
-    point_state[p] = CLM_POINT_STEINER;
   }
 }
 

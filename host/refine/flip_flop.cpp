@@ -79,12 +79,13 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
+  finished_in_group_ = false;
   for (long pass = 0; n > 0;) {
     if (pass >= kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
                           " passes");
     if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
-      n = passes_in_group(n, pass, stamp, rewritten, counts);
+      n = passes_in_group(n, pass, stamp, new_points, m, rewritten, counts);
       continue;
     }
     const auto pass_stamp = static_cast<cl_int>(stamp++);
@@ -110,14 +111,18 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = result.next;
     }
   }
-  if (m > 0) {
-    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
-             static_cast<cl_int>(m));
-    launch(device_, finish_, m, kPhase);
+  // The iteration's counts, read at once (with the last passes' result
+  // when they ended the run): the running totals less the last ones
+  // (modulo 2^32, as the device's counters wrap).
+  std::vector<cl_int> totals(group_totals_.begin(), group_totals_.end());
+  if (!finished_in_group_) {
+    if (m > 0) {
+      set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
+               static_cast<cl_int>(m));
+      launch(device_, finish_, m, kPhase);
+    }
+    totals = totals_.download(device_, kTotals);
   }
-  // The iteration's counts, read at once: the running totals less the last
-  // ones (modulo 2^32, as the device's counters wrap).
-  const std::vector<cl_int> totals = totals_.download(device_, kTotals);
   const cl_int failures = totals[kFailures];
   std::array<cl_int, kFailures> since{};
   for (std::size_t k = 0; k < kFailures; ++k) {
@@ -187,6 +192,7 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
 }
 
 std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
+                                      const DeviceArray<cl_int> &new_points, std::size_t m,
                                       DeviceList<cl_int> &rewritten, FlipFlopCounts &counts) {
   const std::size_t group = pass_group_;
   rewritten.reserve(device_, 2 * n); // each entry passes on two at most
@@ -196,7 +202,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
        static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
        static_cast<cl_int>(rewritten.items.size()), cl::Local(sizeof(cl_int) * group),
-       pass_result_.buffer(), static_cast<cl_int>(stamp), static_cast<cl_int>(n));
+       pass_result_.buffer(), new_points.buffer(), static_cast<cl_int>(m),
+       static_cast<cl_int>(stamp), static_cast<cl_int>(n));
   launch(device_, passes_in_group_, group, kPhase, group);
   const std::vector<cl_int> values = pass_result_.download(device_, kGroupResults);
   if (values[2] != 0)
@@ -210,6 +217,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
     std::swap(active_, next_active_);
   rewritten.size += static_cast<std::size_t>(values[6]);
   run_entries_ = std::max(run_entries_, static_cast<std::size_t>(values[7]));
+  finished_in_group_ = values[8] != 0;
+  std::copy(values.begin() + 9, values.end(), group_totals_.begin());
   return static_cast<std::size_t>(values[0]);
 }
 

@@ -99,9 +99,12 @@ private:
                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
   // Passes from pass `pass` of the run on, by one work-group, while the
   // active list (n entries) stays short; advances pass and stamp by the
-  // passes it made and returns the active list's length.
-  std::size_t passes_in_group(std::size_t n, long &pass, int &stamp, DeviceList<cl_int> &rewritten,
-                              FlipFlopCounts &counts);
+  // passes it made and returns the active list's length. When they empty
+  // the list, they also end the iteration's points (new_points[0 .. m),
+  // finish_iteration) and bring back the totals.
+  std::size_t passes_in_group(std::size_t n, long &pass, int &stamp,
+                              const DeviceArray<cl_int> &new_points, std::size_t m,
+                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.
@@ -136,7 +139,7 @@ private:
   DeviceArray<cl_int> logged_;
   std::size_t logged_size_ = SIZE_MAX;
   // flipflop_passes_in_group's result (see the kernel).
-  static constexpr std::size_t kGroupResults = 8;
+  static constexpr std::size_t kGroupResults = 15;
   DeviceArray<cl_int> pass_result_;
   // The running totals of the kernels (CLM_TOTAL_* in cl/flip_flop.cl):
   // Delaunay flips, flops, removals, surviving midpoints, points kept, then
@@ -144,6 +147,9 @@ private:
   static constexpr std::size_t kFailures = 5, kTotals = kFailures + 1;
   DeviceArray<cl_int> totals_;
   std::array<cl_int, kFailures> last_totals_{};
+  // Whether the last passes in group ended the run, and the totals they read.
+  bool finished_in_group_ = false;
+  std::array<cl_int, kTotals> group_totals_{};
 };
 
 } // namespace clmesh

@@ -162,16 +162,10 @@ inline void prefetch_split(__global const int *remaining, __global const int *wi
 // allocate_slot); every child has the new point at index 2,
 // so its edge 2 is the only one facing outwards. Children are listed in
 // changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
-__kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global const int *winner, __global const int *winner_offset,
-                              __global int *changed, const int stamp, __global const int *free_list,
-                              const int free_first, const int free_count, const int first_slot,
-                              const int n) {
-  const int gid = get_global_id(0);
-  prefetch_split(remaining, winner, location, location_edge, tri_vertex, tri_neighbor,
-                 modified_stamp, children, gid, n);
-  if (gid >= n || !winner[gid])
-    return;
+inline void split_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                         __global const int *winner_offset, __global int *changed, const int stamp,
+                         __global const int *free_list, const int free_first, const int free_count,
+                         const int first_slot) {
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   const int s1 =
       allocate_slot(free_list, free_first, free_count, first_slot, 2 * winner_offset[gid]);
@@ -227,6 +221,21 @@ __kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *rema
   vertex_triangle[p] = t;
 }
 
+#define CLM_SPLIT_ARGS                                                                             \
+  remaining, winner_offset, changed, stamp, free_list, free_first, free_count, first_slot
+
+__kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global const int *winner, __global const int *winner_offset,
+                              __global int *changed, const int stamp, __global const int *free_list,
+                              const int free_first, const int free_count, const int first_slot,
+                              const int n) {
+  const int gid = get_global_id(0);
+  prefetch_split(remaining, winner, location, location_edge, tri_vertex, tri_neighbor,
+                 modified_stamp, children, gid, n);
+  if (gid < n && winner[gid])
+    split_winner(gid, CLM_TRIANGULATION_ARGS, CLM_SPLIT_ARGS);
+}
+
 // Second step: link each child's outward edge (edge 2) to its true neighbour.
 __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int *changed,
                                     const int stamp, const int n) {
@@ -262,15 +271,17 @@ __kernel void count_remaining(__global const int *status, __global const int *wi
   reserve_in_group(waiting, scratch, &counters[1]);
 }
 
-// For a short round, by one work-group in one launch: mark_containers,
-// select_winners, clear_container_marks and count_remaining in turn, then
-// the winners' prefix sum into offset (split_triangles' slots), its total
-// in counters[2].
-__kernel void claim_containers_in_group(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                        __global int *status, __global int *winner,
-                                        __global int *offset, __global int *keep,
-                                        volatile __global int *counters, __local int *scratch,
-                                        const int placed, const int n) {
+// A short round (its points located) by one work-group in one launch:
+// mark_containers, select_winners, clear_container_marks and
+// count_remaining in turn, the winners' prefix sum into winner_offset (its
+// total in counters[2]), split_triangles and relink_split_children.
+__kernel void insert_round_in_group(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                    __global int *status, __global int *winner,
+                                    __global int *winner_offset, __global int *keep,
+                                    volatile __global int *counters, __local int *scratch,
+                                    const int placed, __global int *changed, const int stamp,
+                                    __global const int *free_list, const int free_first,
+                                    const int free_count, const int first_slot, const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size)
     mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed);
@@ -286,7 +297,14 @@ __kernel void claim_containers_in_group(CLM_TRIANGULATION_PARAMS, __global const
   if (waiting > 0)
     atomic_add(&counters[1], waiting);
   barrier(CLK_GLOBAL_MEM_FENCE);
-  const int winners = group_exclusive_scan(winner, offset, n, scratch);
+  const int winners = group_exclusive_scan(winner, winner_offset, n, scratch);
+  for (int k = lid; k < n; k += size)
+    if (winner[k])
+      split_winner(k, CLM_TRIANGULATION_ARGS, CLM_SPLIT_ARGS);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < 4 * winners; k += size)
+    if (changed[k] >= 0)
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[k], 2);
   if (lid == 0)
     counters[2] = winners;
 }

@@ -52,11 +52,12 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_,
-      claim_in_group_;
-  // Rounds of at most this many points mark, select and count by one
-  // work-group in one launch (claim_containers_in_group).
+      round_in_group_;
+  // Rounds of at most this many points (with room for all to win) run by
+  // one work-group in one launch, from the marks to the relinking
+  // (insert_round_in_group).
   static constexpr std::size_t kInGroup = 4096;
-  std::size_t group_ = 1; // claim_containers_in_group's work-group size
+  std::size_t group_ = 1; // insert_round_in_group's work-group size
   DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_;
   DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
   DeviceArray<cl_int> keep_, changed_;

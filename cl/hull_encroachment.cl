@@ -99,10 +99,10 @@ __kernel void clear_encroaching_claims(__global const int *tracked, __global int
 }
 
 // The three steps, the prefix sum between them and the reset of the claims
-// by one work-group, in one launch, for few new points (tracked starts with
-// them, as for the kernels): entry by entry the results of the kernels.
-// The old points appended go to tracked[first ..], their number to
-// appended[0].
+// by one work-group, in one launch, for few new points (copied to tracked
+// first, as the host does for the kernels): entry by entry the results of
+// the kernels. The old points appended go to tracked[first ..], their
+// number to appended[0].
 __kernel void mark_encroaching_in_group(CLM_MESH_PARAMS, __global const int *new_points,
                                         const double lens, volatile __global int *claim,
                                         __global int *redundant_mark,
@@ -111,8 +111,10 @@ __kernel void mark_encroaching_in_group(CLM_MESH_PARAMS, __global const int *new
                                         __local int *scratch, __global int *appended,
                                         const int first) {
   const int lid = get_local_id(0), size = get_local_size(0), n = first;
-  for (int k = lid; k < n; k += size)
+  for (int k = lid; k < n; k += size) {
+    tracked[k] = new_points[k];
     mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_CLAIM));
+  }
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_COUNT));

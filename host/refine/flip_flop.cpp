@@ -70,11 +70,6 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   }
   // The points to follow: this iteration's, then the old ones that encroach
   // a hull edge split in this iteration (thesis §3.4.1).
-  if (m > 0)
-    guarded(kPhase, "copying the new points", [&] {
-      device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked_.buffer(), 0, 0,
-                                        m * sizeof(cl_int));
-    });
   tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
                                                   tracked_);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass

@@ -45,6 +45,10 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
     launch(device_, mark_in_group_, group_, kPhase, group_);
     return static_cast<std::size_t>(appended_.read(device_, 0));
   }
+  guarded(kPhase, "copying the new points", [&] {
+    device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked.buffer(), 0, 0,
+                                      m * sizeof(cl_int));
+  });
   auto run_step = [&](cl_int step) {
     set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), lens_, step, claim_.buffer(),
                   redundant_mark.buffer(), redundant_anchor.buffer(), owned_.buffer(),

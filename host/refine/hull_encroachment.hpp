@@ -15,7 +15,7 @@ public:
   // lens: Triangle's encroachment test of hull edges (OffcenterInsertion::lens).
   HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan &scan, double lens);
 
-  // `tracked` starts with new_points[0 .. m). For each hull midpoint among
+  // `tracked` receives new_points[0 .. m). For each hull midpoint among
   // them, the off-centers around
   // the apex of its former hull edge that encroach the edge are marked
   // redundant (redundant_mark, redundant_anchor), and the old ones among

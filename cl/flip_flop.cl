@@ -689,23 +689,28 @@ __kernel void finish_iteration(__global const int *new_points, __global int *poi
 // number of times), [6] entries appended to `rewritten`, [7] the most
 // entries a pass's lists took, [8] whether the run ended here: the list
 // empty, finish_iteration's work done over new_points[0 .. new_count) in
-// the same launch, and the totals then in result[9 ..].
+// the same launch, and the totals then in result[9 ..], [15] the points
+// tracked: tracked_known, or when it is negative new_count plus the
+// boundary routine's old_tracked[0] (read here, not by the host); passes run
+// only while they are at most tracked_limit.
 __kernel void flipflop_passes_in_group(
     CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test, const int first_pass,
     const int next_capacity, const int list_capacity, const int group_pass_limit,
-    const int max_passes, const int m, const int redundant_at_start, __global int *rewritten,
+    const int max_passes, const int tracked_known, __global const int *old_tracked,
+    const int tracked_limit, const int redundant_at_start, __global int *rewritten,
     const int rewritten_at_start, const int rewritten_capacity, __local int *scratch,
     volatile __global int *result, __global const int *new_points, const int new_count,
     const int stamp, const int entries) {
   const int lid = get_local_id(0), size = get_local_size(0);
   if (lid == 0)
     result[4] = 0;
+  const int m = tracked_known >= 0 ? tracked_known : new_count + old_tracked[0];
   // The arguments stay as they are: every work-item keeps its own copy of
   // what changes from pass to pass (the same in all).
   int n = entries, redundant_left = redundant_at_start, rewritten_size = rewritten_at_start;
   int passes = 0, status = 0, swapped = 0, appended = 0, most = 0;
-  while (status == 0 && n > 0 && n <= group_pass_limit && passes < max_passes &&
-         rewritten_size + 2 * n <= rewritten_capacity) {
+  while (status == 0 && n > 0 && n <= group_pass_limit && m <= tracked_limit &&
+         passes < max_passes && rewritten_size + 2 * n <= rewritten_capacity) {
     const int any_redundant = redundant_left && (passes > 0 || !first_pass);
     __global int *const from = swapped ? next_active : active;
     __global int *const to = swapped ? active : next_active;
@@ -745,6 +750,7 @@ __kernel void flipflop_passes_in_group(
     result[8] = finished;
     for (int j = 0; finished && j < CLM_TOTALS; ++j)
       result[9 + j] = totals[j];
+    result[9 + CLM_TOTALS] = m;
     result[0] = n;
     result[1] = passes;
     result[2] = status;

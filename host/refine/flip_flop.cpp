@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -70,8 +71,12 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   }
   // The points to follow: this iteration's, then the old ones that encroach
   // a hull edge split in this iteration (thesis §3.4.1).
-  tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
-                                                  tracked_);
+  // With few new points the old ones' count stays on the device for the
+  // passes in group to read (tracked_known_ false until they bring it back).
+  const std::optional<std::size_t> old =
+      encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_, tracked_);
+  tracked_known_ = old.has_value();
+  tracked_n_ = m + old.value_or(0);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
   finished_in_group_ = false;
@@ -83,6 +88,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = passes_in_group(n, pass, stamp, new_points, m, rewritten, counts);
       continue;
     }
+    know_tracked(m);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
     const PassResult result = pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
@@ -106,6 +112,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = result.next;
     }
   }
+  know_tracked(m);
   // The iteration's counts, read at once (with the last passes' result
   // when they ended the run): the running totals less the last ones
   // (modulo 2^32, as the device's counters wrap).
@@ -194,7 +201,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
   bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
        static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),
        static_cast<cl_int>(group_pass_limit_), static_cast<cl_int>(kMaxPasses - pass),
-       static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
+       static_cast<cl_int>(tracked_known_ ? tracked_n_ : -1), encroachment_.appended().buffer(),
+       static_cast<cl_int>(kTrackedInGroup), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
        static_cast<cl_int>(rewritten.items.size()), cl::Local(sizeof(cl_int) * group),
        pass_result_.buffer(), new_points.buffer(), static_cast<cl_int>(m),
@@ -213,8 +221,19 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
   rewritten.size += static_cast<std::size_t>(values[6]);
   run_entries_ = std::max(run_entries_, static_cast<std::size_t>(values[7]));
   finished_in_group_ = values[8] != 0;
-  std::copy(values.begin() + 9, values.end(), group_totals_.begin());
+  std::copy(values.begin() + 9, values.begin() + 9 + kTotals, group_totals_.begin());
+  tracked_n_ = static_cast<std::size_t>(values[9 + kTotals]);
+  tracked_known_ = true;
+  run_entries_ = std::max(run_entries_, tracked_n_);
   return static_cast<std::size_t>(values[0]);
+}
+
+void FlipFlop::know_tracked(std::size_t m) {
+  if (tracked_known_)
+    return;
+  tracked_n_ = m + encroachment_.read_appended();
+  tracked_known_ = true;
+  run_entries_ = std::max(run_entries_, tracked_n_);
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the

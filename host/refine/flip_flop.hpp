@@ -125,6 +125,10 @@ private:
   std::size_t group_pass_limit_;
   std::size_t pass_group_ = 1; // flipflop_passes_in_group's work-group size (Device::single_group)
   std::size_t tracked_n_ = 0;
+  bool tracked_known_ = true; // else the old points of tracked_n_ are on the device
+  // Makes tracked_n_ known (m: the new points), reading the boundary
+  // routine's count when the passes have not brought it back.
+  void know_tracked(std::size_t m);
   bool redundant_left_ = false;
   cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,
       keep_stuck_, passes_in_group_, log_deleted_;
@@ -139,7 +143,7 @@ private:
   DeviceArray<cl_int> logged_;
   std::size_t logged_size_ = SIZE_MAX;
   // flipflop_passes_in_group's result (see the kernel).
-  static constexpr std::size_t kGroupResults = 15;
+  static constexpr std::size_t kGroupResults = 16;
   DeviceArray<cl_int> pass_result_;
   // The running totals of the kernels (CLM_TOTAL_* in cl/flip_flop.cl):
   // Delaunay flips, flops, removals, surviving midpoints, points kept, then

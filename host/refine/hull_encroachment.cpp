@@ -23,10 +23,9 @@ void HullEncroachment::trim_lists() {
   offset_.discard(device_, new_points_, kPhase);
 }
 
-std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
-                                               const DeviceArray<cl_int> &redundant_mark,
-                                               const DeviceArray<cl_int> &redundant_anchor,
-                                               const DeviceArray<cl_int> &tracked) {
+std::optional<std::size_t> HullEncroachment::mark_encroaching(
+    const DeviceArray<cl_int> &new_points, std::size_t m, const DeviceArray<cl_int> &redundant_mark,
+    const DeviceArray<cl_int> &redundant_anchor, const DeviceArray<cl_int> &tracked) {
   new_points_ = m;
   if (m == 0)
     return 0;
@@ -43,7 +42,7 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
                   owned_.buffer(), offset_.buffer(), tracked.buffer(),
                   cl::Local(sizeof(cl_int) * group_), appended_.buffer(), items);
     launch(device_, mark_in_group_, group_, kPhase, group_);
-    return static_cast<std::size_t>(appended_.read(device_, 0));
+    return std::nullopt;
   }
   guarded(kPhase, "copying the new points", [&] {
     device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked.buffer(), 0, 0,

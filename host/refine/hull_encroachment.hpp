@@ -6,6 +6,8 @@
 
 #include "runtime/prefix_scan.hpp"
 
+#include <optional>
+
 namespace clmesh {
 
 class HullEncroachment {
@@ -20,16 +22,20 @@ public:
   // the apex of its former hull edge that encroach the edge are marked
   // redundant (redundant_mark, redundant_anchor), and the old ones among
   // them are appended to `tracked` from entry m on. Returns how many were
-  // appended. Which midpoint claims an encroacher is decided by index, so
-  // the list is the same on every run.
-  std::size_t mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
-                               const DeviceArray<cl_int> &redundant_mark,
-                               const DeviceArray<cl_int> &redundant_anchor,
-                               const DeviceArray<cl_int> &tracked);
+  // appended, or none with few new points: the count is then left in
+  // appended()[0] on the device (read_appended() reads it). Which midpoint
+  // claims an encroacher is decided by index, so the list is the same on
+  // every run.
+  std::optional<std::size_t> mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
+                                              const DeviceArray<cl_int> &redundant_mark,
+                                              const DeviceArray<cl_int> &redundant_anchor,
+                                              const DeviceArray<cl_int> &tracked);
   // Between calls: the per-new-point lists keep the memory of the last
   // call's entries, which the next one (of about the same size) writes
   // again, and give the rest back to the system (DeviceArray::discard).
   void trim_lists();
+  const DeviceArray<cl_int> &appended() const { return appended_; }
+  std::size_t read_appended() const { return static_cast<std::size_t>(appended_.read(device_, 0)); }
 
 private:
   Device &device_;

@@ -35,28 +35,39 @@
 
 #define CLM_NO_POINT 0x7fffffff
 
+// The running totals (FlipFlop reads them once an iteration): Delaunay
+// flips, flops and removals (0 to 2, CLM_OP_* - 1), the hull midpoints that
+// survived their iteration, the redundant points kept in degenerate stars,
+// the stars lost (a bug).
+#define CLM_TOTAL_MIDPOINTS 3
+#define CLM_TOTAL_KEPT 4
+#define CLM_TOTAL_FAILURES 5
+#define CLM_TOTALS 6
+
 // The flip-flop's lists and per-point arrays, FlipFlop's buffers, bound by
 // FlipFlop::bind_lists in this order. Per entry of the active list:
 // operation, proposal, star (4 per entry), applied, count and offset (of its
 // entries in next_active); exact_list: the entries the filter left
 // undecided; per tracked point (this iteration's and the boundary routine's):
 // star_size, star_offset; per point: redundant_mark, redundant_anchor;
-// counters: exact_count, marked_count, flip_counts (Delaunay flips, flops,
-// removals), failures (stars lost); per triangle slot: removal_claim (the
-// smallest entry proposing a removal whose star's smallest slot it is; empty,
-// 0x7fffffff, between passes).
+// counters: exact_count, marked_count, totals (running totals, never
+// cleared: CLM_TOTAL_*); per triangle slot: removal_claim (the smallest entry
+// proposing a removal whose star's smallest slot it is; empty, 0x7fffffff,
+// between passes).
 #define CLM_FLIPFLOP_PARAMS                                                                        \
   __global int *active, __global int *operation, __global int *proposal, __global int *star,       \
       __global int *applied, __global int *count, __global int *offset, __global int *next_active, \
       __global int *exact_list, volatile __global int *exact_count, __global int *redundant_mark,  \
       __global int *redundant_anchor, volatile __global int *marked_count, __global int *tracked,  \
-      __global int *star_size, __global int *star_offset, volatile __global int *flip_counts,      \
-      volatile __global int *failures, volatile __global int *removal_claim
+      __global int *star_size, __global int *star_offset, volatile __global int *totals,           \
+      volatile __global int *removal_claim
 
-#define CLM_FLIPFLOP_ARGS                                                                          \
-  active, operation, proposal, star, applied, count, offset, next_active, exact_list, exact_count, \
-      redundant_mark, redundant_anchor, marked_count, tracked, star_size, star_offset,             \
-      flip_counts, failures, removal_claim
+#define CLM_FLIPFLOP_ARGS CLM_FLIPFLOP_ARGS_WITH_LISTS(active, next_active)
+// The same with other active and next lists.
+#define CLM_FLIPFLOP_ARGS_WITH_LISTS(active_list, next_list)                                       \
+  active_list, operation, proposal, star, applied, count, offset, next_list, exact_list,           \
+      exact_count, redundant_mark, redundant_anchor, marked_count, tracked, star_size,             \
+      star_offset, totals, removal_claim
 
 // The triangles around p, counter-clockwise, in star[0 .. 3] when there are
 // three or four, all real (star[3] = -1 for three). Returns the
@@ -386,8 +397,8 @@ inline void prefetch_relink(__global const int *operation, __global const int *p
   }
 }
 
-// Applies the operations that own every mark they wrote. flip_counts:
-// Delaunay flips, flops, removals.
+// Applies the operations that own every mark they wrote; counts them in
+// totals[0 .. 2] (Delaunay flips, flops, removals).
 __kernel void flipflop_apply(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp, const int n) {
   const int gid = get_global_id(0);
   int done[3] = {0, 0, 0}; // Delaunay flips, flops, removals by this work-item
@@ -397,7 +408,7 @@ __kernel void flipflop_apply(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int sta
     apply_operation(gid, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
   volatile __local int scratch[2];
   for (int k = 0; k < 3; ++k)
-    reserve_in_group(done[k], scratch, &flip_counts[k]);
+    reserve_in_group(done[k], scratch, &totals[k]);
 }
 
 // Entries passed to the next list (count[gid]): the triangles an operation
@@ -521,7 +532,7 @@ inline void track_point(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int s
     }
   }
   if (index_in(tri_vertex, t, p) < 0) {
-    atomic_inc(failures);
+    atomic_inc(&totals[CLM_TOTAL_FAILURES]);
     return;
   }
   // The star's smallest slot becomes the anchor, where its listing starts:
@@ -569,22 +580,19 @@ __kernel void emit_redundant_stars(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const i
 // with barriers between them instead of launches: most passes list a few
 // hundred triangles, for which a launch costs more than the work. Entry by
 // entry the results are those of the kernels. The pass's entries in
-// next_active are also appended to `rewritten` from rewritten_size on (the
-// host leaves room for 2 n), as FlipFlop::run does after the kernels.
-// result: [0] the pass's entries in next_active, [1] points marked, [2]
-// stars listed (-1: not looked for, -2: no room for them), [3] the next
-// list's length, [4] exact proposals.
-__kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
-                                     const int orthogonal_test, const int any_redundant,
-                                     const int next_capacity, const int m, const int find_stars,
-                                     __global int *rewritten, const int rewritten_size,
-                                     __local int *scratch, volatile __global int *result,
-                                     const int stamp, const int n) {
+// next_active are also appended to `rewritten` from rewritten_size on (room
+// for 2 n), as FlipFlop::run does after the kernels. Returns (the pass's
+// entries in next_active, points marked, stars listed (-1: not looked for,
+// -2: no room for them), the next list's length), the same to every
+// work-item; exact proposals are added to exact[0].
+inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test,
+                          const int any_redundant, const int next_capacity, const int m,
+                          const int find_stars, __global int *rewritten, const int rewritten_size,
+                          __local int *scratch, volatile __global int *exact_total, const int stamp,
+                          const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
-  if (lid == 0) {
+  if (lid == 0)
     marked_count[0] = 0;
-    result[4] = 0;
-  }
   barrier(CLK_GLOBAL_MEM_FENCE);
   int exact = 0;
   for (int k = lid; k < n; k += size) {
@@ -595,10 +603,18 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
       ++exact;
     }
   }
+  if (exact > 0)
+    atomic_add(exact_total, exact);
   barrier(CLK_GLOBAL_MEM_FENCE);
+  // The counts are added before the next barrier: PoCL's CPU device
+  // miscompiles a private array that lives across barriers in a loop
+  // (flipflop_passes_in_group's).
   int done[3] = {0, 0, 0};
   for (int k = lid; k < n; k += size)
     apply_operation(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, done, stamp);
+  for (int j = 0; j < 3; ++j)
+    if (done[j] > 0)
+      atomic_add(&totals[j], done[j]);
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
@@ -606,11 +622,6 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
   const int next = group_exclusive_scan(count, offset, n, scratch);
   for (int k = lid; k < n; k += size)
     gather_results(k, CLM_FLIPFLOP_ARGS);
-  for (int j = 0; j < 3; ++j)
-    if (done[j] > 0)
-      atomic_add(&flip_counts[j], done[j]);
-  if (exact > 0)
-    atomic_add(&result[4], exact);
   const int marked = marked_count[0];
   // The pass's entries (results and losers) appended to `rewritten`.
   barrier(CLK_GLOBAL_MEM_FENCE);
@@ -632,53 +643,146 @@ __kernel void flipflop_pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
       length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
     }
   }
-  if (lid == 0) {
-    result[0] = next;
-    result[1] = marked;
-    result[2] = stars;
-    result[3] = length;
-  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  return (int4)(next, marked, stars, length);
 }
 
 // A stall (no operation left, yet redundant points remain, in degenerate
-// stars where neither a flop nor a removal is possible): they are kept, as
-// Steiner points of earlier iterations, after their stars were listed.
-__kernel void keep_stuck_points(__global const int *tracked, __global int *point_state,
-                                volatile __global int *kept, const int n) {
-  const int k = get_global_id(0);
-  if (k < n && point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
+// stars where neither a flop nor a removal is possible): the tracked point
+// k, when redundant, is kept, as a Steiner point of earlier iterations,
+// after its star was listed.
+inline void keep_stuck_point(__global const int *tracked, __global int *point_state,
+                             volatile __global int *totals, int k) {
+  if (point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
     point_state[tracked[k]] = CLM_POINT_STEINER;
-    atomic_inc(kept);
+    atomic_inc(&totals[CLM_TOTAL_KEPT]);
   }
 }
 
-// End of an iteration: its points become points of earlier iterations.
-// midpoints[0] counts the surviving hull midpoints.
-__kernel void finish_iteration(__global const int *new_points, __global int *point_state,
-                               volatile __global int *midpoints, const int n) {
+__kernel void keep_stuck_points(__global const int *tracked, __global int *point_state,
+                                volatile __global int *totals, const int n) {
   const int k = get_global_id(0);
-  if (k >= n)
-    return;
+  if (k < n)
+    keep_stuck_point(tracked, point_state, totals, k);
+}
+
+// End of an iteration: its points become points of earlier iterations;
+// the surviving hull midpoints are counted in totals.
+inline void finish_point(__global const int *new_points, __global int *point_state,
+                         volatile __global int *totals, int k) {
   const int p = new_points[k], state = point_state[p];
   if (state == CLM_POINT_NEW_MIDPOINT) {
-    atomic_inc(midpoints);
+    atomic_inc(&totals[CLM_TOTAL_MIDPOINTS]);
     point_state[p] = CLM_POINT_MIDPOINT;
   } else if (state == CLM_POINT_NEW) {
     point_state[p] = CLM_POINT_STEINER;
   }
 }
 
+__kernel void finish_iteration(__global const int *new_points, __global int *point_state,
+                               volatile __global int *totals, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    finish_point(new_points, point_state, totals, k);
+}
+
+// Pass after pass by one work-group (pass_in_group), as FlipFlop::run goes
+// on from a pass: while the active list is not empty and holds at most
+// group_pass_limit entries, at most max_passes passes, each while
+// `rewritten` (rewritten_capacity entries) has room for 2 n more. The
+// first pass of the run (first_pass) looks at no redundant point; the
+// passes take the stamps stamp, stamp + 1, ... A pass that did not look for
+// stars leaves the next list in next_active: the two lists swap places; a
+// stall keeps the stuck points (keep_stuck_point). result: [0] the active
+// list's length, [1] passes, [2] 0, or -2: no room for the stars, -3: the
+// next list longer than list_capacity, [3] whether redundant points are
+// left, [4] exact proposals, [5] whether the lists swapped places (an odd
+// number of times), [6] entries appended to `rewritten`, [7] the most
+// entries a pass's lists took, [8] whether the run ended here: the list
+// empty, finish_iteration's work done over new_points[0 .. new_count) in
+// the same launch, and the totals then in result[9 ..], [15] the points
+// tracked: tracked_known, or when it is negative new_count plus the
+// boundary routine's old_tracked[0] (read here, not by the host); passes run
+// only while they are at most tracked_limit.
+__kernel void flipflop_passes_in_group(
+    CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test, const int first_pass,
+    const int next_capacity, const int list_capacity, const int group_pass_limit,
+    const int max_passes, const int tracked_known, __global const int *old_tracked,
+    const int tracked_limit, const int redundant_at_start, __global int *rewritten,
+    const int rewritten_at_start, const int rewritten_capacity, __local int *scratch,
+    volatile __global int *result, __global const int *new_points, const int new_count,
+    const int stamp, const int entries) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  if (lid == 0)
+    result[4] = 0;
+  const int m = tracked_known >= 0 ? tracked_known : new_count + old_tracked[0];
+  // The arguments stay as they are: every work-item keeps its own copy of
+  // what changes from pass to pass (the same in all).
+  int n = entries, redundant_left = redundant_at_start, rewritten_size = rewritten_at_start;
+  int passes = 0, status = 0, swapped = 0, appended = 0, most = 0;
+  while (status == 0 && n > 0 && n <= group_pass_limit && m <= tracked_limit &&
+         passes < max_passes && rewritten_size + 2 * n <= rewritten_capacity) {
+    const int any_redundant = redundant_left && (passes > 0 || !first_pass);
+    __global int *const from = swapped ? next_active : active;
+    __global int *const to = swapped ? active : next_active;
+    const int4 pass =
+        pass_in_group(CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS_WITH_LISTS(from, to), orthogonal_test,
+                      any_redundant, next_capacity, m, redundant_left, rewritten, rewritten_size,
+                      scratch, &result[4], stamp + passes, n);
+    ++passes;
+    rewritten_size += pass.s0;
+    appended += pass.s0;
+    most = max(most, max(pass.s0, pass.s3));
+    if (pass.s2 == -2) {
+      status = -2;
+    } else if (pass.s2 < 0) { // no stars looked for: the next list is in `to`
+      swapped ^= 1;
+      n = pass.s0;
+    } else {
+      redundant_left = pass.s2 > 0;
+      n = pass.s3;
+      if (n > list_capacity) {
+        status = -3;
+      }
+    }
+    // Stalled: what is left cannot be deleted. Their stars are listed.
+    const bool stalled = status == 0 && pass.s2 > 0 && pass.s0 == 0 && pass.s1 == 0;
+    for (int k = lid; stalled && k < m; k += size)
+      keep_stuck_point(tracked, point_state, totals, k);
+    barrier(CLK_GLOBAL_MEM_FENCE);
+    if (stalled)
+      redundant_left = 0;
+  }
+  const bool finished = status == 0 && n == 0;
+  for (int k = lid; finished && k < new_count; k += size)
+    finish_point(new_points, point_state, totals, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  if (lid == 0) {
+    result[8] = finished;
+    for (int j = 0; finished && j < CLM_TOTALS; ++j)
+      result[9 + j] = totals[j];
+    result[9 + CLM_TOTALS] = m;
+    result[0] = n;
+    result[1] = passes;
+    result[2] = status;
+    result[3] = redundant_left;
+    result[5] = swapped;
+    result[6] = appended;
+    result[7] = most;
+  }
+}
+
 // The coordinates of the points this iteration deleted (the followed ones,
-// tracked[0 .. n), of state deleted) after the `logged` earlier ones, to
-// count the points inserted more than once at the end. A worklist counter
-// places them: their order reaches nothing.
+// tracked[0 .. n), of state deleted) after the earlier ones, to count the
+// points inserted more than once at the end; logged[0]: the entries so far.
+// A worklist counter places them: their order reaches nothing.
 __kernel void log_deleted_points(__global const int *tracked, __global const int *point_state,
                                  __global const double2 *points, __global double2 *deletion_log,
-                                 const int logged, volatile __global int *count, const int n) {
+                                 volatile __global int *logged, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int p = tracked[k];
   if (point_state[p] == CLM_POINT_DELETED)
-    deletion_log[logged + atomic_inc(count)] = points[p];
+    deletion_log[atomic_inc(logged)] = points[p];
 }

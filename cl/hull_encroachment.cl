@@ -4,6 +4,7 @@
 // redundant, for flip-flop (flip_flop.cl) to delete, as Triangle deletes the
 // free vertices in the diametral circle of a subsegment it splits.
 #include "common.h"
+#include "group_scan.h"
 #include "mesh_params.h"
 #include "refinement.h"
 #include "vertex_star.h"
@@ -66,14 +67,11 @@ inline bool on_segment(__global const int *point_segment, __global const int *se
          (point_segment[w] == sv || segment_end[2 * sv] == w || segment_end[2 * sv + 1] == w);
 }
 
-__kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_points,
-                                      const int step, volatile __global int *claim,
-                                      __global int *redundant_mark, __global int *redundant_anchor,
-                                      __global int *owned, __global const int *offset,
-                                      __global int *tracked, const int first, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
+// Midpoint k's step of the routine (the three steps above).
+inline void mark_encroaching(int k, CLM_MESH_PARAMS, __global const int *new_points, const int step,
+                             volatile __global int *claim, __global int *redundant_mark,
+                             __global int *redundant_anchor, __global int *owned,
+                             __global const int *offset, __global int *tracked, const int first) {
   const int v = new_points[k];
   if (step == CLM_ENCROACH_COUNT)
     owned[k] = 0;
@@ -128,10 +126,53 @@ __kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_p
     owned[k] = count;
 }
 
+#define CLM_ENCROACH_ARGS(step)                                                                    \
+  new_points, step, claim, redundant_mark, redundant_anchor, owned, offset, tracked, first
+
+__kernel void mark_encroaching_points(CLM_MESH_PARAMS, __global const int *new_points,
+                                      const int step, volatile __global int *claim,
+                                      __global int *redundant_mark, __global int *redundant_anchor,
+                                      __global int *owned, __global const int *offset,
+                                      __global int *tracked, const int first, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(step));
+}
+
 // Resets the claims of the boundary routine for the next iteration.
 __kernel void clear_encroaching_claims(__global const int *tracked, __global int *claim,
                                        const int n) {
   const int k = get_global_id(0);
   if (k < n)
     claim[tracked[k]] = 0x7fffffff;
+}
+
+// The three steps, the prefix sum between them and the reset of the claims
+// by one work-group, in one launch, for few new points (copied to tracked
+// first, as the host does for the kernels): entry by entry the results of
+// the kernels. The old points appended go to tracked[first ..], their
+// number to appended[0].
+__kernel void mark_encroaching_in_group(CLM_MESH_PARAMS, __global const int *new_points,
+                                        volatile __global int *claim, __global int *redundant_mark,
+                                        __global int *redundant_anchor, __global int *owned,
+                                        __global int *offset, __global int *tracked,
+                                        __local int *scratch, __global int *appended,
+                                        const int first) {
+  const int lid = get_local_id(0), size = get_local_size(0), n = first;
+  for (int k = lid; k < n; k += size) {
+    tracked[k] = new_points[k];
+    mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_CLAIM));
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_COUNT));
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int old = group_exclusive_scan(owned, offset, n, scratch);
+  for (int k = lid; old > 0 && k < n; k += size)
+    mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_WRITE));
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n + old; k += size)
+    claim[tracked[k]] = 0x7fffffff;
+  if (lid == 0)
+    appended[0] = old;
 }

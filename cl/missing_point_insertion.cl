@@ -10,6 +10,7 @@
 // phase restores the Delaunay property after each round, so walks always run
 // in a Delaunay triangulation, where the visibility walk cannot cycle.
 #include "common.h"
+#include "group_scan.h"
 #include "mesh_params.h"
 #include "prefetch.h"
 
@@ -60,11 +61,8 @@ inline int next_visible_ghost(__global const double2 *points, __global const int
 // Marks the triangle(s) each pending point would split with its priority.
 // placed: the points were not walked to (no locate_points), all pending
 // where they stand; their status is set here.
-__kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global int *status, const int placed, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                           __global int *status, const int placed) {
   if (placed)
     status[gid] = CLM_PENDING;
   else if (status[gid] != CLM_PENDING)
@@ -81,12 +79,16 @@ __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *rema
         atomic_min(&tri_mark[g], key);
 }
 
-// winner[gid] = 1 when every mark written by the point survived.
-__kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                             __global const int *status, __global int *winner, const int n) {
+__kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global int *status, const int placed, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+  if (gid < n)
+    mark_container(gid, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+}
+
+// winner[gid] = 1 when every mark written by the point survived.
+inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                          __global const int *status, __global int *winner) {
   int wins = 0;
   if (status[gid] == CLM_PENDING) {
     const int p = remaining[gid], t = location[p], edge = location_edge[p];
@@ -103,11 +105,17 @@ __kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remai
   winner[gid] = wins;
 }
 
-// Clears the marks of this round (before the topology changes).
-__kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                    __global const int *status, const int n) {
+__kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                             __global const int *status, __global int *winner, const int n) {
   const int gid = get_global_id(0);
-  if (gid >= n || status[gid] != CLM_PENDING)
+  if (gid < n)
+    select_winner(gid, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+}
+
+// Clears the marks of this round (before the topology changes).
+inline void clear_container_mark(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                 __global const int *status) {
+  if (status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   tri_mark[t] = CLM_NO_MARK;
@@ -118,6 +126,13 @@ __kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int
       for (int g = t;
            (g = next_visible_ghost(points, tri_vertex, tri_neighbor, g, t, p, dir)) >= 0;)
         tri_mark[g] = CLM_NO_MARK;
+}
+
+__kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                    __global const int *status, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    clear_container_mark(gid, CLM_TRIANGULATION_ARGS, remaining, status);
 }
 
 // Prefetching for split_triangles (prefetch.h): a winner's location, then
@@ -147,16 +162,10 @@ inline void prefetch_split(__global const int *remaining, __global const int *wi
 // allocate_slot); every child has the new point at index 2,
 // so its edge 2 is the only one facing outwards. Children are listed in
 // changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
-__kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global const int *winner, __global const int *winner_offset,
-                              __global int *changed, const int stamp, __global const int *free_list,
-                              const int free_first, const int free_count, const int first_slot,
-                              const int n) {
-  const int gid = get_global_id(0);
-  prefetch_split(remaining, winner, location, location_edge, tri_vertex, tri_neighbor,
-                 modified_stamp, children, gid, n);
-  if (gid >= n || !winner[gid])
-    return;
+inline void split_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                         __global const int *winner_offset, __global int *changed, const int stamp,
+                         __global const int *free_list, const int free_first, const int free_count,
+                         const int first_slot) {
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   const int s1 =
       allocate_slot(free_list, free_first, free_count, first_slot, 2 * winner_offset[gid]);
@@ -212,6 +221,21 @@ __kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *rema
   vertex_triangle[p] = t;
 }
 
+#define CLM_SPLIT_ARGS                                                                             \
+  remaining, winner_offset, changed, stamp, free_list, free_first, free_count, first_slot
+
+__kernel void split_triangles(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                              __global const int *winner, __global const int *winner_offset,
+                              __global int *changed, const int stamp, __global const int *free_list,
+                              const int free_first, const int free_count, const int first_slot,
+                              const int n) {
+  const int gid = get_global_id(0);
+  prefetch_split(remaining, winner, location, location_edge, tri_vertex, tri_neighbor,
+                 modified_stamp, children, gid, n);
+  if (gid < n && winner[gid])
+    split_winner(gid, CLM_TRIANGULATION_ARGS, CLM_SPLIT_ARGS);
+}
+
 // Second step: link each child's outward edge (edge 2) to its true neighbour.
 __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int *changed,
                                     const int stamp, const int n) {
@@ -226,13 +250,61 @@ __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int
 }
 
 // keep[gid] = 1 for points still waiting (neither inserted nor duplicate);
-// counts lost walks, which would be a bug, in failures[0].
-__kernel void count_remaining(__global const int *status, __global const int *winner,
-                              __global int *keep, volatile __global int *failures, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  keep[gid] = status[gid] == CLM_PENDING && !winner[gid];
+// counts lost walks, which would be a bug, in counters[0]. Reads what
+// select_winners leaves. Returns keep[gid].
+inline int count_waiting(int gid, __global const int *status, __global const int *winner,
+                         __global int *keep, volatile __global int *counters) {
+  const int waiting = status[gid] == CLM_PENDING && !winner[gid];
+  keep[gid] = waiting;
   if (status[gid] == CLM_LOST)
-    atomic_inc(failures);
+    atomic_inc(&counters[0]);
+  return waiting;
+}
+
+// The same for every point, the waiting ones added up in counters[1] (a
+// running total).
+__kernel void count_remaining(__global const int *status, __global const int *winner,
+                              __global int *keep, volatile __global int *counters, const int n) {
+  const int gid = get_global_id(0);
+  const int waiting = gid < n ? count_waiting(gid, status, winner, keep, counters) : 0;
+  volatile __local int scratch[2];
+  reserve_in_group(waiting, scratch, &counters[1]);
+}
+
+// A short round (its points located) by one work-group in one launch:
+// mark_containers, select_winners, clear_container_marks and
+// count_remaining in turn, the winners' prefix sum into winner_offset (its
+// total in counters[2]), split_triangles and relink_split_children.
+__kernel void insert_round_in_group(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                    __global int *status, __global int *winner,
+                                    __global int *winner_offset, __global int *keep,
+                                    volatile __global int *counters, __local int *scratch,
+                                    const int placed, __global int *changed, const int stamp,
+                                    __global const int *free_list, const int free_first,
+                                    const int free_count, const int first_slot, const int n) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  for (int k = lid; k < n; k += size)
+    mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    select_winner(k, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  int waiting = 0;
+  for (int k = lid; k < n; k += size) {
+    clear_container_mark(k, CLM_TRIANGULATION_ARGS, remaining, status);
+    waiting += count_waiting(k, status, winner, keep, counters);
+  }
+  if (waiting > 0)
+    atomic_add(&counters[1], waiting);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int winners = group_exclusive_scan(winner, winner_offset, n, scratch);
+  for (int k = lid; k < n; k += size)
+    if (winner[k])
+      split_winner(k, CLM_TRIANGULATION_ARGS, CLM_SPLIT_ARGS);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < 4 * winners; k += size)
+    if (changed[k] >= 0)
+      relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[k], 2);
+  if (lid == 0)
+    counters[2] = winners;
 }

@@ -106,6 +106,16 @@ __kernel void unique_compact(__global const int *list, __global const int *keep,
     move_first_entry(list, offset, marks, out, gid);
 }
 
+// The same for a short list, by one work-group in one launch
+// (group_unique); its length goes to length[0].
+__kernel void unique_in_group(__global const int *list, volatile __global uint *marks,
+                              __global int *keep, __global int *offset, __global int *out,
+                              __local int *scratch, __global int *length, const int n) {
+  const int kept = group_unique(list, n, marks, keep, offset, out, scratch);
+  if (get_local_id(0) == 0)
+    length[0] = kept;
+}
+
 // Bucketing (a counting sort's first half): key[i] in [0, buckets) or
 // negative (left out). The order inside a bucket comes from the atomic
 // cursor, so callers sort each bucket before its order reaches anything.

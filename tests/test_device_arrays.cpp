@@ -1,7 +1,8 @@
 // Device arrays (host/device_mesh.hpp, Device::allocate): a large array on a
 // CPU device lives in host memory the device uses in place, a mapping of its
 // own that goes with it; its contents survive kernels, growth and the
-// release of its owner; fills set exactly their range.
+// release of its owner; fills set exactly their range; the scans and the
+// removal of duplicates give the exact results at every length.
 #include <doctest/doctest.h>
 
 #include "runtime/device_mesh.hpp"
@@ -104,6 +105,40 @@ TEST_CASE("device arrays: both scan methods give the exact prefix sums at every 
       const std::vector<cl_int> got = offsets.download(dev, n + 1);
       CHECK(std::equal(got.begin(), got.begin() + n, expected.begin()));
       CHECK(got[n] == -1); // nothing written past the end
+    }
+  }
+}
+
+TEST_CASE("device arrays: unique keeps each slot's first entry, short lists and long ones") {
+  // Short lists go in one launch by one work-group (unique_in_group), long
+  // ones by four launches: the same list either way, in list order,
+  // without negative entries, and the marks all clear again.
+  Device &dev = device();
+  const std::size_t slots = 3000, longest = 20000;
+  std::vector<cl_int> list(longest);
+  for (std::size_t i = 0; i < longest; ++i)
+    list[i] = i % 11 == 3 ? -1 : static_cast<cl_int>((i * 7919 + i / 5) % slots);
+  DeviceArray<cl_int> device_list(dev, longest), marks(dev, slots), keep(dev, longest),
+      offsets(dev, longest), out(dev, longest);
+  device_list.upload(dev, list);
+  marks.fill(dev, -1, slots);
+  for (const auto method : {PrefixScan::Method::blocks, PrefixScan::Method::runs}) {
+    PrefixScan scan(dev, method);
+    for (const std::size_t n :
+         {std::size_t{1}, std::size_t{100}, std::size_t{4096}, std::size_t{4097}, longest}) {
+      CAPTURE(n);
+      std::vector<cl_int> expected;
+      std::vector<char> seen(slots, 0);
+      for (std::size_t i = 0; i < n; ++i)
+        if (list[i] >= 0 && !seen[static_cast<std::size_t>(list[i])]) {
+          seen[static_cast<std::size_t>(list[i])] = 1;
+          expected.push_back(list[i]);
+        }
+      const int kept = scan.unique(device_list, n, marks, keep, offsets, out, "test");
+      REQUIRE(kept == static_cast<int>(expected.size()));
+      CHECK(out.download(dev, expected.size()) == expected);
+      const std::vector<cl_int> clear = marks.download(dev, slots);
+      CHECK(std::all_of(clear.begin(), clear.end(), [](cl_int m) { return m == -1; }));
     }
   }
 }

@@ -96,7 +96,7 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
              out_neighbor.buffer(), out_label.buffer(), use_label, sorted_vertex.buffer(),
              sorted_neighbor.buffer(), sorted_label.buffer(), triangle_count);
     launch(device_, write_sorted_, count, kPhase);
-    guarded(kPhase, "sorting the mesh", [&] { device_.queue().finish(); });
+    device_.wait(kPhase);
   }
   // Triangle and the neighbour triples are three packed ints, as on the device.
   static_assert(sizeof(Triangle) == 3 * sizeof(cl_int));

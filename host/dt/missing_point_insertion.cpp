@@ -1,5 +1,7 @@
 #include "dt/missing_point_insertion.hpp"
 
+#include <algorithm>
+#include <array>
 #include <utility>
 
 namespace clmesh {
@@ -30,14 +32,16 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       split_(device.kernel(kFile, "split_triangles", kPhase)),
       relink_(device.kernel(kFile, "relink_split_children", kPhase)),
       count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
+      round_in_group_(device.kernel(kFile, "insert_round_in_group", kPhase)),
       remaining_(point_list(device, mesh, pool, kRemaining)),
       remaining_next_(point_list(device, mesh, pool, kRemainingNext)),
       status_(point_list(device, mesh, pool, kStatus)),
       winner_(point_list(device, mesh, pool, kWinner)),
       offset_(point_list(device, mesh, pool, kOffset)),
       keep_(point_list(device, mesh, pool, kKeep)), changed_(device, mesh.list_capacity),
-      failures_(device, 1), pooled_(pool != nullptr) {
-  failures_.fill(device_, 0, 1);
+      counters_(device, kCounters), pooled_(pool != nullptr) {
+  counters_.fill(device_, 0, kCounters);
+  group_ = device.single_group(round_in_group_, kPhase);
 }
 
 void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
@@ -76,47 +80,73 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
     launch(device_, locate_, pending_, kPhase);
     located_since_ = stamp; // this round's changes and later ones move points
   }
-  // Without a walk mark_containers sets every status to pending.
-  set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
-                static_cast<cl_int>(!walk), n);
-  launch(device_, mark_, pending_, kPhase);
-  set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
-                status_.buffer(), winner_.buffer(), n);
-  launch(device_, select_, pending_, kPhase);
-  set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
-                status_.buffer(), n);
-  launch(device_, clear_marks_, pending_, kPhase);
-
-  const int winners = scan_.exclusive_scan(winner_, offset_, pending_, kPhase);
+  // The new triangles' slots: the free ones first, then from first_slot on.
   const auto first_slot = static_cast<cl_int>(mesh_.triangle_count);
   DeviceMesh::FreeList &free = mesh_.free_triangles;
   const auto free_first = static_cast<cl_int>(free.first),
              free_count = static_cast<cl_int>(free.count);
-  const std::size_t new_slots = free.take(2 * static_cast<std::size_t>(winners));
-  if (mesh_.triangle_count + new_slots > mesh_.triangle_capacity ||
-      4 * static_cast<std::size_t>(winners) > mesh_.list_capacity)
-    throw InternalError("missing-point insertion: triangle slots exhausted");
-  mesh_.fill_triangle_slots(device_, mesh_.triangle_count + new_slots);
   const cl::Buffer &free_list = free.slots.size() ? free.slots.buffer() : mesh_.tri_mark.buffer();
-  set_args_from(split_, mesh_.bind_triangulation(split_, 0), remaining_.buffer(), winner_.buffer(),
-                offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp), free_list,
-                free_first, free_count, first_slot, n);
-  launch(device_, split_, pending_, kPhase);
-  mesh_.triangle_count += new_slots;
-  set_args_from(relink_, mesh_.bind_triangulation(relink_, 0), changed_.buffer(),
-                static_cast<cl_int>(stamp), static_cast<cl_int>(4 * winners));
-  launch(device_, relink_, 4 * static_cast<std::size_t>(winners), kPhase);
-
-  set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(), failures_.buffer(),
-           n);
-  launch(device_, count_remaining_, pending_, kPhase);
-  const int kept = scan_.compact(remaining_, keep_, offset_, remaining_next_, pending_, kPhase);
-  if (failures_.read(device_, 0) != 0)
+  // Without a walk mark_containers sets every status to pending.
+  std::array<cl_int, kCounters> counters{};
+  std::size_t winners = 0;
+  if (pending_ <= kInGroup && mesh_.triangle_count + 2 * pending_ <= mesh_.triangle_capacity &&
+      4 * pending_ <= mesh_.list_capacity) {
+    // Room for every point to win: the whole round in one launch.
+    mesh_.fill_triangle_slots(device_, mesh_.triangle_count + 2 * pending_);
+    set_args_from(round_in_group_, mesh_.bind_triangulation(round_in_group_, 0),
+                  remaining_.buffer(), status_.buffer(), winner_.buffer(), offset_.buffer(),
+                  keep_.buffer(), counters_.buffer(), cl::Local(sizeof(cl_int) * group_),
+                  static_cast<cl_int>(!walk), changed_.buffer(), static_cast<cl_int>(stamp),
+                  free_list, free_first, free_count, first_slot, n);
+    launch(device_, round_in_group_, group_, kPhase, group_);
+    const std::vector<cl_int> read = counters_.download(device_, kCounters);
+    std::copy(read.begin(), read.end(), counters.begin());
+    winners = static_cast<std::size_t>(counters[2]);
+    mesh_.triangle_count += free.take(2 * winners);
+  } else {
+    set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
+                  static_cast<cl_int>(!walk), n);
+    launch(device_, mark_, pending_, kPhase);
+    set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
+                  status_.buffer(), winner_.buffer(), n);
+    launch(device_, select_, pending_, kPhase);
+    set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
+                  status_.buffer(), n);
+    launch(device_, clear_marks_, pending_, kPhase);
+    set_args(count_remaining_, status_.buffer(), winner_.buffer(), keep_.buffer(),
+             counters_.buffer(), n);
+    launch(device_, count_remaining_, pending_, kPhase);
+    // The counters come back with the winners' total: one wait.
+    counters_.download_later(device_, counters.data(), 2);
+    winners = static_cast<std::size_t>(scan_.exclusive_scan(winner_, offset_, pending_, kPhase));
+    const std::size_t new_slots = free.take(2 * winners);
+    if (mesh_.triangle_count + new_slots > mesh_.triangle_capacity ||
+        4 * winners > mesh_.list_capacity)
+      throw InternalError("missing-point insertion: triangle slots exhausted");
+    mesh_.fill_triangle_slots(device_, mesh_.triangle_count + new_slots);
+    set_args_from(split_, mesh_.bind_triangulation(split_, 0), remaining_.buffer(),
+                  winner_.buffer(), offset_.buffer(), changed_.buffer(), static_cast<cl_int>(stamp),
+                  free_list, free_first, free_count, first_slot, n);
+    launch(device_, split_, pending_, kPhase);
+    mesh_.triangle_count += new_slots;
+    set_args_from(relink_, mesh_.bind_triangulation(relink_, 0), changed_.buffer(),
+                  static_cast<cl_int>(stamp), static_cast<cl_int>(4 * winners));
+    launch(device_, relink_, 4 * winners, kPhase);
+  }
+  if (counters[0] != 0)
     throw InternalError("missing-point insertion: a point location walk did not end");
-  duplicates_ += pending_ - static_cast<std::size_t>(kept) - static_cast<std::size_t>(winners);
-  std::swap(remaining_, remaining_next_);
-  pending_ = static_cast<std::size_t>(kept);
-  return static_cast<std::size_t>(winners);
+  // The points still waiting: the running total less the last one (modulo
+  // 2^32, as the device's counter wraps).
+  const auto kept = static_cast<std::size_t>(static_cast<cl_uint>(counters[1]) - waiting_total_);
+  waiting_total_ = static_cast<cl_uint>(counters[1]);
+
+  if (kept > 0) { // after split_triangles, the last reader of offset_
+    scan_.compact(remaining_, keep_, offset_, remaining_next_, pending_, kPhase);
+    std::swap(remaining_, remaining_next_);
+  }
+  duplicates_ += pending_ - kept - winners;
+  pending_ = kept;
+  return winners;
 }
 
 } // namespace clmesh

@@ -51,10 +51,21 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_;
+  cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_,
+      round_in_group_;
+  // Rounds of at most this many points (with room for all to win) run by
+  // one work-group in one launch, from the marks to the relinking
+  // (insert_round_in_group).
+  static constexpr std::size_t kInGroup = 4096;
+  std::size_t group_ = 1; // insert_round_in_group's work-group size
   DeviceArray<cl_int> remaining_, remaining_next_, status_, winner_;
   DeviceArray<cl_int> offset_; // prefix sums: of winner_ (split), then of keep_ (compact)
-  DeviceArray<cl_int> keep_, changed_, failures_;
+  DeviceArray<cl_int> keep_, changed_;
+  // Lost walks, the running total of points left waiting (count_remaining)
+  // and the winners of a round by one work-group.
+  static constexpr std::size_t kCounters = 3;
+  DeviceArray<cl_int> counters_;
+  cl_uint waiting_total_ = 0; // counters_[1] as last read
   std::size_t pending_ = 0;
   std::size_t round_points_ = 0; // points of the last round
   bool pooled_ = false;

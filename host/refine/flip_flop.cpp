@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -38,7 +39,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       emit_(device.kernel(kFile, "emit_redundant_stars", kPhase)),
       finish_(device.kernel(kFile, "finish_iteration", kPhase)),
       keep_stuck_(device.kernel(kFile, "keep_stuck_points", kPhase)),
-      pass_in_group_(device.kernel(kFile, "flipflop_pass_in_group", kPhase)),
+      passes_in_group_(device.kernel(kFile, "flipflop_passes_in_group", kPhase)),
       log_deleted_(device.kernel(kFile, "log_deleted_points", kPhase)),
       active_(pool.list<cl_int>(kActive)), next_active_(pool.list<cl_int>(kNextActive)),
       exact_list_(pool.list<cl_int>(kExactList)), operation_(pool.list<cl_int>(kOperation)),
@@ -47,17 +48,12 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       offset_(pool.list<cl_int>(kOffset)), redundant_mark_(device, mesh.point_capacity),
       redundant_anchor_(device, mesh.point_capacity), star_size_(pool.list<cl_int>(kStarSize)),
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
-      marked_count_(device, 1), exact_count_(device, 1), flip_counts_(device, 3),
-      failures_(device, 1), midpoints_(device, 1), kept_(device, 1), logged_(device, 1),
-      pass_result_(device, 5), removal_claim_(device, mesh.triangle_capacity) {
-  pass_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
-    return pass_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
-  });
-  failures_.fill(device_, 0, 1);
+      marked_count_(device, 1), exact_count_(device, 1), logged_(device, 1),
+      pass_result_(device, kGroupResults), totals_(device, kTotals),
+      removal_claim_(device, mesh.triangle_capacity) {
+  pass_group_ = device.single_group(passes_in_group_, kPhase);
   // Running totals, never reset: each iteration takes the difference.
-  flip_counts_.fill(device_, 0, 3);
-  midpoints_.fill(device_, 0, 1);
-  kept_.fill(device_, 0, 1);
+  totals_.fill(device_, 0, kTotals);
 }
 
 void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
@@ -82,27 +78,30 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   }
   // The points to follow: this iteration's, then the old ones that encroach
   // a hull edge split in this iteration (thesis §3.4.1).
-  if (m > 0)
-    guarded(kPhase, "copying the new points", [&] {
-      device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked_.buffer(), 0, 0,
-                                        m * sizeof(cl_int));
-    });
-  tracked_n_ = m + encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_,
-                                                  tracked_);
+  // With few new points the old ones' count stays on the device for the
+  // passes in group to read (tracked_known_ false until they bring it back).
+  const std::optional<std::size_t> old =
+      encroachment_.mark_encroaching(new_points, m, redundant_mark_, redundant_anchor_, tracked_);
+  tracked_known_ = old.has_value();
+  tracked_n_ = m + old.value_or(0);
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
-  for (long pass = 0; n > 0; ++pass) {
-    if (pass == kMaxPasses)
+  finished_in_group_ = false;
+  for (long pass = 0; n > 0;) {
+    if (pass >= kMaxPasses)
       throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
                           " passes");
+    if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
+      n = passes_in_group(n, pass, stamp, new_points, m, rewritten, counts);
+      continue;
+    }
+    know_tracked(m);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     const auto any_redundant = static_cast<cl_int>(redundant_left_ && pass > 0);
-    const PassResult result =
-        n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup
-            ? pass_in_group(n, any_redundant, pass_stamp, rewritten, counts)
-            : pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
+    const PassResult result = pass_by_kernels(n, any_redundant, pass_stamp, rewritten, counts);
     run_entries_ = std::max({run_entries_, result.next, result.length});
     ++counts.passes;
+    ++pass;
     if (result.looked_for_stars) {
       redundant_left_ = result.stars > 0;
       n = result.length;
@@ -110,7 +109,7 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
         throw InternalError("flip-flop: the active list is longer than its arrays");
       if (result.next == 0 && result.marked == 0 && redundant_left_) {
         // Stalled: what is left cannot be deleted. Their stars are listed.
-        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), kept_.buffer(),
+        set_args(keep_stuck_, tracked_.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
                  static_cast<cl_int>(tracked_n_));
         launch(device_, keep_stuck_, tracked_n_, kPhase);
         redundant_left_ = false;
@@ -120,22 +119,22 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       n = result.next;
     }
   }
-  if (m > 0) {
-    set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), midpoints_.buffer(),
-             static_cast<cl_int>(m));
-    launch(device_, finish_, m, kPhase);
+  know_tracked(m);
+  // The iteration's counts, read at once (with the last passes' result
+  // when they ended the run): the running totals less the last ones
+  // (modulo 2^32, as the device's counters wrap).
+  std::vector<cl_int> totals(group_totals_.begin(), group_totals_.end());
+  if (!finished_in_group_) {
+    if (m > 0) {
+      set_args(finish_, new_points.buffer(), mesh_.point_state.buffer(), totals_.buffer(),
+               static_cast<cl_int>(m));
+      launch(device_, finish_, m, kPhase);
+    }
+    totals = totals_.download(device_, kTotals);
   }
-  // The iteration's counts, read with one wait: the running totals less
-  // the last ones (modulo 2^32, as the device's counters wrap).
-  cl_int failures = 0;
-  std::array<cl_int, kTotals> totals{};
-  failures_.download_later(device_, &failures, 1);
-  flip_counts_.download_later(device_, &totals[0], 3);
-  midpoints_.download_later(device_, &totals[3], 1);
-  kept_.download_later(device_, &totals[4], 1);
-  device_.wait(kPhase);
-  std::array<cl_int, kTotals> since{};
-  for (std::size_t k = 0; k < kTotals; ++k) {
+  const cl_int failures = totals[kFailures];
+  std::array<cl_int, kFailures> since{};
+  for (std::size_t k = 0; k < kFailures; ++k) {
     since[k] = static_cast<cl_int>(static_cast<cl_uint>(totals[k]) -
                                    static_cast<cl_uint>(last_totals_[k]));
     last_totals_[k] = totals[k];
@@ -154,12 +153,13 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
     // After finish_iteration, which leaves the deleted points' state alone.
     DeviceList<cl_double2> &log = deleted.coordinates;
     log.reserve(device_, static_cast<std::size_t>(flips[2]));
-    logged_.fill(device_, 0, 1);
+    if (logged_size_ != log.size) // set once for these steps: the kernel counts on
+      logged_.fill(device_, static_cast<cl_int>(log.size), 1);
     set_args(log_deleted_, tracked_.buffer(), mesh_.point_state.buffer(), mesh_.points.buffer(),
-             log.items.buffer(), static_cast<cl_int>(log.size), logged_.buffer(),
-             static_cast<cl_int>(tracked_n_));
+             log.items.buffer(), logged_.buffer(), static_cast<cl_int>(tracked_n_));
     launch(device_, log_deleted_, tracked_n_, kPhase);
     log.size += static_cast<std::size_t>(flips[2]);
+    logged_size_ = log.size;
   }
 }
 
@@ -171,7 +171,7 @@ cl_uint FlipFlop::bind_lists(cl::Kernel &kernel, cl_uint first) const {
                        next_active_.buffer(), exact_list_.buffer(), exact_count_.buffer(),
                        redundant_mark_.buffer(), redundant_anchor_.buffer(), marked_count_.buffer(),
                        tracked_.buffer(), star_size_.buffer(), star_offset_.buffer(),
-                       flip_counts_.buffer(), failures_.buffer(), removal_claim_.buffer());
+                       totals_.buffer(), removal_claim_.buffer());
 }
 
 FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
@@ -200,29 +200,47 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   return result;
 }
 
-FlipFlop::PassResult FlipFlop::pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                                             DeviceList<cl_int> &rewritten,
-                                             FlipFlopCounts &counts) {
-  // The group may have to be smaller for this large kernel than for the others.
-  const std::size_t group = std::min(device_.work_group(), pass_group_limit_);
+std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
+                                      const DeviceArray<cl_int> &new_points, std::size_t m,
+                                      DeviceList<cl_int> &rewritten, FlipFlopCounts &counts) {
+  const std::size_t group = pass_group_;
   rewritten.reserve(device_, 2 * n); // each entry passes on two at most
-  bind(pass_in_group_, orthogonal_test_, any_redundant, static_cast<cl_int>(next_active_.size()),
-       static_cast<cl_int>(tracked_n_), static_cast<cl_int>(redundant_left_),
+  bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
+       static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),
+       static_cast<cl_int>(group_pass_limit_), static_cast<cl_int>(kMaxPasses - pass),
+       static_cast<cl_int>(tracked_known_ ? tracked_n_ : -1), encroachment_.appended().buffer(),
+       static_cast<cl_int>(kTrackedInGroup), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),
-       cl::Local(sizeof(cl_int) * group), pass_result_.buffer(), stamp, static_cast<cl_int>(n));
-  launch(device_, pass_in_group_, group, kPhase, group);
-  const std::vector<cl_int> values = pass_result_.download(device_, 5);
-  if (values[2] == -2)
+       static_cast<cl_int>(rewritten.items.size()), cl::Local(sizeof(cl_int) * group),
+       pass_result_.buffer(), new_points.buffer(), static_cast<cl_int>(m),
+       static_cast<cl_int>(stamp), static_cast<cl_int>(n));
+  launch(device_, passes_in_group_, group, kPhase, group);
+  const std::vector<cl_int> values = pass_result_.download(device_, kGroupResults);
+  if (values[2] != 0)
     throw InternalError("flip-flop: the active list is longer than its arrays");
-  PassResult result;
-  result.next = static_cast<std::size_t>(values[0]);
-  result.marked = values[1];
-  result.looked_for_stars = values[2] >= 0;
-  result.stars = result.looked_for_stars ? static_cast<std::size_t>(values[2]) : 0;
-  result.length = static_cast<std::size_t>(values[3]);
+  pass += values[1];
+  stamp += values[1];
+  counts.passes += values[1];
+  redundant_left_ = values[3] != 0;
   counts.exact_checks += values[4];
-  rewritten.size += result.next;
-  return result;
+  if (values[5] != 0)
+    std::swap(active_, next_active_);
+  rewritten.size += static_cast<std::size_t>(values[6]);
+  run_entries_ = std::max(run_entries_, static_cast<std::size_t>(values[7]));
+  finished_in_group_ = values[8] != 0;
+  std::copy(values.begin() + 9, values.begin() + 9 + kTotals, group_totals_.begin());
+  tracked_n_ = static_cast<std::size_t>(values[9 + kTotals]);
+  tracked_known_ = true;
+  run_entries_ = std::max(run_entries_, tracked_n_);
+  return static_cast<std::size_t>(values[0]);
+}
+
+void FlipFlop::know_tracked(std::size_t m) {
+  if (tracked_known_)
+    return;
+  tracked_n_ = m + encroachment_.read_appended();
+  tracked_known_ = true;
+  run_entries_ = std::max(run_entries_, tracked_n_);
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the

@@ -10,6 +10,7 @@
 #include "clmesh/geometry.hpp"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace clmesh {
@@ -89,14 +90,20 @@ private:
     std::size_t stars = 0;
     std::size_t length = 0;
   };
-  // Short lists take one work-group for the whole pass (flipflop_pass_in_group)
-  // when the points to track are few too. Either way the pass's entries in
-  // next_active_ are appended to `rewritten`.
+  // Short lists take one work-group for pass after pass
+  // (flipflop_passes_in_group) when the points to track are few too. Either
+  // way the pass's entries in next_active_ are appended to `rewritten`.
   static constexpr std::size_t kTrackedInGroup = 8192;
   PassResult pass_by_kernels(std::size_t n, cl_int any_redundant, cl_int stamp,
                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
-  PassResult pass_in_group(std::size_t n, cl_int any_redundant, cl_int stamp,
-                           DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
+  // Passes from pass `pass` of the run on, by one work-group, while the
+  // active list (n entries) stays short; advances pass and stamp by the
+  // passes it made and returns the active list's length. When they empty
+  // the list, they also end the iteration's points (new_points[0 .. m),
+  // finish_iteration) and bring back the totals.
+  std::size_t passes_in_group(std::size_t n, long &pass, int &stamp,
+                              const DeviceArray<cl_int> &new_points, std::size_t m,
+                              DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
   long propose(cl_int items, cl_int any_redundant);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.
@@ -115,28 +122,42 @@ private:
   HullEncroachment encroachment_;
   cl_int orthogonal_test_;
   std::size_t group_pass_limit_;
-  std::size_t pass_group_limit_ = 1; // CL_KERNEL_WORK_GROUP_SIZE of flipflop_pass_in_group
+  std::size_t pass_group_ = 1; // flipflop_passes_in_group's work-group size (Device::single_group)
   std::size_t tracked_n_ = 0;
+  bool tracked_known_ = true; // else the old points of tracked_n_ are on the device
+  // Makes tracked_n_ known (m: the new points), reading the boundary
+  // routine's count when the passes have not brought it back.
+  void know_tracked(std::size_t m);
   bool redundant_left_ = false;
   cl::Kernel propose_, propose_exact_, apply_, relink_, gather_next_, track_, emit_, finish_,
-      keep_stuck_, pass_in_group_, log_deleted_;
+      keep_stuck_, passes_in_group_, log_deleted_;
   DeviceArray<cl_int> active_, next_active_, exact_list_, operation_, proposal_, star_, applied_,
       count_, offset_;
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
   std::size_t run_entries_ = 0;  // the most entries of a list in the last run
-  DeviceArray<cl_int> marked_count_, exact_count_, flip_counts_, failures_, midpoints_, kept_,
-      logged_;
-  DeviceArray<cl_int> pass_result_; // flipflop_pass_in_group's PassResult
+  DeviceArray<cl_int> marked_count_, exact_count_;
+  // The deletion log's length as log_deleted_points counts it, and as the
+  // host last set or advanced it (SIZE_MAX: never set).
+  DeviceArray<cl_int> logged_;
+  std::size_t logged_size_ = SIZE_MAX;
+  // flipflop_passes_in_group's result (see the kernel).
+  static constexpr std::size_t kGroupResults = 16;
+  DeviceArray<cl_int> pass_result_;
+  // The running totals of the kernels (CLM_TOTAL_* in cl/flip_flop.cl):
+  // Delaunay flips, flops, removals, surviving midpoints, points kept, then
+  // (kFailures) stars lost; those before it as last read.
+  static constexpr std::size_t kFailures = 5, kTotals = kFailures + 1;
+  DeviceArray<cl_int> totals_;
+  std::array<cl_int, kFailures> last_totals_{};
+  // Whether the last passes in group ended the run, and the totals they read.
+  bool finished_in_group_ = false;
+  std::array<cl_int, kTotals> group_totals_{};
   // Per triangle slot: the smallest entry proposing a removal whose star's
   // smallest slot it is, which applies it (removal_claim in the kernels);
   // kNoClaim between passes, set below claims_filled_.
   DeviceArray<cl_int> removal_claim_;
   std::size_t claims_filled_ = 0;
-  // flip_counts_ (3), midpoints_ and kept_ as last read: they are running
-  // totals, not cleared each iteration.
-  static constexpr std::size_t kTotals = 5;
-  std::array<cl_int, kTotals> last_totals_{};
 };
 
 } // namespace clmesh

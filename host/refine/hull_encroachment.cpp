@@ -13,18 +13,19 @@ HullEncroachment::HullEncroachment(Device &device, DeviceMesh &mesh, PrefixScan 
     : device_(device), mesh_(mesh), scan_(scan),
       mark_(device.kernel(kFile, "mark_encroaching_points", kPhase)),
       clear_claims_(device.kernel(kFile, "clear_encroaching_claims", kPhase)),
+      mark_in_group_(device.kernel(kFile, "mark_encroaching_in_group", kPhase)),
       claim_(device, mesh.point_capacity), owned_(device, mesh.point_capacity),
-      offset_(device, mesh.point_capacity) {}
+      offset_(device, mesh.point_capacity), appended_(device, 1),
+      group_(device.single_group(mark_in_group_, kPhase)) {}
 
 void HullEncroachment::trim_lists() {
   owned_.discard(device_, new_points_, kPhase);
   offset_.discard(device_, new_points_, kPhase);
 }
 
-std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_points, std::size_t m,
-                                               const DeviceArray<cl_int> &redundant_mark,
-                                               const DeviceArray<cl_int> &redundant_anchor,
-                                               const DeviceArray<cl_int> &tracked) {
+std::optional<std::size_t> HullEncroachment::mark_encroaching(
+    const DeviceArray<cl_int> &new_points, std::size_t m, const DeviceArray<cl_int> &redundant_mark,
+    const DeviceArray<cl_int> &redundant_anchor, const DeviceArray<cl_int> &tracked) {
   new_points_ = m;
   if (m == 0)
     return 0;
@@ -35,6 +36,18 @@ std::size_t HullEncroachment::mark_encroaching(const DeviceArray<cl_int> &new_po
     claims_filled_ = end;
   }
   const auto items = static_cast<cl_int>(m);
+  if (m <= kInGroup) {
+    set_args_from(mark_in_group_, mesh_.bind(mark_in_group_, 0), new_points.buffer(),
+                  claim_.buffer(), redundant_mark.buffer(), redundant_anchor.buffer(),
+                  owned_.buffer(), offset_.buffer(), tracked.buffer(),
+                  cl::Local(sizeof(cl_int) * group_), appended_.buffer(), items);
+    launch(device_, mark_in_group_, group_, kPhase, group_);
+    return std::nullopt;
+  }
+  guarded(kPhase, "copying the new points", [&] {
+    device_.queue().enqueueCopyBuffer(new_points.buffer(), tracked.buffer(), 0, 0,
+                                      m * sizeof(cl_int));
+  });
   auto run_step = [&](cl_int step) {
     set_args_from(mark_, mesh_.bind(mark_, 0), new_points.buffer(), step, claim_.buffer(),
                   redundant_mark.buffer(), redundant_anchor.buffer(), owned_.buffer(),

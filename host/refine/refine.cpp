@@ -289,13 +289,16 @@ public:
         compact();
       const std::size_t bad = find_bad_triangles();
       const std::size_t candidates = elect_candidates();
-      if (bad == 0)
-        break;
-      if (iteration == kMaxIterations || steiner_ >= limit_) {
-        stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
+      // Step 1 is timed once, after append_survivors, on the way that goes on.
+      if (bad == 0 || iteration == kMaxIterations || steiner_ >= limit_) {
+        charge_step_one();
+        if (bad > 0)
+          stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
         break;
       }
       const Room room = make_room(candidates);
+      if (room != Room::enough)
+        charge_step_one();
       if (room == Room::grown)
         continue; // the candidates are found again in the larger arrays
       if (room == Room::exhausted)
@@ -651,11 +654,11 @@ private:
   }
 
   // Step 1: the bad triangles that send a candidate (all, without an election).
-  std::size_t elect_candidates() {
-    const std::size_t candidates = steps_->offcenter.elect_candidates(scheduler_.scan());
-    scheduler_.timer().charge(OffcenterInsertion::kPhase);
-    return candidates;
-  }
+  std::size_t elect_candidates() { return steps_->offcenter.elect_candidates(scheduler_.scan()); }
+
+  // The time since the last phase charged goes to step 1 (the phase timer
+  // waits for the device: once an iteration).
+  void charge_step_one() { scheduler_.timer().charge(OffcenterInsertion::kPhase); }
 
   // Room for every candidate: the empty slots when the room past the used
   // ranges runs short (thesis §3.6.1), then larger arrays. Growing
@@ -689,17 +692,14 @@ private:
   void locate_candidates() { steps_->offcenter.locate_candidates(scheduler_.stamp()); }
 
   // Step 1: the insertion filter (thesis §3.3.2; §3.5 for GPU-QM-V).
-  void filter_candidates() {
-    steps_->offcenter.filter_candidates();
-    scheduler_.timer().charge(OffcenterInsertion::kPhase);
-  }
+  void filter_candidates() { steps_->offcenter.filter_candidates(); }
 
   // Step 1: the survivors join the mesh's points, as many as there is room
   // for within the -S limit. Returns how many.
   std::size_t append_survivors() {
     const std::size_t added = steps_->offcenter.append_survivors(
         std::min(room(), limit_ - steiner_), scheduler_.scan(), steps_->new_points);
-    scheduler_.timer().charge(OffcenterInsertion::kPhase);
+    charge_step_one();
     return added;
   }
 

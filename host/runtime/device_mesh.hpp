@@ -34,6 +34,7 @@ public:
   void upload(Device &device, const std::vector<T> &data, std::size_t offset = 0) const {
     if (data.empty())
       return;
+    profile_wait("blocking write");
     guarded("transfer", "uploading", [&] {
       device.queue().enqueueWriteBuffer(buffer_, CL_TRUE, offset * sizeof(T),
                                         data.size() * sizeof(T), data.data());
@@ -41,11 +42,13 @@ public:
   }
   std::vector<T> download(Device &device, std::size_t count, std::size_t offset = 0) const {
     std::vector<T> data(count);
-    if (count)
+    if (count) {
+      profile_wait("blocking read");
       guarded("transfer", "downloading", [&] {
         device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T), count * sizeof(T),
                                          data.data());
       });
+    }
     return data;
   }
   T read(Device &device, std::size_t index) const { return download(device, 1, index)[0]; }

@@ -377,6 +377,14 @@ std::size_t Device::global_memory() const {
   return host ? std::min(global, *host) : global;
 }
 
+std::size_t Device::single_group(const cl::Kernel &kernel, const std::string &phase) const {
+  if (cpu_paths_)
+    return 1;
+  return std::min(work_group_, guarded(phase, "querying the work-group size", [&] {
+                    return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_);
+                  }));
+}
+
 void Device::set_work_group(std::size_t size) {
   const std::size_t max_size = max_work_group();
   if (size == 0 || size > max_size)
@@ -431,6 +439,7 @@ cl::Kernel Device::kernel(const std::string &file, const std::string &name,
 }
 
 void Device::wait(const std::string &phase) {
+  profile_wait("finish");
   guarded(phase, "waiting for the device", [&] { queue_.finish(); });
 }
 
@@ -455,7 +464,10 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
 void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
                      const std::string &phase) {
   constexpr std::size_t page = 4096;
-  if (!cpu_paths_ || bytes < page)
+  // Fewer pages are not worth the wait for the device (and the faults
+  // that bring them back when written again).
+  constexpr std::size_t least = std::size_t{1} << 20;
+  if (!cpu_paths_ || bytes < least)
     return;
   auto *host = static_cast<char *>(
       guarded(phase, "querying a buffer", [&] { return buffer.getInfo<CL_MEM_HOST_PTR>(); }));
@@ -464,9 +476,11 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
   const auto start = reinterpret_cast<std::uintptr_t>(host) + offset;
   const std::uintptr_t first = (start + page - 1) / page * page,
                        last = (start + bytes) / page * page;
-  if (last <= first)
+  if (last < first + least)
     return;
-  wait(phase); // no kernel writes the pages while they go
+  // No kernel writes the pages while they go.
+  profile_wait("discard");
+  guarded(phase, "waiting for the device", [&] { queue_.finish(); });
   madvise(reinterpret_cast<void *>(first), last - first, MADV_DONTNEED);
 }
 
@@ -474,12 +488,48 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
   launch(device, kernel, items, phase, device.work_group());
 }
 
+namespace {
+
+// CLMESH_PROFILE=1 (development aid): per kernel its seconds (each launch
+// waited for), launches and work-items, and the host's waits for the device
+// by cause, on stderr at exit.
+const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
+
+struct ProfileTotal {
+  double seconds = 0;
+  long launches = 0;
+  double items = 0;
+};
+
+struct Profile {
+  std::map<std::string, ProfileTotal> kernels;
+  std::map<std::string, long> waits;
+  ~Profile() {
+    for (const auto &[name, total] : kernels)
+      std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
+                   total.seconds, total.launches, total.items);
+    for (const auto &[cause, count] : waits)
+      std::fprintf(stderr, "wait: %-26s %7ld waits\n", cause.c_str(), count);
+  }
+};
+
+Profile &profile_totals() {
+  static Profile totals;
+  return totals;
+}
+
+} // namespace
+
+void profile_wait(const char *cause) {
+  if (profile)
+    ++profile_totals().waits[cause];
+}
+
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group) {
   if (items == 0)
     return;
   const std::size_t global = (items + group - 1) / group * group;
-  static const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
   const auto start = std::chrono::steady_clock::now();
   try {
     device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
@@ -490,22 +540,7 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
     throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
   if (profile) {
-    // CLMESH_PROFILE=1: per-kernel seconds, launches and work-items on
-    // stderr at exit (development aid).
-    struct Total {
-      double seconds = 0;
-      long launches = 0;
-      double items = 0;
-    };
-    static std::map<std::string, Total> totals;
-    static struct Report {
-      ~Report() {
-        for (const auto &[name, total] : totals)
-          std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
-                       total.seconds, total.launches, total.items);
-      }
-    } report;
-    Total &total = totals[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
+    ProfileTotal &total = profile_totals().kernels[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
     total.seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++total.launches;

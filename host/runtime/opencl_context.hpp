@@ -68,12 +68,19 @@ public:
   // system, once the device is done with everything queued: a scratch list's
   // contents are lost, and its memory comes back (zeroed) when written
   // again. Only for a buffer in a mapping of its own (allocate, on the CPU
-  // paths), and only whole pages; elsewhere nothing happens.
+  // paths), only whole pages, and only 1 MiB of them or more (fewer are not
+  // worth a wait); elsewhere nothing happens.
   void discard(const cl::Buffer &buffer, std::size_t offset, std::size_t bytes,
                const std::string &phase);
 
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }
+  // The work-group size of `kernel` launched as one work-group (a short
+  // step in one launch, barriers between its parts): one work-item on the
+  // CPU paths, whose work-items run in turn (each barrier would cost a loop
+  // over the group for nothing), else work_group() within the kernel's own
+  // limit. Results never depend on it.
+  std::size_t single_group(const cl::Kernel &kernel, const std::string &phase) const;
   void set_work_group(std::size_t size);
   std::size_t max_work_group() const;
   std::size_t compute_units() const;
@@ -110,6 +117,10 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 // The same with an explicit work-group size (kernels that use local memory).
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group);
+
+// With CLMESH_PROFILE set (see launch), counts one wait of the host for the
+// device (a blocking transfer, a finish) under `cause`.
+void profile_wait(const char *cause);
 
 // Sets kernel arguments in order from index `first`; returns the index after
 // the last one set.

@@ -12,13 +12,15 @@ PrefixScan::PrefixScan(Device &device, Method method)
       unique_mark_(device.kernel("scan.cl", "unique_mark", "scan")),
       unique_keep_(device.kernel("scan.cl", "unique_keep", "scan")),
       unique_compact_(device.kernel("scan.cl", "unique_compact", "scan")),
+      unique_in_group_(device.kernel("scan.cl", "unique_in_group", "scan")),
       count_keys_(device.kernel("scan.cl", "count_keys", "scan")),
       scatter_by_key_(device.kernel("scan.cl", "scatter_by_key", "scan")),
       sum_runs_(device.kernel("scan.cl", "sum_runs", "scan")),
       scan_runs_(device.kernel("scan.cl", "scan_runs", "scan")),
       group_(std::min<std::size_t>(256, device.max_work_group())),
       by_runs_(method == Method::runs || (method == Method::device_default && device.cpu_paths())),
-      max_runs_(4 * device.compute_units()), run_sums_(device, max_runs_), run_total_(device, 1) {}
+      max_runs_(4 * device.compute_units()), run_sums_(device, max_runs_), run_total_(device, 1),
+      unique_length_(device, 1), unique_group_(device.single_group(unique_in_group_, "scan")) {}
 
 const DeviceArray<cl_int> &PrefixScan::block_sums(int level, std::size_t size) {
   auto it = levels_.find(level);
@@ -54,6 +56,11 @@ const DeviceArray<cl_int> &PrefixScan::scan_level(const cl::Buffer &in, const cl
   launch(device_, add_offsets_, n, phase);
   return total;
 }
+
+// Lists of at most this many entries lose their duplicates in one launch,
+// by one work-group (unique_in_group): the four launches of the longer
+// ones' way cost more than their work.
+constexpr std::size_t kUniqueInGroup = 4096;
 
 // Entries a run takes at least (shorter scans are one loop, one launch); at
 // most four runs a compute unit.
@@ -109,6 +116,13 @@ int PrefixScan::unique(const DeviceArray<cl_int> &list, std::size_t n,
   if (n == 0)
     return 0;
   const auto items = static_cast<cl_int>(n);
+  if (n <= kUniqueInGroup) {
+    set_args(unique_in_group_, list.buffer(), marks.buffer(), keep.buffer(), offsets.buffer(),
+             out.buffer(), cl::Local(sizeof(cl_int) * unique_group_), unique_length_.buffer(),
+             items);
+    launch(device_, unique_in_group_, unique_group_, phase, unique_group_);
+    return unique_length_.read(device_, 0);
+  }
   set_args(unique_mark_, list.buffer(), marks.buffer(), items);
   launch(device_, unique_mark_, n, phase);
   set_args(unique_keep_, list.buffer(), marks.buffer(), keep.buffer(), items);

@@ -33,7 +33,8 @@ public:
 
   // out = list[0 .. n) without duplicates and negative entries, each slot at
   // its first position; marks: a per-slot array holding 0xffffffff (restored).
-  // keep and offsets: scratch of n entries. Returns the length of out.
+  // keep and offsets: scratch of n entries. Returns the length of out. A
+  // short list takes one launch (one work-group), a longer one four.
   int unique(const DeviceArray<cl_int> &list, std::size_t n, const DeviceArray<cl_int> &marks,
              const DeviceArray<cl_int> &keep, const DeviceArray<cl_int> &offsets,
              const DeviceArray<cl_int> &out, const std::string &phase);
@@ -58,11 +59,13 @@ private:
 
   Device &device_;
   cl::Kernel scan_blocks_, add_offsets_, compact_, compact_indices_, unique_mark_, unique_keep_,
-      unique_compact_, count_keys_, scatter_by_key_, sum_runs_, scan_runs_;
+      unique_compact_, unique_in_group_, count_keys_, scatter_by_key_, sum_runs_, scan_runs_;
   std::size_t group_; // the scan's own work-group size (its result never depends on it)
   bool by_runs_;      // Method::runs
   std::size_t max_runs_;
   DeviceArray<cl_int> run_sums_, run_total_;
+  DeviceArray<cl_int> unique_length_; // unique_in_group's result
+  std::size_t unique_group_;          // its work-group size
   std::map<int, std::pair<DeviceArray<cl_int>, DeviceArray<cl_int>>> levels_; // sums, scanned
 };
 

@@ -25,7 +25,8 @@ public:
   // when none within that many rings has a better priority (0: every one, the
   // thesis's way; see elect_candidates); carry_verdicts: a search keeps the
   // verdicts of the last search's bad triangles that are as it assessed them
-  // (see find_bad_triangles); conforming (-D): a triangle whose
+  // (see find_bad_triangles); group_step_limit: Tuning::group_step_limit;
+  // conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
   // subsegment's diametral circle splits it; protected_segments (-Y 1, -YY 2):
   // boundary edges (and subsegments) no point may split: a candidate that
@@ -41,8 +42,8 @@ public:
   OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
                      double max_area, int filter_rings, int filter_distance_rings,
                      double filter_near, bool parallel_midpoints, int election_rings,
-                     bool carry_verdicts, bool conforming, int protected_segments, bool inward,
-                     const std::vector<double> &region_areas,
+                     bool carry_verdicts, std::size_t group_step_limit, bool conforming,
+                     int protected_segments, bool inward, const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -77,6 +78,11 @@ public:
   // how many were appended.
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
+  // locate_candidates, filter_candidates and append_survivors in turn; a
+  // short list of candidates by one work-group in one launch
+  // (place_in_group). Returns how many were appended.
+  std::size_t place_candidates(int stamp, std::size_t room, PrefixScan &scan,
+                               const DeviceArray<cl_int> &new_points);
   // The sizes in bytes of the lists it takes from a ScratchPool.
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
   // Triangles the last search examined: the most entries a list took.
@@ -106,6 +112,14 @@ private:
     kSurvive,
     kPriority
   };
+  // find_bad_triangles and elect_candidates by one work-group in one launch
+  // (a short search; changed: null for a sweep of every slot).
+  std::size_t search_in_group(const DeviceList<cl_int> *changed, cl_int carried, int stamp);
+  // Sets the mesh's and the search's arguments of find_bad_triangles (or
+  // search_in_group); returns the next argument's index.
+  cl_uint search_args(cl::Kernel &kernel, bool use_list, cl_int carried);
+  // The same for locate_candidates (or place_in_group).
+  cl_uint locate_args(cl::Kernel &kernel, int stamp);
   // The filter's marks cleared, when append_survivors appends nothing.
   void clear_candidate_marks();
   Device &device_;
@@ -116,13 +130,15 @@ private:
   bool parallel_midpoints_;
   int election_rings_;
   bool carry_verdicts_;
+  std::size_t group_step_limit_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
-      mark_, ties_, filter_, clear_, append_;
+      mark_, ties_, filter_, clear_, append_, search_in_group_, place_in_group_;
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false;            // the first search examines every slot
+  bool elected_ = false;             // the last search elected too (search_in_group)
   std::size_t searched_entries_ = 0; // triangles the last search examined
   DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
   // The scratch of the scan that makes the search list: lists of the pool
@@ -150,6 +166,10 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
+  // stuck_count_ as place_in_group read it with its result, when the last
+  // location was its.
+  std::size_t stuck_total_ = 0;
+  bool stuck_known_ = false;
   // Per triangle slot, set by the search that assessed a bad one: its notes
   // (notes in the kernels): whether its candidate splits an edge of its own
   // on the boundary (splits_own_edge; it is then elected whatever its
@@ -167,7 +187,11 @@ private:
   // that the pages past the used slots are not touched (not resident).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
+  DeviceArray<cl_int> search_counts_; // search_in_group's entries, bad ones and candidates
   DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
+  std::size_t search_group_;                        // search_in_group's work-group size
+  DeviceArray<cl_int> place_counts_;                // place_in_group's survivors and stuck_count_
+  std::size_t place_group_;                         // its work-group size
 };
 
 } // namespace clmesh

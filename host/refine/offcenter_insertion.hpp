@@ -52,8 +52,9 @@ public:
   // duplicates allowed; every slot when null). `stamp`: the mesh's next
   // modification stamp; a bad triangle of the last search that neither it
   // nor a neighbour its verdict depends on has been rewritten since keeps
-  // that verdict (see find_bad_triangles in the kernels). Returns how many
-  // are bad.
+  // that verdict (see find_bad_triangles in the kernels). A short search
+  // elects too, in the same launch (search_in_group). Returns how many are
+  // bad.
   std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps

@@ -548,7 +548,7 @@ inline void prefetch_search(__global const int *list, int gid, int n, int carrie
       __global uint *carried_mark, const double ratio_bound_squared, const double max_area,        \
       __global const double *region_area, __global const double *size_bound, const int sized,      \
       const double offconstant, const int conforming, const int protect, const int inward,         \
-      __global const int *stuck, __global int *is_bad, const int election, const double lens,      \
+      __global int *stuck, __global int *is_bad, const int election, const double lens,            \
       __global int *notes
 #define CLM_SEARCH_ARGS                                                                            \
   list, use_list, carried, searched_stamp, carried_mark, ratio_bound_squared, max_area,            \
@@ -759,8 +759,8 @@ __kernel void gather_elected(__global const int *bad, __global const int *electe
     gather_elected_entry(bad, elected, offset, tri_mark, last_container, origin, k);
 }
 
-// A short search by one work-group in one launch (OffcenterInsertion's
-// search in group): the last search's `last_bad` bad triangles (bad) and the
+// A short search by one work-group (the first part of step_one_in_group):
+// the last search's `last_bad` bad triangles (bad) and the
 // `changed_count` triangles changed since copied to `search`, its duplicates
 // removed into list (group_unique, with unique_keep and unique_offset; with
 // use_list 0 both counts are 0 and the search sweeps the `slots` slots), then
@@ -769,13 +769,16 @@ __kernel void gather_elected(__global const int *bad, __global const int *electe
 // ones' prefix sum and gather_elected (into origin). counts[0..3): the
 // entries searched, the bad triangles, the candidates. The barriers stand
 // outside any data-dependent branch.
-__kernel void search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, __global int *bad,
-                              const int last_bad, __global const int *changed,
-                              const int changed_count, __global int *search,
-                              __global int *unique_keep, __global int *unique_offset,
-                              __global int *offset, const int rings, __global int *last_container,
-                              __global int *origin, __local int *scratch, __global int *counts,
-                              const int slots) {
+#define CLM_SEARCH_GROUP_PARAMS                                                                    \
+  __global int *bad, const int last_bad, __global const int *changed, const int changed_count,     \
+      __global int *search, __global int *unique_keep, __global int *unique_offset,                \
+      __global int *offset, const int rings, __global int *last_container, __global int *origin,   \
+      __local int *scratch, __global int *counts, const int slots
+#define CLM_SEARCH_GROUP_ARGS                                                                      \
+  bad, last_bad, changed, changed_count, search, unique_keep, unique_offset, offset, rings,        \
+      last_container, origin, scratch, counts, slots
+// Returns the bad triangles and the candidates to every work-item.
+inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int i = lid; i < last_bad; i += size)
     search[i] = bad[i];
@@ -801,11 +804,13 @@ __kernel void search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, __global int *
   const int elected = group_exclusive_scan(is_bad, offset, electing, scratch);
   for (int k = lid; k < electing; k += size)
     gather_elected_entry(bad, is_bad, offset, tri_mark, last_container, origin, k);
+  const int candidates = rings > 0 ? elected : bad_count;
   if (lid == 0) {
     counts[0] = n;
     counts[1] = bad_count;
-    counts[2] = rings > 0 ? elected : bad_count;
+    counts[2] = candidates;
   }
+  return (int2)(bad_count, candidates);
 }
 
 // The insertion radius of located candidate k at c (thesis §3.5): the
@@ -1213,18 +1218,18 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
                  count, k);
 }
 
-// A short placement by one work-group in one launch (OffcenterInsertion's
-// placement in group): locate_candidates, mark_candidate_containers,
+// A short placement by one work-group (place_candidates_in_group, or the
+// second part of step_one_in_group): locate_candidates, mark_candidate_containers,
 // mark_candidate_ties and insertion_filter in turn, the survivors' prefix
 // sum, and append_survivors of the first min(survivors, room).
 // counts[0..2): the survivors, stuck_count[0] after the locations.
-__kernel void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, __global int *tie_mark,
-                             const int rings, const int distance_rings, const double near2,
-                             const int parallel_midpoints, __global int *survive,
-                             __global int *offset, __global const int *free_points,
-                             const int free_first, const int free_count, const int first_new,
-                             __global int *new_points, const int room, __local int *scratch,
-                             __global int *counts, const int n) {
+#define CLM_PLACE_GROUP_PARAMS                                                                     \
+  __global int *tie_mark, const int rings, const int distance_rings, const double near2,           \
+      const int parallel_midpoints, __global int *survive, __global int *offset,                   \
+      __global const int *free_points, const int free_first, const int free_count,                 \
+      const int first_new, __global int *new_points, const int room, __local int *scratch,         \
+      __global int *counts, const int n
+inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size) {
     prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
@@ -1252,4 +1257,38 @@ __kernel void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, __global int *t
     counts[0] = survivors;
     counts[1] = *stuck_count;
   }
+}
+
+__kernel void place_candidates_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS,
+                                        CLM_PLACE_GROUP_PARAMS) {
+  place_in_group(CLM_MESH_ARGS, CLM_LOCATE_ARGS, tie_mark, rings, distance_rings, near2,
+                 parallel_midpoints, survive, offset, free_points, free_first, free_count,
+                 first_new, new_points, room, scratch, counts, n);
+}
+
+// Step 1 whole by one work-group in one launch: search_in_group, then, when
+// some triangle is bad and the candidates are at most place_room (-1: the
+// host goes on by itself), place_in_group of every candidate (else of none),
+// its counts in counts[3..5). The arguments are search_in_group's, then
+// place_in_group's that it lacks.
+__kernel void step_one_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS,
+                                const int located_stamp, __global double2 *candidate,
+                                __global int *container, __global int *split_edge,
+                                __global uint *priority, __global double *radius2, const int stamp,
+                                volatile __global int *stuck_count, const int max_steps,
+                                __global int *tie_mark, const int filter_rings,
+                                const int distance_rings, const double near2,
+                                const int parallel_midpoints, __global int *survive,
+                                __global const int *free_points, const int free_first,
+                                const int free_count, const int first_new, __global int *new_points,
+                                const int room, const int place_room) {
+  const int2 found = search_in_group(CLM_MESH_ARGS, CLM_SEARCH_ARGS, CLM_SEARCH_GROUP_ARGS);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int n = found.x > 0 && found.y <= place_room ? found.y : 0;
+  place_in_group(CLM_MESH_ARGS, last_container, located_stamp, ratio_bound_squared, max_area,
+                 region_area, size_bound, sized, offconstant, conforming, protect, candidate,
+                 container, split_edge, rings > 0 ? origin : bad, priority, radius2, lens, inward,
+                 stamp, stuck, notes, stuck_count, max_steps, tie_mark, filter_rings,
+                 distance_rings, near2, parallel_midpoints, survive, offset, free_points,
+                 free_first, free_count, first_new, new_points, room, scratch, counts + 3, n);
 }

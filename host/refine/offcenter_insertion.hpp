@@ -53,14 +53,20 @@ public:
   // modification stamp; a bad triangle of the last search that neither it
   // nor a neighbour its verdict depends on has been rewritten since keeps
   // that verdict (see find_bad_triangles in the kernels). A short search
-  // elects too, in the same launch (search_in_group). Returns how many are
-  // bad.
-  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
+  // elects too, in the same launch (step_one_in_group), and given
+  // new_points, when some triangle is bad and the candidates are at most
+  // `room`, places them as place_candidates(stamp, room, .., *new_points)
+  // would, which then only returns the count. Returns how many are bad.
+  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp,
+                                 std::size_t room = 0,
+                                 const DeviceArray<cl_int> *new_points = nullptr);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps
   // waiting (see elect_candidates). Returns how many; candidates() too.
   std::size_t elect_candidates(PrefixScan &scan);
   std::size_t candidates() const { return candidates_; }
+  // Whether the last search placed its candidates too (see find_bad_triangles).
+  bool placed() const { return placed_; }
   // Each candidate's off-center, or the hull midpoint where it falls outside
   // or encroaches the hull, and the triangle that contains it. `stamp`: the
   // mesh's next modification stamp; a triangle rewritten later has a larger
@@ -115,9 +121,20 @@ private:
   };
   // find_bad_triangles and elect_candidates by one work-group in one launch
   // (a short search; changed: null for a sweep of every slot).
-  std::size_t search_in_group(const DeviceList<cl_int> *changed, cl_int carried, int stamp);
+  std::size_t step_one_in_group(const DeviceList<cl_int> *changed, cl_int carried, int stamp,
+                                std::size_t room, const DeviceArray<cl_int> *new_points);
+  // The free point slots and the first new one for appending up to `most`
+  // points in group, whose slots are filled ahead; take_point_slots takes
+  // those used after the read of counts (survivors, stuck_count_).
+  struct Slots {
+    const cl::Buffer &free_list;
+    cl_int free_first, free_count, first_new;
+  };
+  Slots point_slots_for(std::size_t most);
+  std::size_t take_point_slots(const cl_int *counts, std::size_t room, int stamp);
+  static cl_int clamped(std::size_t count); // as a kernel's int, at most INT32_MAX
   // Sets the mesh's and the search's arguments of find_bad_triangles (or
-  // search_in_group); returns the next argument's index.
+  // step_one_in_group); returns the next argument's index.
   cl_uint search_args(cl::Kernel &kernel, bool use_list, cl_int carried);
   // The same for locate_candidates (or place_in_group).
   cl_uint locate_args(cl::Kernel &kernel, int stamp);
@@ -136,10 +153,12 @@ private:
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
-      mark_, ties_, filter_, clear_, append_, search_in_group_, place_in_group_;
+      mark_, ties_, filter_, clear_, append_, step_one_in_group_, place_in_group_;
   std::size_t bad_ = 0, candidates_ = 0;
-  bool searched_ = false;            // the first search examines every slot
-  bool elected_ = false;             // the last search elected too (search_in_group)
+  bool searched_ = false; // the first search examines every slot
+  bool elected_ = false;  // the last search elected too (step_one_in_group)
+  bool placed_ = false;   // and placed the candidates, appending appended_
+  std::size_t appended_ = 0;
   std::size_t searched_entries_ = 0; // triangles the last search examined
   DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
   // The scratch of the scan that makes the search list: lists of the pool
@@ -188,9 +207,10 @@ private:
   // that the pages past the used slots are not touched (not resident).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
-  DeviceArray<cl_int> search_counts_; // search_in_group's entries, bad ones and candidates
+  // step_one_in_group's entries, bad ones, candidates, survivors and stuck_count_
+  DeviceArray<cl_int> search_counts_;
   DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
-  std::size_t search_group_;                        // search_in_group's work-group size
+  std::size_t search_group_;                        // step_one_in_group's work-group size
   DeviceArray<cl_int> place_counts_;                // place_in_group's survivors and stuck_count_
   std::size_t place_group_;                         // its work-group size
 };

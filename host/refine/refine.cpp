@@ -288,7 +288,7 @@ public:
     for (long iteration = 0;; ++iteration) {
       if (iteration == 0 || compaction_pays())
         compact();
-      const std::size_t bad = find_bad_triangles();
+      const std::size_t bad = find_bad_triangles(iteration != kMaxIterations);
       const std::size_t candidates = elect_candidates();
       // Step 1 is timed once, after place_candidates, on the way that goes on.
       if (bad == 0 || iteration == kMaxIterations || steiner_ >= limit_) {
@@ -297,7 +297,9 @@ public:
           stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
         break;
       }
-      const Room room = make_room(candidates);
+      // Placed with the search: there was room (make_room would have found
+      // it; the points appended since have taken some of it).
+      const Room room = steps_->offcenter.placed() ? Room::enough : make_room(candidates);
       if (room != Room::enough)
         charge_step_one();
       if (room == Room::grown)
@@ -623,10 +625,15 @@ private:
 
   // Step 1: the bad triangles, among those rewritten since the last search
   // and the bad ones then. Returns how many there are.
-  std::size_t find_bad_triangles() {
+  // With may_place, a short search places the candidates in the same launch
+  // when they fit the room as it is (make_room has nothing to do then, and
+  // place_candidates returns what was appended).
+  std::size_t find_bad_triangles(bool may_place) {
     update_size_bounds();
-    const std::size_t bad =
-        steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_, scheduler_.stamp());
+    const bool placing = may_place && steiner_ < limit_;
+    const std::size_t bad = steps_->offcenter.find_bad_triangles(
+        scheduler_.scan(), &changed_, scheduler_.stamp(),
+        placing ? std::min(room(), limit_ - steiner_) : 0, placing ? &steps_->new_points : nullptr);
     // The pages past this list's entries go back to the system (the next
     // one, of about the same size, writes those it keeps again).
     changed_.items.discard(device_, changed_.size, OffcenterInsertion::kPhase);

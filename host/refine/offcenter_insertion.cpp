@@ -280,7 +280,7 @@ std::size_t OffcenterInsertion::place_candidates(int stamp, std::size_t room, Pr
   if (candidates_ == 0)
     return 0;
   // A short placement (group_step_limit_ candidates at most) runs whole in
-  // one launch by one work-group (place_in_group): six launches and a read
+  // one launch by one work-group (place_candidates_in_group): six launches and a read
   // become one launch and its read.
   if (candidates_ > group_step_limit_) {
     locate_candidates(stamp);

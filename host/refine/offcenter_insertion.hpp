@@ -87,7 +87,7 @@ public:
                                const DeviceArray<cl_int> &new_points);
   // locate_candidates, filter_candidates and append_survivors in turn; a
   // short list of candidates by one work-group in one launch
-  // (place_in_group). Returns how many were appended.
+  // (place_candidates_in_group). Returns how many were appended.
   std::size_t place_candidates(int stamp, std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
   // The sizes in bytes of the lists it takes from a ScratchPool.
@@ -136,7 +136,7 @@ private:
   // Sets the mesh's and the search's arguments of find_bad_triangles (or
   // step_one_in_group); returns the next argument's index.
   cl_uint search_args(cl::Kernel &kernel, bool use_list, cl_int carried);
-  // The same for locate_candidates (or place_in_group).
+  // The same for locate_candidates (or place_candidates_in_group).
   cl_uint locate_args(cl::Kernel &kernel, int stamp);
   // The filter's marks cleared, when append_survivors appends nothing.
   void clear_candidate_marks();
@@ -186,7 +186,7 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
-  // stuck_count_ as place_in_group read it with its result, when the last
+  // stuck_count_ as a placement in group read it with its result, when the last
   // location was its.
   std::size_t stuck_total_ = 0;
   bool stuck_known_ = false;
@@ -211,8 +211,8 @@ private:
   DeviceArray<cl_int> search_counts_;
   DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
   std::size_t search_group_;                        // step_one_in_group's work-group size
-  DeviceArray<cl_int> place_counts_;                // place_in_group's survivors and stuck_count_
-  std::size_t place_group_;                         // its work-group size
+  DeviceArray<cl_int> place_counts_; // place_candidates_in_group's survivors and stuck_count_
+  std::size_t place_group_;          // its work-group size
 };
 
 } // namespace clmesh

@@ -23,6 +23,7 @@
 // Quality decisions use floating point, as Triangle's do; the insertion that follows uses the exact
 // predicates.
 #include "common.h"
+#include "group_scan.h"
 #include "mesh_params.h"
 #include "prefetch.h"
 #include "refinement.h"
@@ -540,16 +541,22 @@ inline void prefetch_search(__global const int *list, int gid, int n, int carrie
 // one kept in carried_mark[gid]. Every other triangle is assessed. With an
 // election, each bad triangle marks its slot with its priority, ranked as a
 // midpoint's when a corner is on the hull; each one assessed sets notes[slot].
-__kernel void find_bad_triangles(
-    CLM_MESH_PARAMS, __global const int *list, const int use_list, const int carried,
-    const int searched_stamp, __global const uint *carried_mark, const double ratio_bound_squared,
-    const double max_area, __global const double *region_area, __global const double *size_bound,
-    const int sized, const double offconstant, const int conforming, const int protect,
-    const int inward, __global const int *stuck, __global int *is_bad, const int election,
-    const double lens, __global int *notes, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
+// find_bad_triangles' arguments after the mesh's (see there), shared with
+// search_in_group.
+#define CLM_SEARCH_PARAMS                                                                          \
+  __global int *list, const int use_list, const int carried, const int searched_stamp,             \
+      __global uint *carried_mark, const double ratio_bound_squared, const double max_area,        \
+      __global const double *region_area, __global const double *size_bound, const int sized,      \
+      const double offconstant, const int conforming, const int protect, const int inward,         \
+      __global int *stuck, __global int *is_bad, const int election, const double lens,            \
+      __global int *notes
+#define CLM_SEARCH_ARGS                                                                            \
+  list, use_list, carried, searched_stamp, carried_mark, ratio_bound_squared, max_area,            \
+      region_area, size_bound, sized, offconstant, conforming, protect, inward, stuck, is_bad,     \
+      election, lens, notes
+
+// Entry gid of find_bad_triangles (of n).
+inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
   if (use_list)
     prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
                     modified_stamp, notes, stuck, tri_mark);
@@ -591,6 +598,12 @@ __kernel void find_bad_triangles(
       note |= CLM_NOTE_SPLITS_OWN_EDGE;
   }
   notes[t] = note;
+}
+
+__kernel void find_bad_triangles(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    search_entry(CLM_MESH_ARGS, CLM_SEARCH_ARGS, gid, n);
 }
 
 // counts[0]: the bad triangles left as they are, counted at the end over
@@ -635,17 +648,25 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
 // sum), so that candidate k is the same on every device and for every
 // work-group size; with an election, each one's mark in carried_mark, for
 // the next search (find_bad_triangles).
-__kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
-                                   __global const int *list, const int use_list,
-                                   __global const uint *tri_mark, const int election,
-                                   __global int *origin, __global uint *carried_mark, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n || !is_bad[gid])
+inline void gather_bad_entry(__global const int *is_bad, __global const int *offset,
+                             __global const int *list, const int use_list,
+                             volatile __global const uint *tri_mark, const int election,
+                             __global int *origin, __global uint *carried_mark, const int gid) {
+  if (!is_bad[gid])
     return;
   const int t = use_list ? list[gid] : gid;
   origin[offset[gid]] = t;
   if (election)
     carried_mark[offset[gid]] = tri_mark[t];
+}
+
+__kernel void gather_bad_triangles(__global const int *is_bad, __global const int *offset,
+                                   __global const int *list, const int use_list,
+                                   __global const uint *tri_mark, const int election,
+                                   __global int *origin, __global uint *carried_mark, const int n) {
+  const int gid = get_global_id(0);
+  if (gid < n)
+    gather_bad_entry(is_bad, offset, list, use_list, tri_mark, election, origin, carried_mark, gid);
 }
 
 // Prefetching for a kernel that reads the marks of two rings of triangles
@@ -690,13 +711,9 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // boundary rank before the rest but take part: along a PSLG's jagged
 // outline they are most bad triangles, their candidates are mostly
 // off-centers, and most of those would lose in the filter.
-__kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
-                               __global const uint *tri_mark, const int rings,
-                               __global const int *notes, __global int *elected, const int n) {
-  const int k = get_global_id(0);
-  prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
-  if (k >= n)
-    return;
+inline bool is_elected(__global const int *bad, __global const int *tri_neighbor,
+                       volatile __global const uint *tri_mark, const int rings,
+                       __global const int *notes, const int k) {
   const int t = bad[k];
   const uint mine = tri_mark[t];
   bool best = true;
@@ -708,24 +725,92 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
       best = w == t || tri_mark[w] >= mine;
     }
   }
-  elected[k] = best;
+  return best;
+}
+
+__kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
+                               __global const uint *tri_mark, const int rings,
+                               __global const int *notes, __global int *elected, const int n) {
+  const int k = get_global_id(0);
+  prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
+  if (k < n)
+    elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
 }
 
 // The elected bad triangles as the candidates' origins (offsets by prefix sum),
 // each bad triangle's mark cleared. One left waiting forgets where its last
 // candidate was: it may be rewritten before the next search that locates it.
-__kernel void gather_elected(__global const int *bad, __global const int *elected,
-                             __global const int *offset, __global uint *tri_mark,
-                             __global int *last_container, __global int *origin, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
+inline void gather_elected_entry(__global const int *bad, __global const int *elected,
+                                 __global const int *offset, volatile __global uint *tri_mark,
+                                 __global int *last_container, __global int *origin, const int k) {
   const int t = bad[k];
   tri_mark[t] = CLM_NO_MARK;
   if (elected[k])
     origin[offset[k]] = t;
   else
     last_container[t] = -1;
+}
+
+__kernel void gather_elected(__global const int *bad, __global const int *elected,
+                             __global const int *offset, __global uint *tri_mark,
+                             __global int *last_container, __global int *origin, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    gather_elected_entry(bad, elected, offset, tri_mark, last_container, origin, k);
+}
+
+// A short search by one work-group (the first part of step_one_in_group):
+// the last search's `last_bad` bad triangles (bad) and the
+// `changed_count` triangles changed since copied to `search`, its duplicates
+// removed into list (group_unique, with unique_keep and unique_offset; with
+// use_list 0 both counts are 0 and the search sweeps the `slots` slots), then
+// find_bad_triangles, the bad ones' prefix sum and gather_bad_triangles
+// (into bad), and with an election (rings > 0) elect_candidates, the elected
+// ones' prefix sum and gather_elected (into origin). counts[0..3): the
+// entries searched, the bad triangles, the candidates. The barriers stand
+// outside any data-dependent branch.
+#define CLM_SEARCH_GROUP_PARAMS                                                                    \
+  __global int *bad, const int last_bad, __global const int *changed, const int changed_count,     \
+      __global int *search, __global int *unique_keep, __global int *unique_offset,                \
+      __global int *offset, const int rings, __global int *last_container, __global int *origin,   \
+      __local int *scratch, __global int *counts, const int slots
+#define CLM_SEARCH_GROUP_ARGS                                                                      \
+  bad, last_bad, changed, changed_count, search, unique_keep, unique_offset, offset, rings,        \
+      last_container, origin, scratch, counts, slots
+// Returns the bad triangles and the candidates to every work-item.
+inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  for (int i = lid; i < last_bad; i += size)
+    search[i] = bad[i];
+  for (int i = lid; i < changed_count; i += size)
+    search[last_bad + i] = changed[i];
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int listed = group_unique(search, last_bad + changed_count, tri_mark, unique_keep,
+                                  unique_offset, list, scratch);
+  const int n = use_list ? listed : slots;
+  for (int k = lid; k < n; k += size)
+    search_entry(CLM_MESH_ARGS, CLM_SEARCH_ARGS, k, n);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int bad_count = group_exclusive_scan(is_bad, offset, n, scratch);
+  for (int k = lid; k < n; k += size)
+    gather_bad_entry(is_bad, offset, list, use_list, tri_mark, election, bad, carried_mark, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int electing = rings > 0 ? bad_count : 0;
+  for (int k = lid; k < electing; k += size) {
+    prefetch_two_rings(bad, k, electing, tri_mark, 0, tri_neighbor);
+    is_bad[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int elected = group_exclusive_scan(is_bad, offset, electing, scratch);
+  for (int k = lid; k < electing; k += size)
+    gather_elected_entry(bad, is_bad, offset, tri_mark, last_container, origin, k);
+  const int candidates = rings > 0 ? elected : bad_count;
+  if (lid == 0) {
+    counts[0] = n;
+    counts[1] = bad_count;
+    counts[2] = candidates;
+  }
+  return (int2)(bad_count, candidates);
 }
 
 // The insertion radius of located candidate k at c (thesis §3.5): the
@@ -802,21 +887,23 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
   warm_neighbours(tri_vertex, tri_neighbor, near);
 }
 
-__kernel void
-locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int located_stamp,
-                  const double ratio_bound_squared, const double max_area,
-                  __global const double *region_area, __global const double *size_bound,
-                  const int sized, const double offconstant, const int conforming,
-                  const int protect, __global double2 *candidate, __global int *container,
-                  __global int *split_edge, __global const int *origin, __global uint *priority,
-                  __global double *radius2, const double lens, const int inward, const int stamp,
-                  __global int *stuck, __global int *notes, volatile __global int *stuck_count,
-                  const int max_steps, const int n) {
-  const int k = get_global_id(0);
-  prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
-                      last_container);
-  if (k >= n)
-    return;
+// locate_candidates' arguments after the mesh's, shared with place_in_group.
+#define CLM_LOCATE_PARAMS                                                                          \
+  __global int *last_container, const int located_stamp, const double ratio_bound_squared,         \
+      const double max_area, __global const double *region_area,                                   \
+      __global const double *size_bound, const int sized, const double offconstant,                \
+      const int conforming, const int protect, __global double2 *candidate,                        \
+      __global int *container, __global int *split_edge, __global const int *origin,               \
+      __global uint *priority, __global double *radius2, const double lens, const int inward,      \
+      const int stamp, __global int *stuck, __global int *notes,                                   \
+      volatile __global int *stuck_count, const int max_steps
+#define CLM_LOCATE_ARGS                                                                            \
+  last_container, located_stamp, ratio_bound_squared, max_area, region_area, size_bound, sized,    \
+      offconstant, conforming, protect, candidate, container, split_edge, origin, priority,        \
+      radius2, lens, inward, stamp, stuck, notes, stuck_count, max_steps
+
+// Candidate k of locate_candidates.
+inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k) {
   const int bad = origin[k], known = last_container[bad];
   double2 c;
   uint rank;
@@ -883,14 +970,19 @@ locate_candidates(CLM_MESH_PARAMS, __global int *last_container, const int locat
         insertion_radius2_of(CLM_MESH_ARGS, container, split_edge, origin, candidate[k], k);
 }
 
-// Marks each candidate's container (and its partner) with its priority.
-__kernel void mark_candidate_containers(__global const int *container,
-                                        __global const int *split_edge,
-                                        __global const int *tri_neighbor,
-                                        __global const uint *priority,
-                                        volatile __global uint *tri_mark, const int n) {
+__kernel void locate_candidates(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int n) {
   const int k = get_global_id(0);
-  if (k >= n || container[k] < 0)
+  prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
+                      last_container);
+  if (k < n)
+    locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
+}
+
+// Marks each candidate's container (and its partner) with its priority.
+inline void mark_container_of(__global const int *container, __global const int *split_edge,
+                              __global const int *tri_neighbor, __global const uint *priority,
+                              volatile __global uint *tri_mark, const int k) {
+  if (container[k] < 0)
     return;
   atomic_min(&tri_mark[container[k]], priority[k]);
   const int partner = split_partner(tri_neighbor, container, split_edge, k);
@@ -898,23 +990,41 @@ __kernel void mark_candidate_containers(__global const int *container,
     atomic_min(&tri_mark[partner], priority[k]);
 }
 
+__kernel void mark_candidate_containers(__global const int *container,
+                                        __global const int *split_edge,
+                                        __global const int *tri_neighbor,
+                                        __global const uint *priority,
+                                        volatile __global uint *tri_mark, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    mark_container_of(container, split_edge, tri_neighbor, priority, tri_mark, k);
+}
+
 // The insertion filter: survive[k] = 1 when candidate k owns its container's
 // mark (and its partner's) and no neighbouring container is marked with a
 // better priority. Among candidates of equal priority, the smallest index
 // keeps the container. The survivors' triangles are then pairwise distinct,
 // so they are all inserted in one round, in place.
-__kernel void mark_candidate_ties(__global const int *container, __global const int *split_edge,
-                                  __global const int *tri_neighbor, __global const uint *priority,
-                                  __global const uint *tri_mark, volatile __global int *tie_mark,
-                                  const int n) {
-  const int k = get_global_id(0);
-  if (k >= n || container[k] < 0)
+inline void mark_tie_of(__global const int *container, __global const int *split_edge,
+                        __global const int *tri_neighbor, __global const uint *priority,
+                        volatile __global const uint *tri_mark, volatile __global int *tie_mark,
+                        const int k) {
+  if (container[k] < 0)
     return;
   if (tri_mark[container[k]] == priority[k])
     atomic_min(&tie_mark[container[k]], k);
   const int partner = split_partner(tri_neighbor, container, split_edge, k);
   if (partner >= 0 && tri_mark[partner] == priority[k])
     atomic_min(&tie_mark[partner], k);
+}
+
+__kernel void mark_candidate_ties(__global const int *container, __global const int *split_edge,
+                                  __global const int *tri_neighbor, __global const uint *priority,
+                                  __global const uint *tri_mark, volatile __global int *tie_mark,
+                                  const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    mark_tie_of(container, split_edge, tri_neighbor, priority, tri_mark, tie_mark, k);
 }
 
 // Whether candidates j and k are closer than sqrt(factor2) times the
@@ -964,16 +1074,23 @@ inline bool beaten(volatile __global const uint *tri_mark, __global const int *t
 // only midpoints rank before it and two midpoints never conflict: they split
 // different hull edges (a container or partner they share goes by its mark)
 // and are never a dependent pair.
-__kernel void insertion_filter(CLM_MESH_PARAMS, __global const int *container,
-                               __global const int *split_edge, __global const uint *priority,
-                               __global const int *tie_mark, __global const double2 *candidate,
-                               __global const double *radius2, const int rings,
-                               const int distance_rings, const double near2,
-                               const int parallel_midpoints, __global int *survive, const int n) {
-  const int k = get_global_id(0);
-  prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
-  if (k >= n)
-    return;
+// insertion_filter's arguments after the mesh's, shared with place_in_group
+// (which writes tie_mark through the same name).
+#define CLM_FILTER_PARAMS                                                                          \
+  __global const int *container, __global const int *split_edge, __global const uint *priority,    \
+      __global int *tie_mark, __global const double2 *candidate, __global const double *radius2,   \
+      const int rings, const int distance_rings, const double near2, const int parallel_midpoints, \
+      __global int *survive
+#define CLM_FILTER_ARGS                                                                            \
+  container, split_edge, priority, tie_mark, candidate, radius2, rings, distance_rings, near2,     \
+      parallel_midpoints, survive
+
+// Whether candidate k survives.
+inline bool survives(CLM_MESH_PARAMS, __global const int *container, __global const int *split_edge,
+                     __global const uint *priority, __global const int *tie_mark,
+                     __global const double2 *candidate, __global const double *radius2,
+                     const int rings, const int distance_rings, const double near2,
+                     const int parallel_midpoints, const int k) {
   const int t = container[k];
   const uint mine = priority[k];
   const int reach = rings + distance_rings;
@@ -1006,7 +1123,19 @@ __kernel void insertion_filter(CLM_MESH_PARAMS, __global const int *container,
   const int partner = wins ? split_partner(tri_neighbor, container, split_edge, k) : -1;
   if (partner >= 0)
     wins = tri_mark[partner] == mine && tie_mark[partner] == k;
-  survive[k] = wins;
+  return wins;
+}
+
+// Candidate k of insertion_filter, its prefetching first (of n).
+inline void filter_entry(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int k, const int n) {
+  prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
+  if (k < n)
+    survive[k] = survives(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate,
+                          radius2, rings, distance_rings, near2, parallel_midpoints, k);
+}
+
+__kernel void insertion_filter(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int n) {
+  filter_entry(CLM_MESH_ARGS, CLM_FILTER_ARGS, get_global_id(0), n);
 }
 
 // Candidate k's marks on its container and partner cleared, after the
@@ -1043,16 +1172,14 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // Only the first `count` survivors are taken (the -S limit). Every
 // candidate clears the filter's marks (tie_mark and tri_mark): nothing here
 // reads them.
-__kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidate,
-                               __global const int *container, __global const int *split_edge,
-                               __global const double *radius2, __global const uint *priority,
-                               __global const int *survive, __global const int *offset,
-                               __global const int *free_points, const int free_first,
-                               const int free_count, const int first_new, __global int *new_points,
-                               __global int *tie_mark, const int count, const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
+// Candidate k of append_survivors.
+inline void append_entry(CLM_MESH_PARAMS, __global const double2 *candidate,
+                         __global const int *container, __global const int *split_edge,
+                         __global const double *radius2, __global const uint *priority,
+                         __global const int *survive, __global const int *offset,
+                         __global const int *free_points, const int free_first,
+                         const int free_count, const int first_new, __global int *new_points,
+                         __global int *tie_mark, const int count, const int k) {
   clear_marks_of(container, split_edge, tri_neighbor, tri_mark, tie_mark, k);
   if (!survive[k] || offset[k] >= count)
     return;
@@ -1075,4 +1202,93 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
   insertion_radius2[p] = radius2[k];
   point_priority[p] = midpoint ? 0u : priority[k] & ~CLM_OFFCENTER_RANK;
   new_points[offset[k]] = p;
+}
+
+__kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidate,
+                               __global const int *container, __global const int *split_edge,
+                               __global const double *radius2, __global const uint *priority,
+                               __global const int *survive, __global const int *offset,
+                               __global const int *free_points, const int free_first,
+                               const int free_count, const int first_new, __global int *new_points,
+                               __global int *tie_mark, const int count, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    append_entry(CLM_MESH_ARGS, candidate, container, split_edge, radius2, priority, survive,
+                 offset, free_points, free_first, free_count, first_new, new_points, tie_mark,
+                 count, k);
+}
+
+// A short placement by one work-group (place_candidates_in_group, or the
+// second part of step_one_in_group): locate_candidates, mark_candidate_containers,
+// mark_candidate_ties and insertion_filter in turn, the survivors' prefix
+// sum, and append_survivors of the first min(survivors, room).
+// counts[0..2): the survivors, stuck_count[0] after the locations.
+#define CLM_PLACE_GROUP_PARAMS                                                                     \
+  __global int *tie_mark, const int rings, const int distance_rings, const double near2,           \
+      const int parallel_midpoints, __global int *survive, __global int *offset,                   \
+      __global const int *free_points, const int free_first, const int free_count,                 \
+      const int first_new, __global int *new_points, const int room, __local int *scratch,         \
+      __global int *counts, const int n
+inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  for (int k = lid; k < n; k += size) {
+    prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
+                        last_container);
+    locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
+  }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    mark_container_of(container, split_edge, tri_neighbor, priority, tri_mark, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    mark_tie_of(container, split_edge, tri_neighbor, priority, tri_mark, tie_mark, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < n; k += size)
+    filter_entry(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate, radius2,
+                 rings, distance_rings, near2, parallel_midpoints, survive, k, n);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int survivors = group_exclusive_scan(survive, offset, n, scratch);
+  const int count = min(survivors, room);
+  for (int k = lid; k < n; k += size)
+    append_entry(CLM_MESH_ARGS, candidate, container, split_edge, radius2, priority, survive,
+                 offset, free_points, free_first, free_count, first_new, new_points, tie_mark,
+                 count, k);
+  if (lid == 0) {
+    counts[0] = survivors;
+    counts[1] = *stuck_count;
+  }
+}
+
+__kernel void place_candidates_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS,
+                                        CLM_PLACE_GROUP_PARAMS) {
+  place_in_group(CLM_MESH_ARGS, CLM_LOCATE_ARGS, tie_mark, rings, distance_rings, near2,
+                 parallel_midpoints, survive, offset, free_points, free_first, free_count,
+                 first_new, new_points, room, scratch, counts, n);
+}
+
+// Step 1 whole by one work-group in one launch: search_in_group, then, when
+// some triangle is bad and the candidates are at most place_room (-1: the
+// host goes on by itself), place_in_group of every candidate (else of none),
+// its counts in counts[3..5). The arguments are search_in_group's, then
+// place_in_group's that it lacks.
+__kernel void step_one_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS,
+                                const int located_stamp, __global double2 *candidate,
+                                __global int *container, __global int *split_edge,
+                                __global uint *priority, __global double *radius2, const int stamp,
+                                volatile __global int *stuck_count, const int max_steps,
+                                __global int *tie_mark, const int filter_rings,
+                                const int distance_rings, const double near2,
+                                const int parallel_midpoints, __global int *survive,
+                                __global const int *free_points, const int free_first,
+                                const int free_count, const int first_new, __global int *new_points,
+                                const int room, const int place_room) {
+  const int2 found = search_in_group(CLM_MESH_ARGS, CLM_SEARCH_ARGS, CLM_SEARCH_GROUP_ARGS);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int n = found.x > 0 && found.y <= place_room ? found.y : 0;
+  place_in_group(CLM_MESH_ARGS, last_container, located_stamp, ratio_bound_squared, max_area,
+                 region_area, size_bound, sized, offconstant, conforming, protect, candidate,
+                 container, split_edge, rings > 0 ? origin : bad, priority, radius2, lens, inward,
+                 stamp, stuck, notes, stuck_count, max_steps, tie_mark, filter_rings,
+                 distance_rings, near2, parallel_midpoints, survive, offset, free_points,
+                 free_first, free_count, first_new, new_points, room, scratch, counts + 3, n);
 }

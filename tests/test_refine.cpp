@@ -348,10 +348,15 @@ TEST_CASE("refine: points a hair from collinear along the hull end the refinemen
 
 TEST_CASE("refine: the Steiner point limit (-S) is obeyed") {
   clmesh::Options options = clmesh::parse_switches("q30S50");
-  const auto result = refine(fixtures::uniform(2000, 77), options);
-  // Bad triangles remain: the limit is reached, not passed.
-  CHECK(result.statistics.refinement.remaining_bad > 0);
-  CHECK(steiner_points(result) == 50);
+  // The steps of an iteration in one work-group each or as separate kernels.
+  for (const std::size_t limit : {std::size_t{0}, std::size_t{1} << 30}) {
+    CAPTURE(limit);
+    options.tuning.group_step_limit = limit;
+    const auto result = refine(fixtures::uniform(2000, 77), options);
+    // Bad triangles remain: the limit is reached, not passed.
+    CHECK(result.statistics.refinement.remaining_bad > 0);
+    CHECK(steiner_points(result) == 50);
+  }
 }
 
 TEST_CASE("refine: the same mesh whatever the work-group size, grid or construction") {
@@ -395,6 +400,20 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     tuning.group_pass_limit = clmesh::Tuning{}.group_pass_limit;
     CHECK(first.triangles == by_kernels.triangles);
     CHECK(first.triangles == in_group.triangles);
+    // Nor on whether the search for bad triangles and the placement of the
+    // candidates run in one work-group or as separate kernels.
+    tuning.group_step_limit = 0;
+    const auto steps_by_kernels = refine(points, options);
+    tuning.group_step_limit = std::size_t{1} << 30;
+    const auto steps_in_group = refine(points, options);
+    tuning.group_step_limit = clmesh::Tuning{}.group_step_limit;
+    for (const auto *other : {&steps_by_kernels, &steps_in_group}) {
+      CHECK(first.triangles == other->triangles);
+      REQUIRE(first.points.size() == other->points.size());
+      for (std::size_t i = 0; i < first.points.size(); ++i)
+        CHECK((first.points[i].x == other->points[i].x && first.points[i].y == other->points[i].y));
+      CHECK(first.statistics.refinement.iterations == other->statistics.refinement.iterations);
+    }
     // Nor on whether a search keeps the verdicts of unchanged bad triangles.
     tuning.carry_verdicts = false;
     const auto assessed = refine(points, options);

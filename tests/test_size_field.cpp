@@ -112,6 +112,19 @@ TEST_CASE("size field: a mesh that outgrows its first room, several times") {
   INFO(problems(report));
   CHECK(report.ok);
   check_meets_field(mesh, *field);
+  // The same mesh whether the steps of an iteration run in one work-group
+  // (the search placing its candidates in the same launch, while growth
+  // waits for room) or as separate kernels.
+  for (const std::size_t limit : {std::size_t{0}, std::size_t{1} << 30}) {
+    CAPTURE(limit);
+    options.tuning.group_step_limit = limit;
+    const clmesh::Mesh other = clmesh::triangulate(device(), input, options);
+    CHECK(other.statistics.refinement.growths == mesh.statistics.refinement.growths);
+    CHECK(other.triangles == mesh.triangles);
+    REQUIRE(other.points.size() == mesh.points.size());
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      CHECK((other.points[i].x == mesh.points[i].x && other.points[i].y == mesh.points[i].y));
+  }
 }
 
 TEST_CASE("size field: a callback that asks what the field asks gives the same mesh") {

@@ -25,7 +25,8 @@ public:
   // when none within that many rings has a better priority (0: every one, the
   // thesis's way; see elect_candidates); carry_verdicts: a search keeps the
   // verdicts of the last search's bad triangles that are as it assessed them
-  // (see find_bad_triangles); conforming (-D): a triangle whose
+  // (see find_bad_triangles); group_step_limit: Tuning::group_step_limit;
+  // conforming (-D): a triangle whose
   // obtuse angle faces a subsegment or boundary edge is bad, and a point in a
   // subsegment's diametral circle splits it; protected_segments (-Y 1, -YY 2):
   // boundary edges (and subsegments) no point may split: a candidate that
@@ -41,8 +42,8 @@ public:
   OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
                      double max_area, int filter_rings, int filter_distance_rings,
                      double filter_near, bool parallel_midpoints, int election_rings,
-                     bool carry_verdicts, bool conforming, int protected_segments, bool inward,
-                     const std::vector<double> &region_areas,
+                     bool carry_verdicts, std::size_t group_step_limit, bool conforming,
+                     int protected_segments, bool inward, const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -51,14 +52,21 @@ public:
   // duplicates allowed; every slot when null). `stamp`: the mesh's next
   // modification stamp; a bad triangle of the last search that neither it
   // nor a neighbour its verdict depends on has been rewritten since keeps
-  // that verdict (see find_bad_triangles in the kernels). Returns how many
-  // are bad.
-  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp);
+  // that verdict (see find_bad_triangles in the kernels). A short search
+  // elects too, in the same launch (step_one_in_group), and given
+  // new_points, when some triangle is bad and the candidates are at most
+  // `room`, places them as place_candidates(stamp, room, .., *new_points)
+  // would, which then only returns the count. Returns how many are bad.
+  std::size_t find_bad_triangles(PrefixScan &scan, const DeviceList<cl_int> *changed, int stamp,
+                                 std::size_t room = 0,
+                                 const DeviceArray<cl_int> *new_points = nullptr);
   // The bad triangles that send a candidate: all of them, or with an
   // election those that no better one within election_rings rings keeps
   // waiting (see elect_candidates). Returns how many; candidates() too.
   std::size_t elect_candidates(PrefixScan &scan);
   std::size_t candidates() const { return candidates_; }
+  // Whether the last search placed its candidates too (see find_bad_triangles).
+  bool placed() const { return placed_; }
   // Each candidate's off-center, or the hull midpoint where it falls outside
   // or encroaches the hull, and the triangle that contains it. `stamp`: the
   // mesh's next modification stamp; a triangle rewritten later has a larger
@@ -76,6 +84,11 @@ public:
   // not inserted yet; the first `room` of them when more survived. Returns
   // how many were appended.
   std::size_t append_survivors(std::size_t room, PrefixScan &scan,
+                               const DeviceArray<cl_int> &new_points);
+  // locate_candidates, filter_candidates and append_survivors in turn; a
+  // short list of candidates by one work-group in one launch
+  // (place_candidates_in_group). Returns how many were appended.
+  std::size_t place_candidates(int stamp, std::size_t room, PrefixScan &scan,
                                const DeviceArray<cl_int> &new_points);
   // The sizes in bytes of the lists it takes from a ScratchPool.
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
@@ -106,6 +119,25 @@ private:
     kSurvive,
     kPriority
   };
+  // find_bad_triangles and elect_candidates by one work-group in one launch
+  // (a short search; changed: null for a sweep of every slot).
+  std::size_t step_one_in_group(const DeviceList<cl_int> *changed, cl_int carried, int stamp,
+                                std::size_t room, const DeviceArray<cl_int> *new_points);
+  // The free point slots and the first new one for appending up to `most`
+  // points in group, whose slots are filled ahead; take_point_slots takes
+  // those used after the read of counts (survivors, stuck_count_).
+  struct Slots {
+    const cl::Buffer &free_list;
+    cl_int free_first, free_count, first_new;
+  };
+  Slots point_slots_for(std::size_t most);
+  std::size_t take_point_slots(const cl_int *counts, std::size_t room, int stamp);
+  static cl_int clamped(std::size_t count); // as a kernel's int, at most INT32_MAX
+  // Sets the mesh's and the search's arguments of find_bad_triangles (or
+  // step_one_in_group); returns the next argument's index.
+  cl_uint search_args(cl::Kernel &kernel, bool use_list, cl_int carried);
+  // The same for locate_candidates (or place_candidates_in_group).
+  cl_uint locate_args(cl::Kernel &kernel, int stamp);
   // The filter's marks cleared, when append_survivors appends nothing.
   void clear_candidate_marks();
   Device &device_;
@@ -116,13 +148,17 @@ private:
   bool parallel_midpoints_;
   int election_rings_;
   bool carry_verdicts_;
+  std::size_t group_step_limit_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
   cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
-      mark_, ties_, filter_, clear_, append_;
+      mark_, ties_, filter_, clear_, append_, step_one_in_group_, place_in_group_;
   std::size_t bad_ = 0, candidates_ = 0;
-  bool searched_ = false;            // the first search examines every slot
+  bool searched_ = false; // the first search examines every slot
+  bool elected_ = false;  // the last search elected too (step_one_in_group)
+  bool placed_ = false;   // and placed the candidates, appending appended_
+  std::size_t appended_ = 0;
   std::size_t searched_entries_ = 0; // triangles the last search examined
   DeviceList<cl_int> search_;        // the next search's triangles, with duplicates
   // The scratch of the scan that makes the search list: lists of the pool
@@ -150,6 +186,10 @@ private:
   DeviceArray<cl_int> stuck_;
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
+  // stuck_count_ as a placement in group read it with its result, when the last
+  // location was its.
+  std::size_t stuck_total_ = 0;
+  bool stuck_known_ = false;
   // Per triangle slot, set by the search that assessed a bad one: its notes
   // (notes in the kernels): whether its candidate splits an edge of its own
   // on the boundary (splits_own_edge; it is then elected whatever its
@@ -167,7 +207,12 @@ private:
   // that the pages past the used slots are not touched (not resident).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
+  // step_one_in_group's entries, bad ones, candidates, survivors and stuck_count_
+  DeviceArray<cl_int> search_counts_;
   DeviceArray<cl_int> pooled_keep_, pooled_offset_; // see search_keep_
+  std::size_t search_group_;                        // step_one_in_group's work-group size
+  DeviceArray<cl_int> place_counts_; // place_candidates_in_group's survivors and stuck_count_
+  std::size_t place_group_;          // its work-group size
 };
 
 } // namespace clmesh

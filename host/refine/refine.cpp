@@ -192,7 +192,8 @@ struct RefinementSteps {
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
                   options.delaunay.tuning.election_rings, options.delaunay.tuning.carry_verdicts,
-                  options.conforming, options.protected_segments, inward, region_areas, size_bound),
+                  options.delaunay.tuning.group_step_limit, options.conforming,
+                  options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
         flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv,
@@ -287,16 +288,18 @@ public:
     for (long iteration = 0;; ++iteration) {
       if (iteration == 0 || compaction_pays())
         compact();
-      const std::size_t bad = find_bad_triangles();
+      const std::size_t bad = find_bad_triangles(iteration != kMaxIterations);
       const std::size_t candidates = elect_candidates();
-      // Step 1 is timed once, after append_survivors, on the way that goes on.
+      // Step 1 is timed once, after place_candidates, on the way that goes on.
       if (bad == 0 || iteration == kMaxIterations || steiner_ >= limit_) {
         charge_step_one();
         if (bad > 0)
           stats_.stop_reason = steiner_ >= limit_ ? limit_reason() : RefineStop::iteration_limit;
         break;
       }
-      const Room room = make_room(candidates);
+      // Placed with the search: there was room (make_room would have found
+      // it; the points appended since have taken some of it).
+      const Room room = steps_->offcenter.placed() ? Room::enough : make_room(candidates);
       if (room != Room::enough)
         charge_step_one();
       if (room == Room::grown)
@@ -305,9 +308,7 @@ public:
         break; // the cause is told once the mesh is downloaded (finish())
       ++stats_.iterations;
       stats_.candidates += static_cast<long>(candidates);
-      locate_candidates();
-      filter_candidates();
-      const std::size_t added = append_survivors();
+      const std::size_t added = place_candidates();
       if (added == 0 && steps_->offcenter.stuck_since_last_asked())
         continue; // the next search leaves out the triangles just found stuck
       if (added == 0) {
@@ -624,10 +625,15 @@ private:
 
   // Step 1: the bad triangles, among those rewritten since the last search
   // and the bad ones then. Returns how many there are.
-  std::size_t find_bad_triangles() {
+  // With may_place, a short search places the candidates in the same launch
+  // when they fit the room as it is (make_room has nothing to do then, and
+  // place_candidates returns what was appended).
+  std::size_t find_bad_triangles(bool may_place) {
     update_size_bounds();
-    const std::size_t bad =
-        steps_->offcenter.find_bad_triangles(scheduler_.scan(), &changed_, scheduler_.stamp());
+    const bool placing = may_place && steiner_ < limit_;
+    const std::size_t bad = steps_->offcenter.find_bad_triangles(
+        scheduler_.scan(), &changed_, scheduler_.stamp(),
+        placing ? std::min(room(), limit_ - steiner_) : 0, placing ? &steps_->new_points : nullptr);
     // The pages past this list's entries go back to the system (the next
     // one, of about the same size, writes those it keeps again).
     changed_.items.discard(device_, changed_.size, OffcenterInsertion::kPhase);
@@ -688,17 +694,13 @@ private:
   }
 
   // Step 1: each candidate's off-center (or hull midpoint) and the triangle
-  // that contains it.
-  void locate_candidates() { steps_->offcenter.locate_candidates(scheduler_.stamp()); }
-
-  // Step 1: the insertion filter (thesis §3.3.2; §3.5 for GPU-QM-V).
-  void filter_candidates() { steps_->offcenter.filter_candidates(); }
-
-  // Step 1: the survivors join the mesh's points, as many as there is room
-  // for within the -S limit. Returns how many.
-  std::size_t append_survivors() {
-    const std::size_t added = steps_->offcenter.append_survivors(
-        std::min(room(), limit_ - steiner_), scheduler_.scan(), steps_->new_points);
+  // that contains it, the insertion filter (thesis §3.3.2; §3.5 for
+  // GPU-QM-V), and the survivors joining the mesh's points, as many as there
+  // is room for within the -S limit. Returns how many joined.
+  std::size_t place_candidates() {
+    const std::size_t added =
+        steps_->offcenter.place_candidates(scheduler_.stamp(), std::min(room(), limit_ - steiner_),
+                                           scheduler_.scan(), steps_->new_points);
     charge_step_one();
     return added;
   }

@@ -28,6 +28,11 @@ struct Tuning {
   // work-group, pass after pass, in one launch; 0: every pass as separate
   // kernels.
   std::size_t group_pass_limit = 2048;
+  // A refinement iteration's search for bad triangles (with its election)
+  // and its placement of candidates (location, filter, appending) over at
+  // most this many entries run in one work-group each, in one launch; 0:
+  // as separate kernels.
+  std::size_t group_step_limit = 4096;
 
   // --- Quality refinement (-q, -a); see use() for each algorithm's values.
   RefineAlgorithm algorithm = RefineAlgorithm::qmv;

@@ -1171,8 +1171,8 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // split of a hull edge or subsegment), and a split its segment.
 // Only the first `count` survivors are taken (the -S limit). Every
 // candidate clears the filter's marks (tie_mark and tri_mark): nothing here
-// reads them.
-// Candidate k of append_survivors.
+// reads them. append_entry: candidate k's part (of append_survivors and of
+// the in-group placement).
 inline void append_entry(CLM_MESH_PARAMS, __global const double2 *candidate,
                          __global const int *container, __global const int *split_edge,
                          __global const double *radius2, __global const uint *priority,

@@ -227,6 +227,7 @@ __kernel void flip_passes_in_group(CLM_TRIANGULATION_PARAMS, __global int *list_
   volatile __local int counts[3]; // next list's length, flips, uncertain triangles
   if (lid == 0)
     counts[1] = counts[2] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE); // cleared before any work-item counts
   int n = n_first, pass = 0;
   while (n > 0 && n <= limit && pass < max_passes) {
     __global int *active = pass % 2 ? list_b : list_a;

@@ -35,6 +35,7 @@ other sections are kept).
 """
 import argparse
 import json
+import multiprocessing
 import os
 import subprocess
 import sys
@@ -79,20 +80,26 @@ print(time.perf_counter() - start)
 """
 
 
+def write_input(job):
+    kind, size, seed, path = job
+    if kind == "points":
+        import gen_points
+        gen_points.main(["uniform", str(size), path, "--seed", str(seed)])
+    else:
+        import gen_pslg
+        gen_pslg.main(["coast", str(size), path, "--seed", str(seed)])
+
+
 def generate(directory, kind, count, size):
+    """The batch's inputs (scripts/gen_points.py uniform or gen_pslg.py coast,
+    seeds 1 to count), written where missing, by a pool of processes."""
     os.makedirs(directory, exist_ok=True)
-    paths = []
-    for i in range(count):
-        ext = ".node" if kind == "points" else ".poly"
-        path = os.path.join(directory, f"in{i:05d}{ext}")
-        if not os.path.exists(path):
-            if kind == "points":
-                cmd = ["gen_points.py", "uniform", str(size), path, "--seed", str(i + 1)]
-            else:
-                cmd = ["gen_pslg.py", "coast", str(size), path, "--seed", str(i + 1)]
-            subprocess.run([sys.executable, os.path.join(ROOT, "scripts", cmd[0])] + cmd[1:],
-                           check=True, stdout=subprocess.DEVNULL)
-        paths.append(path)
+    ext = ".node" if kind == "points" else ".poly"
+    paths = [os.path.join(directory, f"in{i:05d}{ext}") for i in range(count)]
+    missing = [(kind, size, i + 1, p) for i, p in enumerate(paths) if not os.path.exists(p)]
+    if missing:
+        with multiprocessing.Pool() as pool:
+            pool.map(write_input, missing, chunksize=16)
     return paths
 
 

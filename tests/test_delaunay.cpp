@@ -6,6 +6,7 @@
 
 #include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
+#include "runtime/opencl_context.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -237,6 +238,10 @@ TEST_CASE("delaunay: the same triangles whatever the work-group size") {
   // work-item of a group must then fit a worker thread's stack).
   options.tuning.work_group = clmesh::max_work_group_size(device());
   const auto largest = triangulate_points(points, options);
+  // A run that names no size gets the default again on the shared device.
+  const auto unnamed = triangulate_points(points);
+  CHECK(device().work_group() == device().default_work_group());
+  CHECK(unnamed.triangles == first.triangles);
   CHECK(first.triangles == second.triangles);
   CHECK(first.neighbors == second.neighbors);
   CHECK(first.triangles == third.triangles);

@@ -27,26 +27,37 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// CLMESH_CACHE_DIR set to `value` (nullopt: unset) while it lives.
-class CacheDirectory {
+// An environment variable set to `value` (nullopt: unset) while it lives.
+class Environment {
 public:
-  explicit CacheDirectory(const std::optional<std::string> &value) {
-    if (const char *old = std::getenv("CLMESH_CACHE_DIR"))
+  Environment(const char *name, const std::optional<std::string> &value) : name_(name) {
+    if (const char *old = std::getenv(name))
       old_ = old;
-    if (value)
-      setenv("CLMESH_CACHE_DIR", value->c_str(), 1);
-    else
-      unsetenv("CLMESH_CACHE_DIR");
+    set(value);
   }
-  ~CacheDirectory() {
-    if (old_)
-      setenv("CLMESH_CACHE_DIR", old_->c_str(), 1);
-    else
-      unsetenv("CLMESH_CACHE_DIR");
-  }
+  ~Environment() { set(old_); }
 
 private:
+  void set(const std::optional<std::string> &value) {
+    if (value)
+      setenv(name_, value->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  const char *name_;
   std::optional<std::string> old_;
+};
+
+// CLMESH_CACHE_DIR set to `value` (nullopt: unset) while it lives. The
+// device's check of its predicates is off meanwhile: the folder holds the
+// entries of the programs a test builds, and no other.
+class CacheDirectory {
+public:
+  explicit CacheDirectory(const std::optional<std::string> &value)
+      : directory_("CLMESH_CACHE_DIR", value), check_("CLMESH_PREDICATE_CHECK", "off") {}
+
+private:
+  Environment directory_, check_;
 };
 
 fs::path fresh_directory(const std::string &name) {

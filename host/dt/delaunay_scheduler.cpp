@@ -345,8 +345,8 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   if (points.size() > (std::size_t{1} << 28))
     throw InputError("input", 0, "more than 2^28 points");
   check_coordinates(points);
-  if (options.tuning.work_group)
-    device.set_work_group(*options.tuning.work_group);
+  // A shared device keeps no size from an earlier run.
+  device.set_work_group(options.tuning.work_group.value_or(device.default_work_group()));
   stats.device = describe(device);
   stats.input_points = static_cast<long>(points.size());
   // Build every program before the clock starts.

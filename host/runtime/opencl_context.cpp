@@ -2,6 +2,7 @@
 #include "runtime/opencl_context.hpp"
 
 #include "runtime/host_memory.hpp"
+#include "runtime/predicate_check.hpp"
 #include "runtime/program_cache.hpp"
 
 #include <algorithm>
@@ -286,12 +287,13 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
                      ? (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0
                      : paths == DevicePaths::cpu;
     // A CPU runs a work-group's work-items in turn: they prefetch for the
-    // ones after them (cl/prefetch.h).
-    if (cpu_paths_)
+    // ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
+    if (cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language")
       build_options_ += " -DCLM_PREFETCH";
   });
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
+  default_work_group_ = work_group_;
 }
 
 namespace {
@@ -352,7 +354,16 @@ cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
       delete mapping; // then the driver's own memory
     }
   }
-  return cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
+  cl::Buffer buffer(context_, CL_MEM_READ_WRITE, bytes);
+  // CLMESH_POISON_BUFFERS=B (a byte, 0-255; a check): every buffer from the
+  // driver starts as bytes B, as a GPU's may hold anything. The meshes must
+  // not change: no kernel reads what nothing wrote.
+  if (const char *poison = std::getenv("CLMESH_POISON_BUFFERS"); poison && *poison) {
+    const auto byte = static_cast<cl_uchar>(std::strtoul(poison, nullptr, 0));
+    guarded("setup", "poisoning a buffer",
+            [&] { queue_.enqueueFillBuffer(buffer, byte, 0, bytes); });
+  }
+  return buffer;
 }
 
 std::size_t Device::compute_units() const {
@@ -378,8 +389,10 @@ std::size_t Device::global_memory() const {
 }
 
 std::size_t Device::single_group(const cl::Kernel &kernel, const std::string &phase) const {
-  if (cpu_paths_)
-    return 1;
+  return cpu_paths_ ? 1 : fitting_group(kernel, phase);
+}
+
+std::size_t Device::fitting_group(const cl::Kernel &kernel, const std::string &phase) const {
   return std::min(work_group_, guarded(phase, "querying the work-group size", [&] {
                     return kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device_);
                   }));
@@ -396,6 +409,10 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   auto it = programs_.find(file);
   if (it != programs_.end())
     return it->second;
+  if (!predicates_checked_) { // before any other program: the check builds its own
+    predicates_checked_ = true;
+    check_device_predicates(*this);
+  }
   const std::string source = kernel_source(file);
   // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
   // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
@@ -485,7 +502,7 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
 }
 
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase) {
-  launch(device, kernel, items, phase, device.work_group());
+  launch(device, kernel, items, phase, device.fitting_group(kernel, phase));
 }
 
 namespace {

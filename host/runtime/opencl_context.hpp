@@ -75,6 +75,11 @@ public:
 
   // Work-group size used for every launch (results never depend on it).
   std::size_t work_group() const { return work_group_; }
+  // The size a run gets when its options name none: 64, or CLMESH_WORK_GROUP.
+  std::size_t default_work_group() const { return default_work_group_; }
+  // work_group() within `kernel`'s own limit (CL_KERNEL_WORK_GROUP_SIZE: a
+  // GPU refuses a group whose registers its multiprocessor cannot hold).
+  std::size_t fitting_group(const cl::Kernel &kernel, const std::string &phase) const;
   // The work-group size of `kernel` launched as one work-group (a short
   // step in one launch, barriers between its parts): one work-item on the
   // CPU paths, whose work-items run in turn (each barrier would cost a loop
@@ -100,10 +105,12 @@ private:
   cl::Context context_;
   cl::CommandQueue queue_;
   std::size_t work_group_ = 64;
+  std::size_t default_work_group_ = 64;
   std::map<std::string, cl::Program> programs_;
   cl::Kernel fill_words_;      // created on the first fill
   std::string build_identity_; // platform, device and driver, for the program cache
   bool cpu_paths_ = false;
+  bool predicates_checked_ = false; // check_device_predicates() has run
   std::string build_options_ = "-cl-std=CL1.2";
 };
 

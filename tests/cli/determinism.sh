@@ -78,24 +78,30 @@ for index in "${!refinements[@]}"; do
 done
 
 # Quality meshes of PSLGs (segments protected, holes, -c, -D, regional
-# areas): the same files whatever the work-group size.
+# areas): the same files whatever the work-group size, and with every buffer
+# from the driver filled with garbage first (CLMESH_POISON_BUFFERS), as a
+# GPU's fresh memory may hold: no kernel reads what nothing wrote.
 pslgs=("pslg/water:-pq30" "pslg/water2:-pcq30" "pslg/water4:-pq25D" "la:-pAq30a")
 for index in "${!pslgs[@]}"; do
   case="${pslgs[$index]}"
   path="${case%%:*}"
   input="${path##*/}"
   switches="${case#*:}"
-  for group in 1 128; do
+  for group in 1 128 poisoned; do
     dir="pslg.$index.$group"
     mkdir "$dir"
     cp "$source_dir/datasets/$path.poly" "$dir/"
+    poison=""
+    [[ "$group" != poisoned ]] || { poison=0xA5; group=64; }
     # shellcheck disable=SC2086  # switches holds separate arguments
-    (cd "$dir" && "$bin" -QC $switches --work-group "$group" "$input.poly") > "$dir.log" 2>&1 ||
-      fail "$input $switches --work-group $group: $(cat "$dir.log")"
+    (cd "$dir" && CLMESH_POISON_BUFFERS="$poison" "$bin" -QC $switches --work-group "$group" \
+      "$input.poly") > "$dir.log" 2>&1 || fail "$input $switches ($dir): $(cat "$dir.log")"
   done
   for ext in node ele poly; do
-    cmp -s "pslg.$index.1/$input.1.$ext" "pslg.$index.128/$input.1.$ext" ||
-      fail "$input.1.$ext of '$switches' differs between work-group sizes 1 and 128"
+    for other in 128 poisoned; do
+      cmp -s "pslg.$index.1/$input.1.$ext" "pslg.$index.$other/$input.1.$ext" ||
+        fail "$input.1.$ext of '$switches' differs between runs 1 and $other"
+    done
   done
 done
 

@@ -113,6 +113,15 @@ __kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed, 
   frontier[atomic_inc(count)] = t;
 }
 
+// Whether wave-front triangle t claims its neighbour u (>= 0): for removal
+// (region < 0) or for region `region` (a later region takes over an earlier
+// one's triangle). Each triangle is claimed once per flood, whatever the order.
+inline bool claim_for_flood(int u, volatile __global int *removed, int region,
+                            volatile __global int *label) {
+  return u >= 0 &&
+         (region < 0 ? atomic_xchg(&removed[u], 1) == 0 : atomic_xchg(&label[u], region) != region);
+}
+
 // One wave of a flood: removal (region < 0: claims removed[]) or labelling
 // of region `region` (claims label[]), never across a constraint.
 __kernel void spread_flood(CLM_TRIANGULATION_PARAMS, __global const int *frontier,
@@ -126,13 +135,54 @@ __kernel void spread_flood(CLM_TRIANGULATION_PARAMS, __global const int *frontie
     for (int e = 0; e < 3; ++e) {
       const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start, constraint_adjacent,
                                    (__global const int *)removed, t, e);
-      if (u >= 0 && (region < 0 ? atomic_xchg(&removed[u], 1) == 0
-                                : atomic_xchg(&label[u], region) != region))
+      if (claim_for_flood(u, removed, region, label))
         claimed[count++] = u;
     }
   }
   volatile __local int scratch[2];
   append_in_group(claimed, count, next_frontier, next_count, scratch);
+}
+
+// Waves of a flood by one work-group, for short fronts: spread_flood's waves
+// with barriers between them instead of launches (a hole's flood takes as
+// many waves as the hole is triangles across). The first front is
+// frontier[0 .. n); each wave writes the next into the other list. Stops
+// when the front is empty or longer than `limit` (the host goes on with
+// spread_flood). result: [0] the front's length, [1] the triangles of the
+// waves run, [2] the waves run (odd: the front is in next_frontier).
+__kernel void flood_in_group(CLM_TRIANGULATION_PARAMS, __global int *frontier,
+                             volatile __global int *removed, const int region,
+                             volatile __global int *label, __global int *next_frontier, const int n,
+                             const int limit, __global int *result) {
+  const int lid = get_local_id(0), size = get_local_size(0);
+  volatile __local int next_n[1];
+  int front = n, reached = 0, waves = 0;
+  while (front > 0 && front <= limit) {
+    __global const int *from = waves % 2 ? next_frontier : frontier;
+    __global int *to = waves % 2 ? frontier : next_frontier;
+    if (lid == 0)
+      next_n[0] = 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int i = lid; i < front; i += size) {
+      const int t = from[i];
+      for (int e = 0; e < 3; ++e) {
+        const int u = flood_neighbor(tri_vertex, tri_neighbor, constraint_start,
+                                     constraint_adjacent, (__global const int *)removed, t, e);
+        if (claim_for_flood(u, removed, region, label))
+          to[atomic_inc(&next_n[0])] = u;
+      }
+    }
+    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    reached += front;
+    front = next_n[0];
+    ++waves;
+    barrier(CLK_LOCAL_MEM_FENCE); // every work-item has read the length
+  }
+  if (lid == 0) {
+    result[0] = front;
+    result[1] = reached;
+    result[2] = waves;
+  }
 }
 
 // -c keeps the convex hull; but a pocket between the segments and the hull

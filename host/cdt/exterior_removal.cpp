@@ -13,6 +13,7 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
     : device_(device), mesh_(mesh), seed_from_hull_(device.kernel(kFile, "seed_from_hull", kPhase)),
       seed_from_points_(device.kernel(kFile, "seed_from_points", kPhase)),
       spread_(device.kernel(kFile, "spread_flood", kPhase)),
+      flood_in_group_(device.kernel(kFile, "flood_in_group", kPhase)),
       seed_label_(device.kernel(kFile, "seed_label", kPhase)),
       remove_unlabelled_(device.kernel(kFile, "remove_unlabelled", kPhase)),
       seed_thick_pockets_(device.kernel(kFile, "seed_thick_pockets", kPhase)),
@@ -20,7 +21,8 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       count_flat_(device.kernel(kFile, "count_flat_triangles", kPhase)),
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
-      count_(device, 1) {
+      count_(device, 1), flood_result_(device, 3),
+      flood_group_(device.single_group(flood_in_group_, kPhase)) {
   removed_.fill(device_, 0, mesh.triangle_capacity);
 }
 
@@ -110,6 +112,21 @@ void ExteriorRemoval::count_seeds_on_segments(const DeviceArray<cl_int> &on_segm
 long ExteriorRemoval::flood(int region) {
   long reached = 0;
   for (int front = count_.read(device_, 0); front > 0;) {
+    if (front <= kInGroup) {
+      set_args_from(flood_in_group_, mesh_.bind_triangulation(flood_in_group_, 0),
+                    frontier_.buffer(), removed_.buffer(), static_cast<cl_int>(region),
+                    label_.buffer(), next_frontier_.buffer(), static_cast<cl_int>(front),
+                    static_cast<cl_int>(kInGroup), flood_result_.buffer());
+      launch(device_, flood_in_group_, flood_group_, kPhase, flood_group_);
+      const std::vector<cl_int> result = flood_result_.download(device_, 3);
+      if (result[2] % 2)
+        std::swap(frontier_, next_frontier_);
+      reached += result[1];
+      front = result[0];
+      if (front == 0)
+        break;
+      count_.fill(device_, front, 1); // the front outgrew one group: waves by launches
+    }
     reached += front;
     count_.fill(device_, 0, 1);
     set_args_from(spread_, mesh_.bind_triangulation(spread_, 0), frontier_.buffer(),

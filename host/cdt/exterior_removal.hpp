@@ -48,7 +48,9 @@ private:
   DeviceMesh &mesh_;
   // Runs waves from the current frontier until it is empty: removal when
   // region < 0, else labelling with `region`. Returns the triangles reached.
+  // Fronts of at most kInGroup triangles take their waves in one launch.
   long flood(int region);
+  static constexpr int kInGroup = 4096;
   // Counts the seeds flagged in on_segment[0 .. count).
   void count_seeds_on_segments(const DeviceArray<cl_int> &on_segment, std::size_t count);
 
@@ -59,9 +61,10 @@ private:
   // How many real triangles are flat: every one, or the removed ones.
   long count_flat(bool every);
 
-  cl::Kernel seed_from_hull_, seed_from_points_, spread_, seed_label_, remove_unlabelled_,
-      seed_thick_pockets_, remove_flat_pockets_, count_flat_;
-  DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_;
+  cl::Kernel seed_from_hull_, seed_from_points_, spread_, flood_in_group_, seed_label_,
+      remove_unlabelled_, seed_thick_pockets_, remove_flat_pockets_, count_flat_;
+  DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_, flood_result_;
+  std::size_t flood_group_; // the work-group of flood_in_group
 };
 
 } // namespace clmesh

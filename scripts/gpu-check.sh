@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Checks clmesh on a GPU's OpenCL against PoCL on the same machine: lists the
+# devices, meshes every input of datasets/ (its PSLGs at -pq30 -pcq30 -pq20,
+# its point sets plain and at -q30) on both and compares the files, then
+# runs the test suite on the GPU. NVIDIA's driver library is registered as
+# an ICD when it is found and no ICD names it yet (as root).
+#   bash scripts/gpu-check.sh [BUILD_DIR] [OUT_DIR]
+# Needs a built BUILD_DIR (default build/); writes OUT_DIR/summary.txt and
+# the per-run logs (default: a temporary folder, printed at the end).
+set -uo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="$(cd "${1:-$root/build}" && pwd)"
+out="${2:-$(mktemp -d)}"
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+clmesh="$build/clmesh"
+
+nvidia=$(ls /usr/local/nvidia/lib64/libnvidia-opencl.so.1 /usr/lib/x86_64-linux-gnu/libnvidia-opencl.so.1 \
+  /usr/lib/libnvidia-opencl.so.1 2>/dev/null | head -1)
+if [[ -n "$nvidia" ]] && ! grep -qs nvidia /etc/OpenCL/vendors/*.icd && [[ -w /etc ]]; then
+  mkdir -p /etc/OpenCL/vendors && echo "$nvidia" > /etc/OpenCL/vendors/nvidia.icd
+  export LD_LIBRARY_PATH="$(dirname "$nvidia")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
+"$clmesh" --list-devices | tee "$out/devices.txt"
+gpu="${CLMESH_GPU:-NVIDIA}"
+grep -qi "$gpu" "$out/devices.txt" || { echo "gpu-check.sh: no device matches '$gpu'" >&2; exit 1; }
+cpu=Portable
+grep -q "$cpu" "$out/devices.txt" || cpu=""
+
+# mesh DEVICE NAME INPUT SWITCHES: meshes INPUT in out/NAME/, status in out/NAME.status.
+mesh() {
+  local device="$1" name="$2" input="$3" switches="$4" status=0
+  mkdir -p "$out/$name"
+  cp "$input" "$out/$name/"
+  # shellcheck disable=SC2086  # switches holds separate arguments
+  (cd "$out/$name" && timeout 120 "$clmesh" -Q --device "$device" $switches "$(basename "$input")") \
+    > "$out/$name.log" 2>&1 || status=$?
+  echo "$status" > "$out/$name.status"
+}
+
+same=0 differ=0 failed=0 runs=0
+for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do
+  base="$(basename "${input%.*}")"
+  case "$input" in *.poly) sets=("-pq30" "-pcq30" "-pq20") ;; *) sets=("" "-q30") ;; esac
+  for switches in "${sets[@]}"; do
+    runs=$((runs + 1))
+    name="$base${switches:-.plain}"
+    mesh "$gpu" "gpu/$name" "$input" "$switches"
+    if [[ "$(cat "$out/gpu/$name.status")" != 0 ]]; then
+      failed=$((failed + 1))
+      echo "FAILED on the GPU: $base $switches: $(head -c 300 "$out/gpu/$name.log")" >> "$out/summary.txt"
+      continue
+    fi
+    [[ -n "$cpu" ]] || continue
+    mesh "$cpu" "cpu/$name" "$input" "$switches"
+    if diff -q <(cat "$out/gpu/$name/$base".1.* | grep -v '^#') \
+         <(cat "$out/cpu/$name/$base".1.* 2> /dev/null | grep -v '^#') > /dev/null; then
+      same=$((same + 1))
+    else
+      differ=$((differ + 1))
+      echo "DIFFERS from PoCL: $base $switches" >> "$out/summary.txt"
+    fi
+  done
+done
+echo "meshes: $runs runs on '$gpu': $failed failed; against PoCL $same the same, $differ differ" |
+  tee -a "$out/summary.txt"
+
+if [[ -x "$build/tests/clmesh_tests" ]]; then
+  (cd "$build/tests" && CLMESH_DEVICE="$gpu" timeout 600 ./clmesh_tests --no-intro) \
+    > "$out/tests.txt" 2>&1
+  grep -E "^\[doctest\] (test cases|assertions)" "$out/tests.txt" | tee -a "$out/summary.txt"
+fi
+echo "gpu-check.sh: logs in $out"

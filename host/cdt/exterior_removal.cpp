@@ -125,8 +125,7 @@ long ExteriorRemoval::flood(int region) {
       front = result[0];
       if (front == 0)
         break;
-      count_.fill(device_, front, 1); // the front outgrew one group: waves by launches
-    }
+    } // the front outgrew one group: waves by launches
     reached += front;
     count_.fill(device_, 0, 1);
     set_args_from(spread_, mesh_.bind_triangulation(spread_, 0), frontier_.buffer(),

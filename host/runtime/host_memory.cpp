@@ -149,7 +149,10 @@ std::optional<std::size_t> host_memory_for_process(const std::string &root) {
   if (!available_kib)
     return std::nullopt;
   std::size_t room = *available_kib * 1024;
-  for (const MemoryHierarchy &hierarchy : memory_hierarchies(root))
+  // The process's own groups do not change while it runs (a batch asks for
+  // every input): found once; a test's root is read every time.
+  static const std::vector<MemoryHierarchy> own = memory_hierarchies("");
+  for (const MemoryHierarchy &hierarchy : root.empty() ? own : memory_hierarchies(root))
     if (const std::optional<std::size_t> limited = room_under_limits(hierarchy))
       room = std::min(room, *limited);
   return room + resident_memory(root);

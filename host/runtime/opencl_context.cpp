@@ -13,6 +13,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -274,7 +277,8 @@ DevicePaths device_paths_from_environment() {
 }
 
 Device::Device(cl::Device device, DeviceDescription description, DevicePaths paths)
-    : device_(device), description_(std::move(description)) {
+    : device_(device), description_(std::move(description)),
+      mapping_pool_(std::make_shared<MappingPool>()) {
   guarded("setup", "creating the context", [&] {
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);
@@ -299,14 +303,60 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
 namespace {
 
 // A mapping of its own for a device buffer: released to the system as the
-// buffer goes. (From the heap, a freed buffer's pages would stay in the
-// process, raising the peak memory of every later phase.)
+// buffer goes (from the heap, a freed buffer's pages would stay in the
+// process, raising the peak memory of every later phase), or, when small,
+// kept in the device's MappingPool for the next buffer of its length.
 struct Mapping {
   void *start;
   std::size_t length;
+  std::shared_ptr<MappingPool> pool;
 };
 
 } // namespace
+
+// Small mappings of released buffers, by length, for later buffers of the
+// same length: a batch of small meshes allocates the same lengths input
+// after input, and a fresh mapping costs two system calls and a page fault
+// a page. At most kMostBytes are kept (the peak memory of a large mesh
+// hardly changes); each leaves as the pool goes.
+struct MappingPool {
+  static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20;
+  std::mutex mutex; // buffers may be released on a driver's thread
+  std::multimap<std::size_t, void *> kept;
+  std::size_t bytes = 0;
+
+  ~MappingPool() {
+    for (const auto &[length, start] : kept)
+      munmap(start, length);
+  }
+  // A kept mapping of `length` bytes, zeroed as a fresh one, or nullptr.
+  void *take(std::size_t length) {
+    void *start = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      const auto it = kept.find(length);
+      if (it == kept.end())
+        return nullptr;
+      start = it->second;
+      kept.erase(it);
+      bytes -= length;
+    }
+    std::memset(start, 0, length);
+    return start;
+  }
+  // Keeps the mapping, or unmaps it when it is long or the pool full.
+  void give(void *start, std::size_t length) {
+    if (length <= kLongest) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (bytes + length <= kMostBytes) {
+        kept.emplace(length, start);
+        bytes += length;
+        return;
+      }
+    }
+    munmap(start, length);
+  }
+};
 
 cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
   // Smaller buffers come from the driver: a mapping each would cost more
@@ -319,8 +369,10 @@ cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
     // before and after unmapped again.
     const bool huge = huge_pages && bytes >= huge_page;
     const std::size_t align = huge ? huge_page : page;
-    void *mapped = mmap(nullptr, length + align - page, PROT_READ | PROT_WRITE,
-                        MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    void *kept = huge ? nullptr : mapping_pool_->take(length);
+    void *mapped = kept ? kept
+                        : mmap(nullptr, length + align - page, PROT_READ | PROT_WRITE,
+                               MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (mapped != MAP_FAILED) {
       const auto first = reinterpret_cast<std::uintptr_t>(mapped);
       const std::uintptr_t aligned = (first + align - 1) / align * align;
@@ -339,10 +391,13 @@ cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
       cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
                                      memory, &error);
       // The memory goes with the buffer (kernels may hold it longer than its owner).
-      auto *mapping = new Mapping{memory, length};
+      auto *mapping = new Mapping{memory, length, huge ? nullptr : mapping_pool_};
       auto release = [](cl_mem, void *user_data) {
         const auto *owned = static_cast<Mapping *>(user_data);
-        munmap(owned->start, owned->length);
+        if (owned->pool)
+          owned->pool->give(owned->start, owned->length);
+        else
+          munmap(owned->start, owned->length);
         delete owned;
       };
       if (error == CL_SUCCESS &&

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ enum class DevicePaths { by_type, cpu, gpu };
 // "gpu", "cpu", or unset/empty/"auto" for by_type. Throws OptionError for
 // anything else.
 DevicePaths device_paths_from_environment();
+
+struct MappingPool; // small mappings kept for reuse (opencl_context.cpp)
 
 class Device {
 public:
@@ -112,6 +115,7 @@ private:
   bool cpu_paths_ = false;
   bool predicates_checked_ = false; // check_device_predicates() has run
   std::string build_options_ = "-cl-std=CL1.2";
+  std::shared_ptr<MappingPool> mapping_pool_;
 };
 
 // Source text of a kernel file with its includes expanded.

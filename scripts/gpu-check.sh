@@ -2,8 +2,10 @@
 # Checks clmesh on a GPU's OpenCL against PoCL on the same machine: lists the
 # devices, meshes every input of datasets/ (its PSLGs at -pq30 -pcq30 -pq20,
 # its point sets plain and at -q30) on both and compares the files, then
-# runs the test suite on the GPU. NVIDIA's driver library is registered as
-# an ICD when it is found and no ICD names it yet (as root).
+# runs the test suite on the GPU; before that, A.poly -pcq30 -C as built,
+# unoptimised (-cl-opt-disable) and without the predicate check. NVIDIA's
+# driver library is registered as an ICD when it is found and no ICD names it
+# yet (as root).
 #   bash scripts/gpu-check.sh [BUILD_DIR] [OUT_DIR]
 # Needs a built BUILD_DIR (default build/); writes OUT_DIR/summary.txt and
 # the per-run logs (default: a temporary folder, printed at the end).
@@ -37,6 +39,20 @@ mesh() {
     > "$out/$name.log" 2>&1 || status=$?
   echo "$status" > "$out/$name.status"
 }
+
+# First, one input three ways on the GPU (docs/reference.md, "Checking a GPU"):
+# as built, unoptimised, and without the predicate check; -C checks each mesh.
+for way in built "CLMESH_BUILD_OPTIONS=-cl-opt-disable" "CLMESH_PREDICATE_CHECK=off"; do
+  status=0
+  mkdir -p "$out/diagnosis" && cp "$root/datasets/A.poly" "$out/diagnosis/"
+  # shellcheck disable=SC2046  # $way is one assignment or none
+  (cd "$out/diagnosis" && env $([[ $way == built ]] || echo "$way") \
+    timeout 300 "$clmesh" -Q -C -pcq30 --device "$gpu" A.poly) > "$out/diagnosis/$way.log" 2>&1 ||
+    status=$?
+  echo "A.poly -pcq30 -C on '$gpu', $way: exit status $status $(head -c 200 "$out/diagnosis/$way.log")" |
+    tee -a "$out/summary.txt"
+  rm -f "$out/diagnosis/A.1."*
+done
 
 same=0 differ=0 failed=0 runs=0
 for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do

@@ -295,6 +295,17 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     if (cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language")
       build_options_ += " -DCLM_PREFETCH";
   });
+  // CLMESH_BUILD_OPTIONS (a developer's aid): more OpenCL build options, to
+  // study a device's compiler (say -cl-opt-disable). Options that relax IEEE
+  // arithmetic are refused: the exact predicates need it.
+  if (const char *extra = std::getenv("CLMESH_BUILD_OPTIONS"); extra && *extra) {
+    for (const char *relaxing : {"fast-relaxed-math", "mad-enable", "unsafe-math", "finite-math",
+                                 "no-signed-zeros", "denorms-are-zero"})
+      if (std::strstr(extra, relaxing))
+        throw OptionError(std::string("CLMESH_BUILD_OPTIONS '") + extra +
+                          "' relaxes IEEE arithmetic, which the exact predicates need");
+    build_options_ += " " + std::string(extra);
+  }
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
   default_work_group_ = work_group_;

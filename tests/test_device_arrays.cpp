@@ -114,6 +114,31 @@ TEST_CASE("device arrays: on a CPU device a small one's mapping serves the next,
   CHECK(reused);
 }
 
+TEST_CASE("device arrays: beside a large mesh a small one's mapping goes with it") {
+  // With more than 64 MiB in buffers of their own (a large mesh), released
+  // mappings are not kept: they would add to the mesh's peak memory.
+  Device &dev = device();
+  if (!dev.cpu_paths())
+    return;
+  const DeviceArray<cl_int> large(dev, std::size_t{17} << 20); // 68 MiB, never written
+  const std::size_t n = (std::size_t{17} << 10) + 5 * 1024;   // a length no other test uses
+  void *memory = nullptr;
+  {
+    DeviceArray<cl_int> small(dev, n);
+    memory = small.buffer().getInfo<CL_MEM_HOST_PTR>();
+    small.fill(dev, 7, n);
+  }
+  dev.queue().finish();
+  unsigned char resident[1];
+  bool unmapped = false;
+  for (int tries = 0; tries < 500 && !unmapped; ++tries) {
+    unmapped = mincore(memory, 1, resident) == -1 && errno == ENOMEM;
+    if (!unmapped)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  CHECK(unmapped);
+}
+
 TEST_CASE("device arrays: both scan methods give the exact prefix sums at every length") {
   // Blocks (GPUs) and runs (CPUs): one block or run, several levels of
   // blocks, several runs with a short last one.

@@ -315,8 +315,8 @@ namespace {
 
 // A mapping of its own for a device buffer: released to the system as the
 // buffer goes (from the heap, a freed buffer's pages would stay in the
-// process, raising the peak memory of every later phase), or, when small,
-// kept in the device's MappingPool for the next buffer of its length.
+// process, raising the peak memory of every later phase), or, in a small
+// mesh, kept in the device's MappingPool for the next buffer of its length.
 struct Mapping {
   void *start;
   std::size_t length;
@@ -328,18 +328,18 @@ struct Mapping {
 // Small mappings of released buffers, by length, for later buffers of the
 // same length: a batch of small meshes allocates the same lengths input
 // after input, and a fresh mapping costs two system calls and a page fault
-// a page. At most kMostBytes are kept (the peak memory of a large mesh
-// hardly changes); each leaves as the pool goes.
+// a page. Kept only while the buffers in mappings of their own hold at most
+// kSmallMesh bytes (a large mesh's peak stays as it was) and at most
+// kMostBytes of them; each leaves as the pool goes.
 struct MappingPool {
-  static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20;
+  static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20,
+                               kSmallMesh = std::size_t{64} << 20;
   std::mutex mutex; // buffers may be released on a driver's thread
   std::multimap<std::size_t, void *> kept;
-  std::size_t bytes = 0;
+  std::size_t kept_bytes = 0;
+  std::size_t live_bytes = 0; // in buffers now
 
-  ~MappingPool() {
-    for (const auto &[length, start] : kept)
-      munmap(start, length);
-  }
+  ~MappingPool() { unmap_kept(); }
   // A kept mapping of `length` bytes, zeroed as a fresh one, or nullptr.
   void *take(std::size_t length) {
     void *start = nullptr;
@@ -350,22 +350,38 @@ struct MappingPool {
         return nullptr;
       start = it->second;
       kept.erase(it);
-      bytes -= length;
+      kept_bytes -= length;
     }
     std::memset(start, 0, length);
     return start;
   }
-  // Keeps the mapping, or unmaps it when it is long or the pool full.
+  // A buffer of `length` bytes now holds a mapping (kept or fresh).
+  void count_in_use(std::size_t length) {
+    const std::lock_guard<std::mutex> lock(mutex);
+    live_bytes += length;
+    if (live_bytes > kSmallMesh)
+      unmap_kept();
+  }
+  // The buffer went: its mapping is kept, or unmapped.
   void give(void *start, std::size_t length) {
-    if (length <= kLongest) {
+    {
       const std::lock_guard<std::mutex> lock(mutex);
-      if (bytes + length <= kMostBytes) {
+      live_bytes -= std::min(live_bytes, length);
+      if (length <= kLongest && live_bytes <= kSmallMesh && kept_bytes + length <= kMostBytes) {
         kept.emplace(length, start);
-        bytes += length;
+        kept_bytes += length;
         return;
       }
     }
     munmap(start, length);
+  }
+
+private:
+  void unmap_kept() {
+    for (const auto &[length, start] : kept)
+      munmap(start, length);
+    kept.clear();
+    kept_bytes = 0;
   }
 };
 
@@ -402,18 +418,17 @@ cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
       cl_mem buffer = clCreateBuffer(context_(), CL_MEM_READ_WRITE | CL_MEM_USE_HOST_PTR, bytes,
                                      memory, &error);
       // The memory goes with the buffer (kernels may hold it longer than its owner).
-      auto *mapping = new Mapping{memory, length, huge ? nullptr : mapping_pool_};
+      auto *mapping = new Mapping{memory, length, mapping_pool_};
       auto release = [](cl_mem, void *user_data) {
         const auto *owned = static_cast<Mapping *>(user_data);
-        if (owned->pool)
-          owned->pool->give(owned->start, owned->length);
-        else
-          munmap(owned->start, owned->length);
+        owned->pool->give(owned->start, owned->length);
         delete owned;
       };
       if (error == CL_SUCCESS &&
-          clSetMemObjectDestructorCallback(buffer, release, mapping) == CL_SUCCESS)
+          clSetMemObjectDestructorCallback(buffer, release, mapping) == CL_SUCCESS) {
+        mapping_pool_->count_in_use(length);
         return cl::Buffer(buffer);
+      }
       if (error == CL_SUCCESS)
         clReleaseMemObject(buffer);
       munmap(memory, length);

@@ -121,7 +121,7 @@ TEST_CASE("device arrays: beside a large mesh a small one's mapping goes with it
   if (!dev.cpu_paths())
     return;
   const DeviceArray<cl_int> large(dev, std::size_t{17} << 20); // 68 MiB, never written
-  const std::size_t n = (std::size_t{17} << 10) + 5 * 1024;   // a length no other test uses
+  const std::size_t n = (std::size_t{17} << 10) + 5 * 1024;    // a length no other test uses
   void *memory = nullptr;
   {
     DeviceArray<cl_int> small(dev, n);

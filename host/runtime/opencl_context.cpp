@@ -331,14 +331,8 @@ struct Mapping {
 // a page. Kept only while the buffers in mappings of their own hold at most
 // kSmallMesh bytes (a large mesh's peak stays as it was) and at most
 // kMostBytes of them; each leaves as the pool goes.
-struct MappingPool {
-  static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20,
-                               kSmallMesh = std::size_t{64} << 20;
-  std::mutex mutex; // buffers may be released on a driver's thread
-  std::multimap<std::size_t, void *> kept;
-  std::size_t kept_bytes = 0;
-  std::size_t live_bytes = 0; // in buffers now
-
+class MappingPool {
+public:
   ~MappingPool() { unmap_kept(); }
   // A kept mapping of `length` bytes, zeroed as a fresh one, or nullptr.
   void *take(std::size_t length) {
@@ -377,6 +371,13 @@ struct MappingPool {
   }
 
 private:
+  static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20,
+                               kSmallMesh = std::size_t{64} << 20;
+  std::mutex mutex; // buffers may be released on a driver's thread
+  std::multimap<std::size_t, void *> kept;
+  std::size_t kept_bytes = 0;
+  std::size_t live_bytes = 0; // in buffers now
+
   void unmap_kept() {
     for (const auto &[length, start] : kept)
       munmap(start, length);

@@ -31,7 +31,7 @@ enum class DevicePaths { by_type, cpu, gpu };
 // anything else.
 DevicePaths device_paths_from_environment();
 
-struct MappingPool; // small mappings kept for reuse (opencl_context.cpp)
+class MappingPool; // small mappings kept for reuse (opencl_context.cpp)
 
 class Device {
 public:

@@ -51,6 +51,23 @@ TEST_CASE("device arrays: large arrays keep their contents through kernels and g
   CHECK(std::all_of(grown.begin() + n, grown.end(), [](cl_int v) { return v == -7; }));
 }
 
+namespace {
+
+// Whether the page at `memory` (a released array's) is unmapped once the
+// queue finished: the driver may let go of the buffer a little after it.
+bool unmapped_soon(Device &dev, void *memory) {
+  dev.queue().finish();
+  unsigned char resident[1];
+  for (int tries = 0; tries < 500; ++tries) {
+    if (mincore(memory, 1, resident) == -1 && errno == ENOMEM)
+      return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+} // namespace
+
 TEST_CASE("device arrays: on a CPU device one over 1 MiB is unmapped as it goes") {
   // From the heap its pages would stay in the process after it went.
   Device &dev = device();
@@ -72,15 +89,7 @@ TEST_CASE("device arrays: on a CPU device one over 1 MiB is unmapped as it goes"
         CHECK(array.read(dev, n - 1) == 7);
         CHECK(mincore(memory, 1, resident) == 0); // mapped
       }
-      dev.queue().finish();
-      // The driver may let go of the buffer a little after the queue finished.
-      bool unmapped = false;
-      for (int tries = 0; tries < 500 && !unmapped; ++tries) {
-        unmapped = mincore(memory, 1, resident) == -1 && errno == ENOMEM;
-        if (!unmapped)
-          std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
-      CHECK(unmapped);
+      CHECK(unmapped_soon(dev, memory));
     }
 }
 
@@ -128,15 +137,7 @@ TEST_CASE("device arrays: beside a large mesh a small one's mapping goes with it
     memory = small.buffer().getInfo<CL_MEM_HOST_PTR>();
     small.fill(dev, 7, n);
   }
-  dev.queue().finish();
-  unsigned char resident[1];
-  bool unmapped = false;
-  for (int tries = 0; tries < 500 && !unmapped; ++tries) {
-    unmapped = mincore(memory, 1, resident) == -1 && errno == ENOMEM;
-    if (!unmapped)
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  CHECK(unmapped);
+  CHECK(unmapped_soon(dev, memory));
 }
 
 TEST_CASE("device arrays: both scan methods give the exact prefix sums at every length") {

@@ -338,32 +338,32 @@ public:
   void *take(std::size_t length) {
     void *start = nullptr;
     {
-      const std::lock_guard<std::mutex> lock(mutex);
-      const auto it = kept.find(length);
-      if (it == kept.end())
+      const std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = kept_.find(length);
+      if (it == kept_.end())
         return nullptr;
       start = it->second;
-      kept.erase(it);
-      kept_bytes -= length;
+      kept_.erase(it);
+      kept_bytes_ -= length;
     }
     std::memset(start, 0, length);
     return start;
   }
   // A buffer of `length` bytes now holds a mapping (kept or fresh).
   void count_in_use(std::size_t length) {
-    const std::lock_guard<std::mutex> lock(mutex);
-    live_bytes += length;
-    if (live_bytes > kSmallMesh)
+    const std::lock_guard<std::mutex> lock(mutex_);
+    live_bytes_ += length;
+    if (live_bytes_ > kSmallMesh)
       unmap_kept();
   }
   // The buffer went: its mapping is kept, or unmapped.
   void give(void *start, std::size_t length) {
     {
-      const std::lock_guard<std::mutex> lock(mutex);
-      live_bytes -= std::min(live_bytes, length);
-      if (length <= kLongest && live_bytes <= kSmallMesh && kept_bytes + length <= kMostBytes) {
-        kept.emplace(length, start);
-        kept_bytes += length;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      live_bytes_ -= std::min(live_bytes_, length);
+      if (length <= kLongest && live_bytes_ <= kSmallMesh && kept_bytes_ + length <= kMostBytes) {
+        kept_.emplace(length, start);
+        kept_bytes_ += length;
         return;
       }
     }
@@ -373,16 +373,16 @@ public:
 private:
   static constexpr std::size_t kLongest = std::size_t{1} << 20, kMostBytes = std::size_t{16} << 20,
                                kSmallMesh = std::size_t{64} << 20;
-  std::mutex mutex; // buffers may be released on a driver's thread
-  std::multimap<std::size_t, void *> kept;
-  std::size_t kept_bytes = 0;
-  std::size_t live_bytes = 0; // in buffers now
+  std::mutex mutex_; // buffers may be released on a driver's thread
+  std::multimap<std::size_t, void *> kept_;
+  std::size_t kept_bytes_ = 0;
+  std::size_t live_bytes_ = 0; // in buffers now
 
   void unmap_kept() {
-    for (const auto &[length, start] : kept)
+    for (const auto &[length, start] : kept_)
       munmap(start, length);
-    kept.clear();
-    kept_bytes = 0;
+    kept_.clear();
+    kept_bytes_ = 0;
   }
 };
 

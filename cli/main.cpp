@@ -175,7 +175,9 @@ void print_help() {
       "  --grid N              Side of the digital Voronoi grid (default: from the input).\n"
       "  --construction voronoi|fan\n"
       "                        First triangulation: from the digital Voronoi diagram\n"
-      "                        (default; GPU-DT phases 1-3) or a fan of the convex hull.\n"
+      "                        (GPU-DT phases 1-3) or a fan of the convex hull.\n"
+      "                        Default: a fan below 1024 points (without --grid),\n"
+      "                        else the diagram.\n"
       "  --work-group N        Work-group size of every kernel (default 64).\n"
       "  --refine qm|qmv       Refinement algorithm (-q, -a): the thesis's GPU-QM, or\n"
       "                        GPU-QM-V (default: faster, slightly more points).\n"
@@ -291,7 +293,8 @@ int parse_long_option(int argc, char **argv, int i, CommandLine &command) {
     if (construction != "voronoi" && construction != "fan")
       throw clmesh::OptionError("--construction takes voronoi or fan, not " +
                                 clmesh::quote(construction));
-    tuning.voronoi_construction = construction == "voronoi";
+    tuning.construction =
+        construction == "voronoi" ? clmesh::Construction::voronoi : clmesh::Construction::fan;
   } else if (name == "--work-group") {
     tuning.work_group = static_cast<std::size_t>(parse_count(name, take_value(), 1, 1 << 16));
   } else if (name == "--refine") {

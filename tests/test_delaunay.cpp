@@ -293,10 +293,10 @@ TEST_CASE("delaunay: the Voronoi construction gives the hull fan's mesh, on any 
       CAPTURE(name);
       CAPTURE(grid);
       clmesh::Options options;
-      options.tuning.voronoi_construction = false;
+      options.tuning.construction = clmesh::Construction::fan;
       const auto fan = triangulate_points(points, options);
       CHECK(fan.statistics.delaunay.construction == "hull_fan");
-      options.tuning.voronoi_construction = true;
+      options.tuning.construction = clmesh::Construction::automatic;
       if (grid > 0) // 0: the default grid, chosen from the points
         options.tuning.grid = grid;
       const auto result = triangulate_and_check(points, options);
@@ -330,6 +330,31 @@ TEST_CASE("delaunay: the construction settles on a dense disk") {
   CHECK(report.ok);
   CHECK(result.statistics.delaunay.construction == "voronoi");
   CHECK(result.statistics.delaunay.constructed_triangles > static_cast<long>(points.size()) / 4);
+}
+
+// By default, inputs below Tuning::kFanBelow points start from the hull fan
+// and larger ones from the diagram; a grid or --construction overrides it,
+// and the triangles never change.
+TEST_CASE("delaunay: the first triangulation's default depends on the input's size only") {
+  const clmesh::Mesh large =
+      triangulate_and_check(fixtures::gaussian(clmesh::Tuning::kFanBelow, 42));
+  CHECK(large.statistics.delaunay.construction == "voronoi");
+  auto points = fixtures::gaussian(clmesh::Tuning::kFanBelow - 2, 43);
+  points.push_back(points[7]); // a duplicate
+  const clmesh::Mesh small = triangulate_and_check(points);
+  CHECK(small.statistics.delaunay.construction == "hull_fan");
+  clmesh::Options options;
+  options.tuning.construction = clmesh::Construction::voronoi;
+  const clmesh::Mesh voronoi = triangulate_and_check(points, options);
+  CHECK(voronoi.statistics.delaunay.construction == "voronoi");
+  options.tuning.construction = clmesh::Construction::automatic;
+  options.tuning.grid = 32;
+  const clmesh::Mesh gridded = triangulate_and_check(points, options);
+  CHECK(gridded.statistics.delaunay.construction == "voronoi");
+  CHECK(small.triangles == voronoi.triangles);
+  CHECK(small.neighbors == voronoi.neighbors);
+  CHECK(small.duplicate_of == voronoi.duplicate_of);
+  CHECK(small.triangles == gridded.triangles);
 }
 
 TEST_CASE("delaunay: bad input is refused with a typed error") {

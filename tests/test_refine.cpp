@@ -384,14 +384,14 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     tuning.grid = 16;
     const auto third = refine(points, options);
     tuning.grid.reset();
-    tuning.voronoi_construction = false;
+    tuning.construction = clmesh::Construction::fan;
     const auto fourth = refine(points, options);
     CHECK(first.statistics.delaunay.construction == "voronoi");
     CHECK(third.statistics.delaunay.construction == "voronoi");
     CHECK(fourth.statistics.delaunay.construction == "hull_fan");
     CHECK(first.triangles == third.triangles);
     CHECK(first.triangles == fourth.triangles);
-    tuning.voronoi_construction = true;
+    tuning.construction = clmesh::Construction::automatic;
     // Nor on whether flip-flop passes run in one work-group or as separate kernels.
     tuning.group_pass_limit = 0;
     const auto by_kernels = refine(points, options);

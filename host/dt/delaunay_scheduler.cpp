@@ -311,6 +311,21 @@ HullFan hull_fan(const std::vector<int32_t> &hull) {
   return fan;
 }
 
+// Whether the first triangulation of n points comes from the digital Voronoi
+// diagram (the choice depends on the input alone: the same on every device).
+// A grid named by --grid asks for the diagram.
+bool uses_voronoi(const Tuning &tuning, std::size_t n) {
+  switch (tuning.construction) {
+  case Construction::voronoi:
+    return true;
+  case Construction::fan:
+    return false;
+  case Construction::automatic:
+    break;
+  }
+  return n >= Tuning::kFanBelow || tuning.grid.has_value();
+}
+
 } // namespace
 
 std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
@@ -392,7 +407,8 @@ bool DelaunayScheduler::triangulate() {
 
   // Phases 1-3 build the first triangulation and list the missing points;
   // when their result cannot be used, the hull is fanned instead.
-  if (!options_.tuning.voronoi_construction && options_.want_voronoi_image) {
+  const bool from_voronoi = uses_voronoi(options_.tuning, n);
+  if (!from_voronoi && options_.want_voronoi_image) {
     const auto [low, span] = bounding_square(points);
     stats_.grid = texture_side(low, span);
     VoronoiBanding banding(device, mesh, *scan_);
@@ -400,7 +416,7 @@ bool DelaunayScheduler::triangulate() {
     voronoi_ = banding.download_image();
     timer_->charge(VoronoiBanding::kPhase);
   }
-  if (!options_.tuning.voronoi_construction || !construct_from_voronoi(insertion)) {
+  if (!from_voronoi || !construct_from_voronoi(insertion)) {
     // The hull only now: the Voronoi construction does without it.
     const std::vector<int32_t> hull = convex_hull(points);
     std::vector<int32_t> device_hull(hull.size());

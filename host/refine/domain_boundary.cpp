@@ -2,6 +2,10 @@
 
 #include "clmesh/errors.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+
 namespace clmesh {
 
 namespace {
@@ -63,10 +67,33 @@ std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
 std::vector<Segment> DomainBoundary::edges() const {
   const std::vector<cl_int> corners =
       mesh_.tri_vertex.download(device_, 3 * ghosts_, 3 * first_ghost_);
-  std::vector<Segment> edges;
-  edges.reserve(ghosts_);
+  std::vector<Segment> by_start;
+  by_start.reserve(ghosts_);
   for (std::size_t g = 0; g < ghosts_; ++g) // ghost (infinity, q, p) on edge p -> q
-    edges.push_back({corners[3 * g + 2], corners[3 * g + 1], 1});
+    by_start.push_back({corners[3 * g + 2], corners[3 * g + 1], 1});
+  // The ghosts' slots follow the triangulation's history; the loops, each
+  // from its lowest vertex (the lowest edge out of a vertex the loop passes
+  // twice), follow the input alone.
+  const auto lower = [](const Segment &x, const Segment &y) {
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  };
+  std::sort(by_start.begin(), by_start.end(), lower);
+  std::vector<char> used(by_start.size(), 0);
+  std::vector<Segment> edges;
+  edges.reserve(by_start.size());
+  for (std::size_t first = 0; first < by_start.size(); ++first) {
+    for (std::size_t e = first; !used[e];) {
+      used[e] = 1;
+      edges.push_back(by_start[e]);
+      const Segment from{by_start[e].b, std::numeric_limits<int32_t>::min(), 0};
+      e = static_cast<std::size_t>(std::lower_bound(by_start.begin(), by_start.end(), from, lower) -
+                                   by_start.begin());
+      while (e < by_start.size() && by_start[e].a == from.a && used[e])
+        ++e;
+      if (e == by_start.size() || by_start[e].a != from.a)
+        break;
+    }
+  }
   return edges;
 }
 

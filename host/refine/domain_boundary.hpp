@@ -24,7 +24,8 @@ public:
   std::size_t room_needed(const DeviceArray<cl_int> &removed);
 
   // The boundary edges the last close() found, each with the domain on its
-  // left, marker 1 (read from its ghosts: one small download).
+  // left, marker 1 (read from its ghosts: one small download), loop after
+  // loop in an order that depends on the input alone.
   std::vector<Segment> edges() const;
 
 private:

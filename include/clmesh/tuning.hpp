@@ -14,16 +14,24 @@ namespace clmesh {
 // the end.
 enum class RefineAlgorithm { qm, qmv };
 
+// How GPU-DT builds its first triangulation (thesis §4.1.2): from the
+// digital Voronoi diagram (Phases 1-3), or from a fan of the convex hull
+// whose other points missing-point insertion places. `automatic` fans the
+// hull of inputs below Tuning::kFanBelow points (unless a grid is set),
+// where the diagram's rounds (a dozen launches each, more rounds for
+// clustered points) cost more than inserting every point.
+enum class Construction { automatic, voronoi, fan };
+
 struct Tuning {
   // --- Delaunay triangulation (GPU-DT, thesis §4.1.2); the mesh never depends on these.
   // Side of the digital Voronoi texture of Phase 1; unset: chosen from the points.
   std::optional<int> grid;
   // Work-group size of every kernel; unset: the device's default (64).
   std::optional<std::size_t> work_group;
-  // Build the first triangulation from the digital Voronoi diagram (Phases
-  // 1-3); false starts from a fan of the convex hull instead, as the Voronoi
-  // route itself does when its result cannot be used.
-  bool voronoi_construction = true;
+  // The first triangulation (see Construction). The Voronoi route fans the
+  // hull itself when its result cannot be used.
+  Construction construction = Construction::automatic;
+  static constexpr std::size_t kFanBelow = 1024;
   // Flip (and flip-flop) passes over at most this many triangles run in one
   // work-group, pass after pass, in one launch; 0: every pass as separate
   // kernels.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The mesh files do not depend on the run, the Voronoi grid or the work-group
-# size: .node, .ele and .neigh must be byte-identical.
+# The mesh files do not depend on the run, the Voronoi grid, the first
+# triangulation's construction or the work-group size: .node, .ele and .neigh
+# (.poly for PSLGs) must be byte-identical.
 # Usage: determinism.sh CLMESH_BINARY SOURCE_DIR
 set -euo pipefail
 source "$(dirname "$0")/common.bash" "$@"
@@ -48,7 +49,7 @@ same_mesh() {
 }
 
 configs=("" "" "--grid 64" "--grid 512" "--work-group 1" "--work-group 128" "--grid 64 --work-group 1"
-         "--construction fan")
+         "--construction fan" "--construction voronoi")
 
 for input in random lattice; do
   for index in "${!configs[@]}"; do
@@ -78,27 +79,34 @@ for index in "${!refinements[@]}"; do
 done
 
 # Quality meshes of PSLGs (segments protected, holes, -c, -D, regional
-# areas): the same files whatever the work-group size, and with every buffer
-# from the driver filled with garbage first (CLMESH_POISON_BUFFERS), as a
-# GPU's fresh memory may hold: no kernel reads what nothing wrote.
+# areas): the same files whatever the work-group size or the first
+# triangulation's construction (with -c the hull edges join the segments of
+# the .poly file), and with every buffer from the driver filled with garbage
+# first (CLMESH_POISON_BUFFERS), as a GPU's fresh memory may hold: no kernel
+# reads what nothing wrote.
 pslgs=("pslg/water:-pq30" "pslg/water2:-pcq30" "pslg/water4:-pq25D" "la:-pAq30a")
 for index in "${!pslgs[@]}"; do
   case="${pslgs[$index]}"
   path="${case%%:*}"
   input="${path##*/}"
   switches="${case#*:}"
-  for group in 1 128 poisoned; do
+  for group in 1 128 poisoned voronoi fan; do
     dir="pslg.$index.$group"
     mkdir "$dir"
     cp "$source_dir/datasets/$path.poly" "$dir/"
     poison=""
-    [[ "$group" != poisoned ]] || { poison=0xA5; group=64; }
+    construction=()
+    case "$group" in
+      poisoned) poison=0xA5 group=64 ;;
+      voronoi | fan) construction=(--construction "$group") group=64 ;;
+    esac
     # shellcheck disable=SC2086  # switches holds separate arguments
     (cd "$dir" && CLMESH_POISON_BUFFERS="$poison" "$bin" -QC $switches --work-group "$group" \
-      "$input.poly") > "$dir.log" 2>&1 || fail "$input $switches ($dir): $(cat "$dir.log")"
+      "${construction[@]}" "$input.poly") > "$dir.log" 2>&1 ||
+      fail "$input $switches ($dir): $(cat "$dir.log")"
   done
   for ext in node ele poly; do
-    for other in 128 poisoned; do
+    for other in 128 poisoned voronoi fan; do
       cmp -s "pslg.$index.1/$input.1.$ext" "pslg.$index.$other/$input.1.$ext" ||
         fail "$input.1.$ext of '$switches' differs between runs 1 and $other"
     done

@@ -27,10 +27,15 @@ namespace {
 // Every path a device takes follows Device::cpu_paths().
 void check_paths(Device &dev, bool cpu_paths) {
   CHECK(dev.cpu_paths() == cpu_paths);
-  // Kernels prefetch on the CPU paths only (cl/prefetch.h).
-  const cl::Program &program = dev.program("scan.cl", "test");
-  const auto options = program.getBuildInfo<CL_PROGRAM_BUILD_OPTIONS>(dev.cl_device());
-  CHECK((options.find("-DCLM_PREFETCH") != std::string::npos) == cpu_paths);
+  // Kernels prefetch on the CPU paths only (cl/prefetch.h), and only for
+  // meshes of Tuning::prefetch_from points or more.
+  for (const bool large : {true, false}) {
+    CAPTURE(large);
+    dev.fit_prefetching(large ? 1000 : 999, 1000);
+    const cl::Program &program = dev.program("scan.cl", "test");
+    const auto options = program.getBuildInfo<CL_PROGRAM_BUILD_OPTIONS>(dev.cl_device());
+    CHECK((options.find("-DCLM_PREFETCH") != std::string::npos) == (cpu_paths && large));
+  }
   // Scans by runs on the CPU paths, by blocks on the GPU ones.
   CHECK(PrefixScan(dev).by_runs() == cpu_paths);
 #ifdef MADV_HUGEPAGE

@@ -423,6 +423,19 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     for (std::size_t i = 0; i < first.points.size(); ++i)
       CHECK(
           (first.points[i].x == assessed.points[i].x && first.points[i].y == assessed.points[i].y));
+    // Nor on whether the kernels prefetch (on PoCL's CPU devices: from the
+    // start, or never).
+    tuning.prefetch_from = 0;
+    const auto prefetched = refine(points, options);
+    tuning.prefetch_from = std::size_t{1} << 40;
+    const auto not_prefetched = refine(points, options);
+    tuning.prefetch_from = clmesh::Tuning{}.prefetch_from;
+    for (const auto *other : {&prefetched, &not_prefetched}) {
+      CHECK(first.triangles == other->triangles);
+      REQUIRE(first.points.size() == other->points.size());
+      for (std::size_t i = 0; i < first.points.size(); ++i)
+        CHECK((first.points[i].x == other->points[i].x && first.points[i].y == other->points[i].y));
+    }
   }
 }
 

@@ -360,6 +360,8 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   if (points.size() > (std::size_t{1} << 28))
     throw InputError("input", 0, "more than 2^28 points");
   check_coordinates(points);
+  // Before any program of this mesh.
+  device.fit_prefetching(points.size() + extra_points, options.tuning.prefetch_from);
   // A shared device keeps no size from an earlier run.
   device.set_work_group(options.tuning.work_group.value_or(device.default_work_group()));
   stats.device = describe(device);

@@ -655,6 +655,8 @@ private:
 
   // The phase objects of the steps, for the mesh's arrays as they are.
   void make_steps() {
+    // The mesh may have outgrown the caches.
+    device_.fit_prefetching(mesh().point_capacity, options_.delaunay.tuning.prefetch_from);
     steps_ = std::make_unique<RefinementSteps>(scheduler_, options_, inward_, region_areas_,
                                                size_bound_ ? &size_bound_->bounds() : nullptr);
   }

@@ -290,10 +290,10 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     cpu_paths_ = paths == DevicePaths::by_type
                      ? (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0
                      : paths == DevicePaths::cpu;
-    // A CPU runs a work-group's work-items in turn: they prefetch for the
-    // ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
-    if (cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language")
-      build_options_ += " -DCLM_PREFETCH";
+    // A CPU runs a work-group's work-items in turn: they can prefetch for
+    // the ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
+    can_prefetch_ =
+        cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language";
   });
   // CLMESH_BUILD_OPTIONS (a developer's aid): more OpenCL build options, to
   // study a device's compiler (say -cl-opt-disable). Options that relax IEEE
@@ -487,8 +487,14 @@ void Device::set_work_group(std::size_t size) {
   work_group_ = size;
 }
 
+void Device::fit_prefetching(std::size_t points, std::size_t from) {
+  prefetching_ = points >= from;
+}
+
 cl::Program &Device::program(const std::string &file, const std::string &phase) {
-  auto it = programs_.find(file);
+  const bool prefetch = can_prefetch_ && prefetching_;
+  const std::string key = prefetch ? file + " (prefetching)" : file;
+  auto it = programs_.find(key);
   if (it != programs_.end())
     return it->second;
   if (!predicates_checked_) { // before any other program: the check builds its own
@@ -498,13 +504,13 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   const std::string source = kernel_source(file);
   // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
   // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
-  const std::string options = build_options_;
+  const std::string options = build_options_ + (prefetch ? " -DCLM_PREFETCH" : "");
   const ProgramCache cache(source, options + "\n" + build_identity_);
   if (const auto binary = cache.load()) {
     try {
       cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
       program.build(std::vector<cl::Device>{device_}, options.c_str());
-      return programs_.emplace(file, program).first->second;
+      return programs_.emplace(key, program).first->second;
     } catch (const cl::Error &) {
       // A binary the driver no longer takes (CL_INVALID_BINARY, a failed
       // build): built again from the source, and its entry replaced below.
@@ -528,7 +534,7 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   } catch (const cl::Error &) {
     // No binary to keep: the next run builds from the source again.
   }
-  return programs_.emplace(file, program).first->second;
+  return programs_.emplace(key, program).first->second;
 }
 
 cl::Kernel Device::kernel(const std::string &file, const std::string &name,

@@ -53,6 +53,13 @@ public:
   cl::Program &program(const std::string &file, const std::string &phase);
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
+  // Software prefetching (cl/prefetch.h, PoCL's CPU devices) pays only once
+  // a mesh outgrows the caches; below that its loads cost more than the
+  // misses they save. Programs (and kernels) made after this call are built
+  // with prefetching when `points`, the mesh's point capacity, reaches
+  // `from` (Tuning::prefetch_from); each variant is built and cached apart.
+  void fit_prefetching(std::size_t points, std::size_t from);
+
   // A read-write buffer of `bytes`. On the CPU paths one of 64 KiB or more
   // lives in a mapping of its own that the device uses in place, unmapped
   // when the buffer goes. With `huge_pages` (the mesh's arrays, read at
@@ -114,6 +121,8 @@ private:
   std::string build_identity_; // platform, device and driver, for the program cache
   bool cpu_paths_ = false;
   bool predicates_checked_ = false; // check_device_predicates() has run
+  bool can_prefetch_ = false;       // a CPU device of PoCL's (cl/prefetch.h)
+  bool prefetching_ = true;         // programs made now prefetch (when they can)
   std::string build_options_ = "-cl-std=CL1.2";
   std::shared_ptr<MappingPool> mapping_pool_;
 };

@@ -32,6 +32,10 @@ struct Tuning {
   // hull itself when its result cannot be used.
   Construction construction = Construction::automatic;
   static constexpr std::size_t kFanBelow = 1024;
+  // On PoCL's CPU devices, kernels prefetch (cl/prefetch.h) for meshes of
+  // at least this many points (their capacity, Steiner points included):
+  // a smaller mesh stays in the caches, where the prefetches only cost.
+  std::size_t prefetch_from = 32768;
   // Flip (and flip-flop) passes over at most this many triangles run in one
   // work-group, pass after pass, in one launch; 0: every pass as separate
   // kernels.

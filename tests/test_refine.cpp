@@ -365,6 +365,13 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
   auto points = fixtures::gaussian(3000, 78);
   for (std::size_t i = 0; i < 3000; i += 10) // duplicates: which copy is meshed must not matter
     points.push_back(points[i]);
+  // The same triangles over the same points, coordinate for coordinate.
+  const auto check_same = [](const clmesh::Mesh &first, const clmesh::Mesh &other) {
+    CHECK(first.triangles == other.triangles);
+    REQUIRE(first.points.size() == other.points.size());
+    for (std::size_t i = 0; i < first.points.size(); ++i)
+      CHECK((first.points[i].x == other.points[i].x && first.points[i].y == other.points[i].y));
+  };
   for (const auto algorithm : {clmesh::RefineAlgorithm::qmv, clmesh::RefineAlgorithm::qm}) {
     tuning.use(algorithm);
     tuning.work_group = 1;
@@ -374,11 +381,8 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     tuning.work_group = clmesh::max_work_group_size(device());
     const auto largest = refine(points, options);
     tuning.work_group = 128;
-    CHECK(first.triangles == second.triangles);
+    check_same(first, second);
     CHECK(first.triangles == largest.triangles);
-    REQUIRE(first.points.size() == second.points.size());
-    for (std::size_t i = 0; i < first.points.size(); ++i)
-      CHECK((first.points[i].x == second.points[i].x && first.points[i].y == second.points[i].y));
     CHECK(first.statistics.refinement.deleted == second.statistics.refinement.deleted);
     // Nor on the Voronoi grid or the first triangulation's construction.
     tuning.grid = 16;
@@ -408,34 +412,20 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     const auto steps_in_group = refine(points, options);
     tuning.group_step_limit = clmesh::Tuning{}.group_step_limit;
     for (const auto *other : {&steps_by_kernels, &steps_in_group}) {
-      CHECK(first.triangles == other->triangles);
-      REQUIRE(first.points.size() == other->points.size());
-      for (std::size_t i = 0; i < first.points.size(); ++i)
-        CHECK((first.points[i].x == other->points[i].x && first.points[i].y == other->points[i].y));
+      check_same(first, *other);
       CHECK(first.statistics.refinement.iterations == other->statistics.refinement.iterations);
     }
     // Nor on whether a search keeps the verdicts of unchanged bad triangles.
     tuning.carry_verdicts = false;
-    const auto assessed = refine(points, options);
+    check_same(first, refine(points, options));
     tuning.carry_verdicts = true;
-    CHECK(first.triangles == assessed.triangles);
-    REQUIRE(first.points.size() == assessed.points.size());
-    for (std::size_t i = 0; i < first.points.size(); ++i)
-      CHECK(
-          (first.points[i].x == assessed.points[i].x && first.points[i].y == assessed.points[i].y));
     // Nor on whether the kernels prefetch (on PoCL's CPU devices: from the
     // start, or never).
-    tuning.prefetch_from = 0;
-    const auto prefetched = refine(points, options);
-    tuning.prefetch_from = std::size_t{1} << 40;
-    const auto not_prefetched = refine(points, options);
-    tuning.prefetch_from = clmesh::Tuning{}.prefetch_from;
-    for (const auto *other : {&prefetched, &not_prefetched}) {
-      CHECK(first.triangles == other->triangles);
-      REQUIRE(first.points.size() == other->points.size());
-      for (std::size_t i = 0; i < first.points.size(); ++i)
-        CHECK((first.points[i].x == other->points[i].x && first.points[i].y == other->points[i].y));
+    for (const std::size_t from : {std::size_t{0}, std::size_t{1} << 40}) {
+      tuning.prefetch_from = from;
+      check_same(first, refine(points, options));
     }
+    tuning.prefetch_from = clmesh::Tuning{}.prefetch_from;
   }
 }
 

@@ -13,7 +13,6 @@ const char *kFile = "flip_flop.cl";
 // A pass deletes a redundant point or flips; far more passes than any mesh
 // needs means a bug, reported instead of a hang.
 constexpr long kMaxPasses = 100000;
-constexpr cl_int kNoClaim = 0x7fffffff; // an empty removal claim (CLM_NO_POINT)
 } // namespace
 
 std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
@@ -27,7 +26,8 @@ std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
 }
 
 FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-                   bool orthogonal_test, std::size_t group_pass_limit)
+                   TriangleClaims &removal_claims, bool orthogonal_test,
+                   std::size_t group_pass_limit)
     : device_(device), mesh_(mesh), scan_(scan), encroachment_(device, mesh, scan),
       orthogonal_test_(orthogonal_test ? 1 : 0), group_pass_limit_(group_pass_limit),
       propose_(device.kernel(kFile, "flipflop_propose", kPhase)),
@@ -50,7 +50,7 @@ FlipFlop::FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const Scr
       star_offset_(pool.list<cl_int>(kStarOffset)), tracked_(pool.list<cl_int>(kTracked)),
       marked_count_(device, 1), exact_count_(device, 1), logged_(device, 1),
       pass_result_(device, kGroupResults), totals_(device, kTotals),
-      removal_claim_(device, mesh.triangle_capacity) {
+      removal_claim_(removal_claims) {
   pass_group_ = device.single_group(passes_in_group_, kPhase);
   // Running totals, never reset: each iteration takes the difference.
   totals_.fill(device_, 0, kTotals);
@@ -66,12 +66,8 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
       device_.queue().enqueueCopyBuffer(changed.buffer(), active_.buffer(), 0, 0,
                                         n * sizeof(cl_int));
     });
-  if (mesh_.triangle_count > claims_filled_) { // the slots that came since: unclaimed
-    const std::size_t end = fill_ahead(mesh_.triangle_count, mesh_.triangle_capacity);
-    removal_claim_.fill_range(device_, kNoClaim, claims_filled_, end - claims_filled_, kPhase);
-    claims_filled_ = end;
-  }
-  if (mesh_.point_count > marks_filled_) { // the points that came since: not marked
+  removal_claim_.cover(mesh_.triangle_count, kPhase); // the slots that came since: unclaimed
+  if (mesh_.point_count > marks_filled_) {            // the points that came since: not marked
     const std::size_t end = fill_ahead(mesh_.point_count, mesh_.point_capacity);
     redundant_mark_.fill_range(device_, 0, marks_filled_, end - marks_filled_, kPhase);
     marks_filled_ = end;

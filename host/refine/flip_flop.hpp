@@ -5,6 +5,7 @@
 #pragma once
 
 #include "refine/hull_encroachment.hpp"
+#include "refine/triangle_claims.hpp"
 #include "runtime/scratch_pool.hpp"
 
 #include "clmesh/geometry.hpp"
@@ -46,7 +47,7 @@ public:
   // The lists of the passes are those of `pool` (scratch_lists, from
   // kStar on): no other step runs while run() does.
   FlipFlop(Device &device, DeviceMesh &mesh, PrefixScan &scan, const ScratchPool &pool,
-           bool orthogonal_test, std::size_t group_pass_limit);
+           TriangleClaims &removal_claims, bool orthogonal_test, std::size_t group_pass_limit);
   // The sizes in bytes of the lists it takes from a ScratchPool.
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
 
@@ -155,9 +156,8 @@ private:
   std::array<cl_int, kTotals> group_totals_{};
   // Per triangle slot: the smallest entry proposing a removal whose star's
   // smallest slot it is, which applies it (removal_claim in the kernels);
-  // kNoClaim between passes, set below claims_filled_.
-  DeviceArray<cl_int> removal_claim_;
-  std::size_t claims_filled_ = 0;
+  // empty between passes. Shared with step 1's tie marks.
+  TriangleClaims &removal_claim_;
 };
 
 } // namespace clmesh

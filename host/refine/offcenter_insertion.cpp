@@ -8,7 +8,6 @@ namespace clmesh {
 
 namespace {
 const char *kFile = "offcenter_insertion.cl";
-constexpr cl_int kNoCandidate = 0x7fffffff; // a tie mark's empty value (CLM_NO_CANDIDATE)
 } // namespace
 
 std::vector<std::size_t> OffcenterInsertion::scratch_lists(const DeviceMesh &mesh) {
@@ -19,14 +18,12 @@ std::vector<std::size_t> OffcenterInsertion::scratch_lists(const DeviceMesh &mes
   return bytes;
 }
 
-OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool,
-                                       double min_angle, double max_area, int filter_rings,
-                                       int filter_distance_rings, double filter_near,
-                                       bool parallel_midpoints, int election_rings,
-                                       bool carry_verdicts, std::size_t group_step_limit,
-                                       bool conforming, int protected_segments, bool inward,
-                                       const std::vector<double> &region_areas,
-                                       const DeviceArray<cl_double> *size_bound)
+OffcenterInsertion::OffcenterInsertion(
+    Device &device, DeviceMesh &mesh, const ScratchPool &pool, TriangleClaims &tie_marks,
+    double min_angle, double max_area, int filter_rings, int filter_distance_rings,
+    double filter_near, bool parallel_midpoints, int election_rings, bool carry_verdicts,
+    std::size_t group_step_limit, bool conforming, int protected_segments, bool inward,
+    const std::vector<double> &region_areas, const DeviceArray<cl_double> *size_bound)
     : device_(device), mesh_(mesh), max_area_(max_area), filter_rings_(filter_rings),
       filter_distance_rings_(filter_distance_rings),
       filter_near2_(filter_near > 0 ? filter_near * filter_near : INFINITY),
@@ -51,12 +48,12 @@ OffcenterInsertion::OffcenterInsertion(Device &device, DeviceMesh &mesh, const S
       bad_mark_(device, election_rings > 0 ? mesh.triangle_capacity : 1),
       origin_(pool.list<cl_int>(kOrigin)), container_(pool.list<cl_int>(kContainer)),
       split_edge_(pool.list<cl_int>(kSplitEdge)), survive_(pool.list<cl_int>(kSurvive)),
-      keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)),
-      tie_mark_(device, mesh.triangle_capacity), listed_(pool.list<cl_int>(kListed)),
-      priority_(pool.list<cl_uint>(kPriority)), last_container_(device, mesh.triangle_capacity),
-      radius2_(pool.list<cl_double>(kRadius2)), stuck_(device, mesh.triangle_capacity),
-      stuck_count_(device, 1), notes_(device, mesh.triangle_capacity),
-      region_area_(device, region_areas.size()), size_bound_(size_bound), search_counts_(device, 5),
+      keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)), tie_mark_(tie_marks),
+      listed_(pool.list<cl_int>(kListed)), priority_(pool.list<cl_uint>(kPriority)),
+      last_container_(device, mesh.triangle_capacity), radius2_(pool.list<cl_double>(kRadius2)),
+      stuck_(device, mesh.triangle_capacity), stuck_count_(device, 1),
+      notes_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()),
+      size_bound_(size_bound), search_counts_(device, 5),
       pooled_keep_(pool.list<cl_int>(kCandidate)), pooled_offset_(pool.list<cl_int>(kRadius2)),
       search_group_(device.single_group(step_one_in_group_, kPhase)), place_counts_(device, 2),
       place_group_(device.single_group(place_in_group_, kPhase)) {
@@ -83,7 +80,7 @@ void OffcenterInsertion::fill_new_slots() {
     return;
   const std::size_t first = filled_slots_,
                     count = fill_ahead(slots, mesh_.triangle_capacity) - first;
-  tie_mark_.fill_range(device_, kNoCandidate, first, count, kPhase);
+  tie_mark_.cover(slots, kPhase);
   last_container_.fill_range(device_, -1, first, count, kPhase);
   stuck_.fill_range(device_, std::numeric_limits<cl_int>::min(), first, count, kPhase);
   filled_slots_ = first + count;

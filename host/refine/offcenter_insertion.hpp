@@ -2,6 +2,7 @@
 // the insertion filter (thesis §3.3.2, §3.4.1). Kernels: cl/offcenter_insertion.cl.
 #pragma once
 
+#include "refine/triangle_claims.hpp"
 #include "runtime/prefix_scan.hpp"
 #include "runtime/scratch_pool.hpp"
 
@@ -39,11 +40,12 @@ public:
   // size_bound: each triangle slot's own area bound (SizeBound; null: none).
   // The candidates' lists are those of `pool` (scratch_lists): no other step
   // runs from find_bad_triangles to append_survivors.
-  OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool, double min_angle,
-                     double max_area, int filter_rings, int filter_distance_rings,
-                     double filter_near, bool parallel_midpoints, int election_rings,
-                     bool carry_verdicts, std::size_t group_step_limit, bool conforming,
-                     int protected_segments, bool inward, const std::vector<double> &region_areas,
+  OffcenterInsertion(Device &device, DeviceMesh &mesh, const ScratchPool &pool,
+                     TriangleClaims &tie_marks, double min_angle, double max_area, int filter_rings,
+                     int filter_distance_rings, double filter_near, bool parallel_midpoints,
+                     int election_rings, bool carry_verdicts, std::size_t group_step_limit,
+                     bool conforming, int protected_segments, bool inward,
+                     const std::vector<double> &region_areas,
                      const DeviceArray<cl_double> *size_bound = nullptr);
 
   // Step 1, in this order. find_bad_triangles: the bad triangles; the first
@@ -174,7 +176,8 @@ private:
   // Per candidate: its bad triangle (the elected ones; bad_list_ without an
   // election), container, the edge it lies on, whether it survived the filter.
   DeviceArray<cl_int> origin_, container_, split_edge_, survive_;
-  DeviceArray<cl_int> keep_, offset_, tie_mark_;
+  DeviceArray<cl_int> keep_, offset_;
+  TriangleClaims &tie_mark_;   // step 1's tie marks, shared with step 3's claims
   DeviceArray<cl_int> listed_; // the triangles of a search after the first
   DeviceArray<cl_uint> priority_;
   // Per bad triangle: where the last search located its candidate (-1: not
@@ -202,9 +205,10 @@ private:
     return size_bound_ ? size_bound_->buffer() : region_area_.buffer();
   }
   cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
-  // tie_mark_, last_container_ and stuck_ hold their first values in the
-  // slots below this; the rest are set as the mesh's slots come into use, so
-  // that the pages past the used slots are not touched (not resident).
+  // last_container_ and stuck_ hold their first values in the slots below
+  // this; the rest are set as the mesh's slots come into use, so that the
+  // pages past the used slots are not touched (not resident). tie_mark_ as
+  // well (TriangleClaims::cover).
   std::size_t filled_slots_ = 0;
   void fill_new_slots();
   // step_one_in_group's entries, bad ones, candidates, survivors and stuck_count_

@@ -187,7 +187,8 @@ struct RefinementSteps {
       : scratch(scheduler.device(), {OffcenterInsertion::scratch_lists(scheduler.mesh()),
                                      MissingPointInsertion::scratch_lists(scheduler.mesh()),
                                      FlipFlop::scratch_lists(scheduler.mesh())}),
-        offcenter(scheduler.device(), scheduler.mesh(), scratch, options.min_angle,
+        claims(scheduler.device(), scheduler.mesh()),
+        offcenter(scheduler.device(), scheduler.mesh(), scratch, claims, options.min_angle,
                   options.max_area.value_or(-1), options.delaunay.tuning.filter_rings,
                   options.delaunay.tuning.filter_distance_rings,
                   options.delaunay.tuning.filter_near, options.delaunay.tuning.parallel_midpoints,
@@ -195,7 +196,7 @@ struct RefinementSteps {
                   options.delaunay.tuning.group_step_limit, options.conforming,
                   options.protected_segments, inward, region_areas, size_bound),
         insertion(scheduler.device(), scheduler.mesh(), scheduler.scan(), &scratch),
-        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch,
+        flipflop(scheduler.device(), scheduler.mesh(), scheduler.scan(), scratch, claims,
                  options.delaunay.tuning.algorithm == RefineAlgorithm::qmv,
                  options.delaunay.tuning.group_pass_limit),
         free_slots(scheduler.device(), scheduler.mesh(), scheduler.scan()),
@@ -203,6 +204,8 @@ struct RefinementSteps {
   // The lists of the off-centers' step, of the insertion and of flip-flop:
   // one runs at a time.
   ScratchPool scratch;
+  // Step 1's tie marks and step 3's removal claims (each step leaves them empty).
+  TriangleClaims claims;
   OffcenterInsertion offcenter;
   MissingPointInsertion insertion;
   FlipFlop flipflop;

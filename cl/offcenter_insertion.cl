@@ -419,15 +419,31 @@ inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, doubl
   return unsplittable_edge(CLM_MESH_ARGS, inward, t, edges_behind(CLM_MESH_ARGS, t, tri, c));
 }
 
-// stuck[t]: the stamp of the location that dropped the candidate of bad
-// triangle t beyond a boundary edge or subsegment that cannot be split
-// (splittable), not one of t's own; valid while t is not rewritten since.
-// Such a triangle is left and counted as a stranded one is, until a
-// compaction or growth renews the steps (the array) and its candidate is
-// located again. (The location also sets the stuck bit of t's notes, which a
-// search reads instead while t is as it assessed it: see find_bad_triangles.)
-inline bool is_stuck(__global const int *modified_stamp, __global const int *stuck, int t) {
-  return modified_stamp[t] < stuck[t];
+// notes[t] of a bad triangle slot, set by the search that assessed it (of
+// a slot found not bad: 0, or the stuck bit while it holds): whether its
+// candidate splits an edge of its own on the boundary
+// (splits_own_edge, with an election; see elect_candidates), the edges that
+// bound the domain and its candidate lies on or beyond (edges_behind: the
+// triangle is stranded once one of them cannot be split), the edges whose
+// subsegment test reads the apex across them (apex_dependent_edges), and
+// whether a location since found it stuck (is_stuck; set by
+// locate_candidates).
+#define CLM_NOTE_SPLITS_OWN_EDGE 1
+#define CLM_NOTE_BEHIND_SHIFT 1 // 3 bits
+#define CLM_NOTE_APEX_SHIFT 4   // 3 bits
+#define CLM_NOTE_STUCK 0x80
+
+// Is bad triangle t stuck: did a location drop its candidate beyond a
+// boundary edge or subsegment that cannot be split (splittable), not one of
+// t's own? The location sets the stuck bit of t's notes (CLM_NOTE_STUCK); it
+// holds while t is not rewritten since, that is while t's stamp is below
+// located_stamp, the last location's: a t rewritten since is assessed again
+// by the next search, which clears the bit (find_bad_triangles). Such a
+// triangle is left and counted as a stranded one is, until a compaction or
+// growth renews the steps (the notes) and its candidate is located again.
+inline bool is_stuck(__global const int *modified_stamp, __global const int *notes,
+                     int located_stamp, int t) {
+  return (notes[t] & CLM_NOTE_STUCK) && modified_stamp[t] < located_stamp;
 }
 
 // Does candidate c of bad real triangle t split an edge of its own on the
@@ -466,19 +482,6 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
   return false;
 }
 
-// notes[t] of a bad triangle slot, set by the search that assessed it:
-// whether its candidate splits an edge of its own on the boundary
-// (splits_own_edge, with an election; see elect_candidates), the edges that
-// bound the domain and its candidate lies on or beyond (edges_behind: the
-// triangle is stranded once one of them cannot be split), the edges whose
-// subsegment test reads the apex across them (apex_dependent_edges), and
-// whether a location since found it stuck (is_stuck; set by
-// locate_candidates).
-#define CLM_NOTE_SPLITS_OWN_EDGE 1
-#define CLM_NOTE_BEHIND_SHIFT 1 // 3 bits
-#define CLM_NOTE_APEX_SHIFT 4   // 3 bits
-#define CLM_NOTE_STUCK 0x80
-
 // The edges of real triangle t whose subsegment test (is_subsegment) reads
 // the apex across them: an end was added on a segment. The test of the
 // others, and whether an edge lies on the domain's boundary (a ghost
@@ -509,19 +512,17 @@ inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
 }
 
 // Prefetching for find_bad_triangles over a list (prefetch.h): every entry
-// needs its stamp, notes, stuck stamp and triangle; one carried from the last
+// needs its stamp, notes and triangle; one carried from the last
 // search (below `carried`) that is as assessed needs its mark, the others
 // their corners.
 inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
                             __global const double2 *points, __global const int *point_state,
                             __global const int *tri_vertex, __global const int *modified_stamp,
-                            __global const int *notes, __global const int *stuck,
-                            volatile __global const uint *tri_mark) {
+                            __global const int *notes, volatile __global const uint *tri_mark) {
   const int far = entry_ahead(list, gid, 2, n);
   if (far >= 0) {
     warm(modified_stamp + far);
     warm(notes + far);
-    warm(stuck + far);
     warm(tri_vertex + 3 * far);
   }
   const int near = entry_ahead(list, gid, 1, n);
@@ -548,18 +549,18 @@ inline void prefetch_search(__global const int *list, int gid, int n, int carrie
       __global uint *carried_mark, const double ratio_bound_squared, const double max_area,        \
       __global const double *region_area, __global const double *size_bound, const int sized,      \
       const double offconstant, const int conforming, const int protect, const int inward,         \
-      __global int *stuck, __global int *is_bad, const int election, const double lens,            \
+      const int located_stamp, __global int *is_bad, const int election, const double lens,        \
       __global int *notes
 #define CLM_SEARCH_ARGS                                                                            \
   list, use_list, carried, searched_stamp, carried_mark, ratio_bound_squared, max_area,            \
-      region_area, size_bound, sized, offconstant, conforming, protect, inward, stuck, is_bad,     \
-      election, lens, notes
+      region_area, size_bound, sized, offconstant, conforming, protect, inward, located_stamp,     \
+      is_bad, election, lens, notes
 
 // Entry gid of find_bad_triangles (of n).
 inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
   if (use_list)
     prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
-                    modified_stamp, notes, stuck, tri_mark);
+                    modified_stamp, notes, tri_mark);
   else
     warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;
@@ -585,11 +586,13 @@ inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, cons
                  offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
                  protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
   const int behind = bad ? edges_behind(CLM_MESH_ARGS, t, tri, steiner) : 0;
-  bad = bad && !unsplittable_edge(CLM_MESH_ARGS, inward, t, behind) &&
-        !is_stuck(modified_stamp, stuck, t);
+  const bool stuck = is_stuck(modified_stamp, notes, located_stamp, t);
+  bad = bad && !unsplittable_edge(CLM_MESH_ARGS, inward, t, behind) && !stuck;
   is_bad[gid] = bad;
-  if (!bad)
+  if (!bad) {
+    notes[t] = stuck ? CLM_NOTE_STUCK : 0; // a stuck bit from before a rewrite goes
     return;
+  }
   int note = (behind << CLM_NOTE_BEHIND_SHIFT) |
              (apex_dependent_edges(CLM_MESH_ARGS, tri) << CLM_NOTE_APEX_SHIFT);
   if (election) {
@@ -616,8 +619,8 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
                                         __global const double *size_bound, const int sized,
                                         const double offconstant, const int conforming,
                                         const int protect, const int inward,
-                                        __global const int *stuck, volatile __global int *counts,
-                                        const int n) {
+                                        __global const int *notes, const int located_stamp,
+                                        volatile __global int *counts, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
@@ -640,7 +643,8 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
       (bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
                               ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
                               &priority) &&
-       (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) || is_stuck(modified_stamp, stuck, t))))
+       (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) ||
+        is_stuck(modified_stamp, notes, located_stamp, t))))
     atomic_inc(counts);
 }
 
@@ -895,12 +899,11 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
       const int conforming, const int protect, __global double2 *candidate,                        \
       __global int *container, __global int *split_edge, __global const int *origin,               \
       __global uint *priority, __global double *radius2, const double lens, const int inward,      \
-      const int stamp, __global int *stuck, __global int *notes,                                   \
-      volatile __global int *stuck_count, const int max_steps
+      const int stamp, __global int *notes, volatile __global int *stuck_count, const int max_steps
 #define CLM_LOCATE_ARGS                                                                            \
   last_container, located_stamp, ratio_bound_squared, max_area, region_area, size_bound, sized,    \
       offconstant, conforming, protect, candidate, container, split_edge, origin, priority,        \
-      radius2, lens, inward, stamp, stuck, notes, stuck_count, max_steps
+      radius2, lens, inward, stamp, notes, stuck_count, max_steps
 
 // Candidate k of locate_candidates.
 inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k) {
@@ -925,7 +928,6 @@ inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k) {
     hull_edge = -1; // beyond an edge no point may split (-Y): dropped, not located
   else if (hull_edge >= 0 && !splittable(CLM_MESH_ARGS, inward, t, hull_edge, &split)) {
     hull_edge = -1; // beyond an edge no point can split: dropped, and bad stuck
-    stuck[bad] = stamp;
     notes[bad] |= CLM_NOTE_STUCK;
     atomic_inc(stuck_count);
   } else if (hull_edge < 0 && touches_hull(point_state, tri)) {
@@ -1272,7 +1274,7 @@ __kernel void place_candidates_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS,
 // its counts in counts[3..5). The arguments are search_in_group's, then
 // place_in_group's that it lacks.
 __kernel void step_one_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS,
-                                const int located_stamp, __global double2 *candidate,
+                                __global double2 *candidate,
                                 __global int *container, __global int *split_edge,
                                 __global uint *priority, __global double *radius2, const int stamp,
                                 volatile __global int *stuck_count, const int max_steps,
@@ -1288,7 +1290,7 @@ __kernel void step_one_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_G
   place_in_group(CLM_MESH_ARGS, last_container, located_stamp, ratio_bound_squared, max_area,
                  region_area, size_bound, sized, offconstant, conforming, protect, candidate,
                  container, split_edge, rings > 0 ? origin : bad, priority, radius2, lens, inward,
-                 stamp, stuck, notes, stuck_count, max_steps, tie_mark, filter_rings,
+                 stamp, notes, stuck_count, max_steps, tie_mark, filter_rings,
                  distance_rings, near2, parallel_midpoints, survive, offset, free_points,
                  free_first, free_count, first_new, new_points, room, scratch, counts + 3, n);
 }

@@ -51,9 +51,8 @@ OffcenterInsertion::OffcenterInsertion(
       keep_(pool.list<cl_int>(kKeep)), offset_(pool.list<cl_int>(kOffset)), tie_mark_(tie_marks),
       listed_(pool.list<cl_int>(kListed)), priority_(pool.list<cl_uint>(kPriority)),
       last_container_(device, mesh.triangle_capacity), radius2_(pool.list<cl_double>(kRadius2)),
-      stuck_(device, mesh.triangle_capacity), stuck_count_(device, 1),
-      notes_(device, mesh.triangle_capacity), region_area_(device, region_areas.size()),
-      size_bound_(size_bound), search_counts_(device, 5),
+      stuck_count_(device, 1), notes_(device, mesh.triangle_capacity),
+      region_area_(device, region_areas.size()), size_bound_(size_bound), search_counts_(device, 5),
       pooled_keep_(pool.list<cl_int>(kCandidate)), pooled_offset_(pool.list<cl_int>(kRadius2)),
       search_group_(device.single_group(step_one_in_group_, kPhase)), place_counts_(device, 2),
       place_group_(device.single_group(place_in_group_, kPhase)) {
@@ -82,7 +81,7 @@ void OffcenterInsertion::fill_new_slots() {
                     count = fill_ahead(slots, mesh_.triangle_capacity) - first;
   tie_mark_.cover(slots, kPhase);
   last_container_.fill_range(device_, -1, first, count, kPhase);
-  stuck_.fill_range(device_, std::numeric_limits<cl_int>::min(), first, count, kPhase);
+  notes_.fill_range(device_, 0, first, count, kPhase);
   filled_slots_ = first + count;
 }
 
@@ -103,11 +102,12 @@ std::size_t OffcenterInsertion::count_unfixable() {
   const std::size_t slots = mesh_.triangle_count;
   DeviceArray<cl_int> count(device_, 1);
   count.fill(device_, 0, 1);
-  set_args_from(
-      count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
-      region_area_.buffer(), size_bound_buffer(), static_cast<cl_int>(size_bound_ != nullptr),
-      offconstant_, static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-      static_cast<cl_int>(inward_), stuck_.buffer(), count.buffer(), static_cast<cl_int>(slots));
+  set_args_from(count_unfixable_, mesh_.bind(count_unfixable_, 0), ratio_bound_squared_, max_area_,
+                region_area_.buffer(), size_bound_buffer(),
+                static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
+                static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                static_cast<cl_int>(inward_), notes_.buffer(), located_stamp_, count.buffer(),
+                static_cast<cl_int>(slots));
   launch(device_, count_unfixable_, slots, kPhase);
   return static_cast<std::size_t>(count.read(device_, 0));
 }
@@ -178,7 +178,7 @@ cl_uint OffcenterInsertion::search_args(cl::Kernel &kernel, bool use_list, cl_in
                        ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
                        static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
                        static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
-                       static_cast<cl_int>(inward_), stuck_.buffer(), keep_.buffer(),
+                       static_cast<cl_int>(inward_), located_stamp_, keep_.buffer(),
                        static_cast<cl_int>(election_rings_ > 0), lens_, notes_.buffer());
 }
 
@@ -199,8 +199,8 @@ std::size_t OffcenterInsertion::step_one_in_group(const DeviceList<cl_int> *chan
                 pooled_offset_.buffer(), offset_.buffer(), static_cast<cl_int>(election_rings_),
                 last_container_.buffer(), origin_.buffer(),
                 cl::Local(sizeof(cl_int) * search_group_), search_counts_.buffer(),
-                static_cast<cl_int>(mesh_.triangle_count), located_stamp_, candidate_.buffer(),
-                container_.buffer(), split_edge_.buffer(), priority_.buffer(), radius2_.buffer(),
+                static_cast<cl_int>(mesh_.triangle_count), candidate_.buffer(), container_.buffer(),
+                split_edge_.buffer(), priority_.buffer(), radius2_.buffer(),
                 static_cast<cl_int>(stamp), stuck_count_.buffer(),
                 static_cast<cl_int>(mesh_.triangle_count + 8), tie_mark_.buffer(),
                 static_cast<cl_int>(filter_rings_), static_cast<cl_int>(filter_distance_rings_),
@@ -300,14 +300,14 @@ std::size_t OffcenterInsertion::place_candidates(int stamp, std::size_t room, Pr
 cl_uint OffcenterInsertion::locate_args(cl::Kernel &kernel, int stamp) {
   // Each candidate's bad triangle: the elected ones, or every bad one.
   const DeviceArray<cl_int> &origin = election_rings_ > 0 ? origin_ : bad_list_;
-  return set_args_from(
-      kernel, mesh_.bind(kernel, 0), last_container_.buffer(), located_stamp_, ratio_bound_squared_,
-      max_area_, region_area_.buffer(), size_bound_buffer(),
-      static_cast<cl_int>(size_bound_ != nullptr), offconstant_, static_cast<cl_int>(conforming_),
-      static_cast<cl_int>(protected_segments_), candidate_.buffer(), container_.buffer(),
-      split_edge_.buffer(), origin.buffer(), priority_.buffer(), radius2_.buffer(), lens_,
-      static_cast<cl_int>(inward_), static_cast<cl_int>(stamp), stuck_.buffer(), notes_.buffer(),
-      stuck_count_.buffer(), static_cast<cl_int>(mesh_.triangle_count + 8));
+  return set_args_from(kernel, mesh_.bind(kernel, 0), last_container_.buffer(), located_stamp_,
+                       ratio_bound_squared_, max_area_, region_area_.buffer(), size_bound_buffer(),
+                       static_cast<cl_int>(size_bound_ != nullptr), offconstant_,
+                       static_cast<cl_int>(conforming_), static_cast<cl_int>(protected_segments_),
+                       candidate_.buffer(), container_.buffer(), split_edge_.buffer(),
+                       origin.buffer(), priority_.buffer(), radius2_.buffer(), lens_,
+                       static_cast<cl_int>(inward_), static_cast<cl_int>(stamp), notes_.buffer(),
+                       stuck_count_.buffer(), static_cast<cl_int>(mesh_.triangle_count + 8));
 }
 
 void OffcenterInsertion::locate_candidates(int stamp) {

@@ -183,20 +183,18 @@ private:
   // Per bad triangle: where the last search located its candidate (-1: not
   // located), valid while neither triangle is rewritten: a walk of one step.
   DeviceArray<cl_int> last_container_;
-  DeviceArray<cl_double> radius2_; // each candidate's insertion radius, squared
-  // Per bad triangle: the stamp of the location that dropped its candidate
-  // beyond an edge that cannot be split (see is_stuck in the kernels).
-  DeviceArray<cl_int> stuck_;
+  DeviceArray<cl_double> radius2_;  // each candidate's insertion radius, squared
   DeviceArray<cl_int> stuck_count_; // candidates dropped so, in all
   std::size_t stuck_seen_ = 0;      // stuck_count_ at the last stuck_since_last_asked
   // stuck_count_ as a placement in group read it with its result, when the last
   // location was its.
   std::size_t stuck_total_ = 0;
   bool stuck_known_ = false;
-  // Per triangle slot, set by the search that assessed a bad one: its notes
-  // (notes in the kernels): whether its candidate splits an edge of its own
-  // on the boundary (splits_own_edge; it is then elected whatever its
-  // neighbours' priorities), and what the next search asks again.
+  // Per triangle slot, set by the search that assessed it: its notes (notes
+  // in the kernels): whether its candidate splits an edge of its own on the
+  // boundary (splits_own_edge; it is then elected whatever its neighbours'
+  // priorities), what the next search asks again, and whether a location
+  // found it stuck since (is_stuck in the kernels).
   DeviceArray<cl_int> notes_;
   DeviceArray<cl_double> region_area_; // each region's maximum area (<= 0: none)
   const DeviceArray<cl_double> *size_bound_;
@@ -205,7 +203,7 @@ private:
     return size_bound_ ? size_bound_->buffer() : region_area_.buffer();
   }
   cl_int located_stamp_ = 0; // the mesh's stamp when the last search located
-  // last_container_ and stuck_ hold their first values in the slots below
+  // last_container_ and notes_ hold their first values in the slots below
   // this; the rest are set as the mesh's slots come into use, so that the
   // pages past the used slots are not touched (not resident). tie_mark_ as
   // well (TriangleClaims::cover).

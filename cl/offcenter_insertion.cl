@@ -899,7 +899,8 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
       const int conforming, const int protect, __global double2 *candidate,                        \
       __global int *container, __global int *split_edge, __global const int *origin,               \
       __global uint *priority, __global double *radius2, const double lens, const int inward,      \
-      const int stamp, __global int *notes, volatile __global int *stuck_count, const int max_steps
+      const int stamp, __global int *notes, volatile __global int *stuck_count,                    \
+      const int max_steps
 #define CLM_LOCATE_ARGS                                                                            \
   last_container, located_stamp, ratio_bound_squared, max_area, region_area, size_bound, sized,    \
       offconstant, conforming, protect, candidate, container, split_edge, origin, priority,        \
@@ -1191,9 +1192,11 @@ inline void append_entry(CLM_MESH_PARAMS, __global const double2 *candidate,
   const int t = container[k], e = split_edge[k];
   const int a = midpoint ? tri_vertex[3 * t + next3(e)] : -1,
             b = midpoint ? tri_vertex[3 * t + prev3(e)] : -1;
-  point_segment[p] = midpoint ? segment_of_edge(constraint_start, constraint_adjacent,
-                                                constraint_segment, point_segment, a, b)
-                              : CLM_NO_SEGMENT;
+  // (Without constraints no point lies on a segment: the rows are not read.)
+  point_segment[p] = midpoint && constrained
+                         ? segment_of_edge(constraint_start, constraint_adjacent,
+                                           constraint_segment, point_segment, a, b)
+                         : CLM_NO_SEGMENT;
   if (midpoint && point_segment[p] >= 0 && point_segment[a] < 0 && point_segment[b] < 0)
     mark_segment_split(constraint_start, constraint_adjacent, constraint_segment, a, b);
   points[p] = c;
@@ -1273,24 +1276,21 @@ __kernel void place_candidates_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS,
 // host goes on by itself), place_in_group of every candidate (else of none),
 // its counts in counts[3..5). The arguments are search_in_group's, then
 // place_in_group's that it lacks.
-__kernel void step_one_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS,
-                                __global double2 *candidate,
-                                __global int *container, __global int *split_edge,
-                                __global uint *priority, __global double *radius2, const int stamp,
-                                volatile __global int *stuck_count, const int max_steps,
-                                __global int *tie_mark, const int filter_rings,
-                                const int distance_rings, const double near2,
-                                const int parallel_midpoints, __global int *survive,
-                                __global const int *free_points, const int free_first,
-                                const int free_count, const int first_new, __global int *new_points,
-                                const int room, const int place_room) {
+__kernel void step_one_in_group(
+    CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS, __global double2 *candidate,
+    __global int *container, __global int *split_edge, __global uint *priority,
+    __global double *radius2, const int stamp, volatile __global int *stuck_count,
+    const int max_steps, __global int *tie_mark, const int filter_rings, const int distance_rings,
+    const double near2, const int parallel_midpoints, __global int *survive,
+    __global const int *free_points, const int free_first, const int free_count,
+    const int first_new, __global int *new_points, const int room, const int place_room) {
   const int2 found = search_in_group(CLM_MESH_ARGS, CLM_SEARCH_ARGS, CLM_SEARCH_GROUP_ARGS);
   barrier(CLK_GLOBAL_MEM_FENCE);
   const int n = found.x > 0 && found.y <= place_room ? found.y : 0;
   place_in_group(CLM_MESH_ARGS, last_container, located_stamp, ratio_bound_squared, max_area,
                  region_area, size_bound, sized, offconstant, conforming, protect, candidate,
                  container, split_edge, rings > 0 ? origin : bad, priority, radius2, lens, inward,
-                 stamp, notes, stuck_count, max_steps, tie_mark, filter_rings,
-                 distance_rings, near2, parallel_midpoints, survive, offset, free_points,
-                 free_first, free_count, first_new, new_points, room, scratch, counts + 3, n);
+                 stamp, notes, stuck_count, max_steps, tie_mark, filter_rings, distance_rings,
+                 near2, parallel_midpoints, survive, offset, free_points, free_first, free_count,
+                 first_new, new_points, room, scratch, counts + 3, n);
 }

@@ -19,9 +19,8 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
       vertex_triangle(device, point_capacity, kHugePages),
       duplicate_of(device, point_capacity, kHugePages),
       location(device, point_capacity, kHugePages),
-      location_edge(device, point_capacity, kHugePages),
-      constraint_start(device, point_capacity + 1, kHugePages), constraint_adjacent(device, 1),
-      constraint_segment(device, 1), tri_region(device, 1) {}
+      location_edge(device, point_capacity, kHugePages), constraint_start(device, 1),
+      constraint_adjacent(device, 1), constraint_segment(device, 1), tri_region(device, 1) {}
 
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   const std::size_t points_now = point_capacity + extra_points;
@@ -39,7 +38,8 @@ void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   duplicate_of = duplicate_of.enlarged(device, points_now, points_filled);
   location = location.grown(device, points_now, 0);
   location_edge = location_edge.grown(device, points_now, -1);
-  constraint_start = constraint_start.enlarged(device, points_now + 1, points_filled + 1);
+  if (has_constraint_rows())
+    constraint_start = constraint_start.enlarged(device, points_now + 1, points_filled + 1);
   if (has_regions)
     tri_region = tri_region.grown(device, triangles_now, -1);
   if (point_state.size() > 0) {
@@ -75,11 +75,10 @@ void DeviceMesh::fill_point_slots(Device &device, std::size_t count) {
   if (count <= points_filled)
     return;
   const std::size_t first = points_filled, added = fill_ahead(count, point_capacity) - first;
-  if (first == 0)
-    constraint_start.fill_range(device, 0, 0, 1, "setup"); // the first row starts at 0
   duplicate_of.fill_range(device, -1, first, added, "setup");
   // A point's row ends where the next one starts: empty rows end with the last.
-  constraint_start.fill_range(device, constraint_entries, first + 1, added, "setup");
+  if (has_constraint_rows())
+    constraint_start.fill_range(device, constraint_entries, first + 1, added, "setup");
   points_filled += added;
 }
 
@@ -132,6 +131,7 @@ void DeviceMesh::set_constraint_rows(Device &device, const std::vector<Segment> 
     segment[cursor[s.b]] = static_cast<cl_int>(i);
     adjacent[cursor[s.b]++] = s.a;
   }
+  constraint_start = DeviceArray<cl_int>(device, point_capacity + 1, kHugePages);
   constraint_start.upload(device, start);
   constraint_entries = static_cast<cl_int>(adjacent.size());
   constraint_adjacent = DeviceArray<cl_int>(device, adjacent.size());

@@ -163,23 +163,26 @@ struct DeviceMesh {
   DeviceArray<cl_int> duplicate_of;
   DeviceArray<cl_int> location;      // containing triangle of each point not yet inserted
   DeviceArray<cl_int> location_edge; // -1 or the edge the point lies on
-  // Constraints (CDT) as compressed rows per vertex, both directions; empty
-  // rows (all starts 0) for a plain Delaunay triangulation.
-  DeviceArray<cl_int> constraint_start;    // point_capacity + 1
+  // Constraints (CDT) as compressed rows per vertex, both directions. The
+  // rows exist once set_constraint_rows has set them (point_capacity + 1
+  // starts); before, constraint_start is one unused entry, which the kernels
+  // do not read while has_constraints is false.
+  DeviceArray<cl_int> constraint_start;
   DeviceArray<cl_int> constraint_adjacent; // 2 per constraint
   DeviceArray<cl_int> constraint_segment;  // per entry of constraint_adjacent: its constraint
   bool has_constraints = false;            // any row not empty
-  cl_int constraint_entries = 0;           // entries of constraint_adjacent: where rows end
+  bool has_constraint_rows() const { return constraint_start.size() > 1; }
+  cl_int constraint_entries = 0; // entries of constraint_adjacent: where rows end
   // The region of each triangle slot (-1: none; triangle_capacity entries)
   // once has_regions, else one unused entry (cl/mesh_params.h).
   DeviceArray<cl_int> tri_region;
   bool has_regions = false;
 
   // Uploads `segments` (device point numbers, distinct, none of zero length)
-  // as the constraint rows.
+  // as the constraint rows (none: empty rows).
   void set_constraint_rows(Device &device, const std::vector<Segment> &segments);
 
-  // duplicate_of (-1: none) and constraint_start (empty rows) hold their
+  // duplicate_of (-1: none) and the constraint rows (empty) hold their
   // first values for the points below points_filled; those past it are set
   // only when the points come into use (fill_point_slots, before
   // point_count passes them, kFillAhead ahead), so that the pages past the

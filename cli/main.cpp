@@ -22,9 +22,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <memory>
 #include <sched.h>
 #include <string>
@@ -954,13 +951,6 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
 } // namespace
 
 int main(int argc, char **argv) {
-#ifdef __GLIBC__
-  // glibc raises its mmap threshold as large blocks are freed, after which
-  // large temporaries (reading and ordering the input, say) come from the
-  // heap and stay there once freed. A fixed threshold gives them back: 7 MB
-  // less at the peak of a 500,000-point -q30 mesh.
-  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
-#endif
   try {
     if (argc <= 1) {
       print_usage();

@@ -14,7 +14,7 @@
 namespace clmesh {
 
 struct DelaunayOptions {
-  Tuning tuning; // grid, work_group, voronoi_construction, group_pass_limit
+  Tuning tuning; // grid, work_group, construction, prefetch_from, group_pass_limit
   bool want_voronoi_image = false;
 };
 

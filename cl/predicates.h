@@ -37,14 +37,18 @@
 #define CLMESH_PREDICATES_H
 
 /* Every function is file-local and inlinable on both sides. */
-#ifdef __OPENCL_VERSION__
 #define CLM_FN static inline
+/* The exact stages, reached by few calls.  On the host, and on CPU devices (whose programs the
+ * host builds with CLM_EXACT_OUT_OF_LINE), they stay out of line: a CPU device runs a
+ * work-group's items in one thread, whose stack would hold every item's expansion arrays
+ * (kilobytes each) if they were inlined, and overflows at large work-groups.  On other devices
+ * they are inlined: called out of line, NVIDIA's OpenCL (driver 580 on an H100) returns wrong
+ * signs from them, as the device's predicate check (predicate_check.cl) shows. */
+#if defined(__OPENCL_VERSION__) && !defined(CLM_EXACT_OUT_OF_LINE)
+#define CLM_COLD static inline
 #else
-#define CLM_FN static inline
-#endif
-/* The exact stages, reached by few calls, stay out of line: inlined at every call site they
- * would swell kernels (each predicate call would carry its expansion arrays). */
 #define CLM_COLD static __attribute__((noinline))
+#endif
 
 /* Returned by the fast checks when the floating-point sign cannot be certified. */
 #define CLM_UNCERTAIN 2

@@ -27,14 +27,19 @@ namespace {
 // Every path a device takes follows Device::cpu_paths().
 void check_paths(Device &dev, bool cpu_paths) {
   CHECK(dev.cpu_paths() == cpu_paths);
-  // Kernels prefetch on the CPU paths only (cl/prefetch.h), and only for
-  // meshes of Tuning::prefetch_from points or more.
+  // Kernels prefetch on the CPU paths of PoCL's devices only (cl/prefetch.h),
+  // and only for meshes of Tuning::prefetch_from points or more.
+  const bool pocl = dev.description().platform_name == "Portable Computing Language";
+  const bool cpu_device = (dev.cl_device().getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
   for (const bool large : {true, false}) {
     CAPTURE(large);
     dev.fit_prefetching(large ? 1000 : 999, 1000);
     const cl::Program &program = dev.program("scan.cl", "test");
     const auto options = program.getBuildInfo<CL_PROGRAM_BUILD_OPTIONS>(dev.cl_device());
-    CHECK((options.find("-DCLM_PREFETCH") != std::string::npos) == (cpu_paths && large));
+    CHECK((options.find("-DCLM_PREFETCH") != std::string::npos) == (pocl && cpu_paths && large));
+    // The exact predicate stages out of line on a CPU device, whatever its
+    // paths (cl/predicates.h).
+    CHECK((options.find("-DCLM_EXACT_OUT_OF_LINE") != std::string::npos) == cpu_device);
   }
   // Scans by runs on the CPU paths, by blocks on the GPU ones.
   CHECK(PrefixScan(dev).by_runs() == cpu_paths);

@@ -294,6 +294,10 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     // the ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
     can_prefetch_ =
         cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language";
+    // The exact predicate stages stay out of line on a CPU device, inlined on
+    // others (cl/predicates.h): a CPU's stack, a GPU's compiler.
+    if ((device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0)
+      build_options_ += " -DCLM_EXACT_OUT_OF_LINE";
   });
   // CLMESH_BUILD_OPTIONS (a developer's aid): more OpenCL build options, to
   // study a device's compiler (say -cl-opt-disable). Options that relax IEEE

@@ -30,21 +30,21 @@ typedef struct {
   int v[3];
 } VertexTriple;
 
-inline int next3(int i) { return i == 2 ? 0 : i + 1; }
-inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
+static inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+static inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
-inline int encode_link(int triangle, int edge) { return (triangle << 2) | edge; }
-inline int link_triangle(int link) { return link >> 2; }
-inline int link_edge(int link) { return link & 3; }
+static inline int encode_link(int triangle, int edge) { return (triangle << 2) | edge; }
+static inline int link_triangle(int link) { return link >> 2; }
+static inline int link_edge(int link) { return link & 3; }
 
 // The index (0-2) of vertex v in triangle t, or -1.
-inline int index_in(__global const int *tri_vertex, int t, int v) {
+static inline int index_in(__global const int *tri_vertex, int t, int v) {
   return tri_vertex[3 * t] == v
              ? 0
              : (tri_vertex[3 * t + 1] == v ? 1 : (tri_vertex[3 * t + 2] == v ? 2 : -1));
 }
 
-inline VertexTriple load_vertices(__global const int *tri_vertex, int t) {
+static inline VertexTriple load_vertices(__global const int *tri_vertex, int t) {
   VertexTriple tri;
   tri.v[0] = tri_vertex[3 * t];
   tri.v[1] = tri_vertex[3 * t + 1];
@@ -54,13 +54,13 @@ inline VertexTriple load_vertices(__global const int *tri_vertex, int t) {
 
 // The index of a triangle's smallest vertex, where its canonical rotation
 // starts (the vertex at infinity, negative, counts as the largest).
-inline int canonical_start(VertexTriple tri) {
+static inline int canonical_start(VertexTriple tri) {
   const uint a = (uint)tri.v[0], b = (uint)tri.v[1], c = (uint)tri.v[2];
   return a < b ? (a < c ? 0 : 2) : (b < c ? 1 : 2);
 }
 
-inline void store_triangle(__global int *tri_vertex, __global int *tri_neighbor, int t, int a,
-                           int b, int c, int na, int nb, int nc) {
+static inline void store_triangle(__global int *tri_vertex, __global int *tri_neighbor, int t,
+                                  int a, int b, int c, int na, int nb, int nc) {
   tri_vertex[3 * t] = a;
   tri_vertex[3 * t + 1] = b;
   tri_vertex[3 * t + 2] = c;
@@ -73,8 +73,8 @@ inline void store_triangle(__global int *tri_vertex, __global int *tri_neighbor,
 // free_first + free_count - 1 first, then the slots from first_new on (thesis
 // §3.6.1: empty slots are reused before the arrays grow). The free list is
 // sorted, so the result is deterministic.
-inline int allocate_slot(__global const int *free_list, int free_first, int free_count,
-                         int first_new, int k) {
+static inline int allocate_slot(__global const int *free_list, int free_first, int free_count,
+                                int first_new, int k) {
   return k < free_count ? free_list[free_first + k] : first_new + (k - free_count);
 }
 
@@ -84,8 +84,8 @@ inline int allocate_slot(__global const int *free_list, int free_first, int free
 // work-item's range. The ranges' order depends on scheduling: use it only for
 // lists whose order cannot reach the output, and for counts. Every work-item
 // of the group must call it (it holds barriers); scratch: two __local ints.
-inline int reserve_in_group(int count, volatile __local int *scratch,
-                            volatile __global int *total) {
+static inline int reserve_in_group(int count, volatile __local int *scratch,
+                                   volatile __global int *total) {
   if (get_local_id(0) == 0)
     scratch[0] = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -99,53 +99,58 @@ inline int reserve_in_group(int count, volatile __local int *scratch,
 
 // Appends this work-item's items[0 .. count) to a worklist whose length is
 // *length (reserve_in_group: every work-item of the group must call it).
-inline void append_in_group(const int *items, int count, __global int *list,
-                            volatile __global int *length, volatile __local int *scratch) {
+static inline void append_in_group(const int *items, int count, __global int *list,
+                                   volatile __global int *length, volatile __local int *scratch) {
   const int first = reserve_in_group(count, scratch, length);
   for (int k = 0; k < count; ++k)
     list[first + k] = items[k];
 }
 
-inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
+static inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
 
-inline bool is_ghost(VertexTriple tri) {
+static inline bool is_ghost(VertexTriple tri) {
   return tri.v[0] == CLM_INFINITE || tri.v[1] == CLM_INFINITE || tri.v[2] == CLM_INFINITE;
 }
 
 // Index (0-2) of the vertex at infinity of a ghost triangle.
-inline int infinite_index(VertexTriple tri) {
+static inline int infinite_index(VertexTriple tri) {
   return tri.v[0] == CLM_INFINITE ? 0 : (tri.v[1] == CLM_INFINITE ? 1 : 2);
 }
 
 // A ghost stands on the hull edge from its vertex before infinity to its
 // vertex after it (counter-clockwise along the hull).
-inline int ghost_edge_start(VertexTriple ghost) { return ghost.v[prev3(infinite_index(ghost))]; }
-inline int ghost_edge_end(VertexTriple ghost) { return ghost.v[next3(infinite_index(ghost))]; }
+static inline int ghost_edge_start(VertexTriple ghost) {
+  return ghost.v[prev3(infinite_index(ghost))];
+}
+static inline int ghost_edge_end(VertexTriple ghost) {
+  return ghost.v[next3(infinite_index(ghost))];
+}
 
 // The ghost after ghost g along the hull (after: 1) or before it (after: 0).
-inline int adjacent_ghost(__global const int *tri_neighbor, VertexTriple ghost, int g, int after) {
+static inline int adjacent_ghost(__global const int *tri_neighbor, VertexTriple ghost, int g,
+                                 int after) {
   const int k = infinite_index(ghost);
   return link_triangle(tri_neighbor[3 * g + (after ? prev3(k) : next3(k))]);
 }
 
 // |v|^2 in plain floating point, no fused multiply-add (FP_CONTRACT OFF).
-inline double squared_length(double2 v) { return v.x * v.x + v.y * v.y; }
+static inline double squared_length(double2 v) { return v.x * v.x + v.y * v.y; }
 
 // How far apart two points near p and q may lie and still be the same point
 // to the arithmetic: four units in the last place of their largest
 // coordinate (the noise within which constraint insertion snaps crossings).
-inline double rounding_noise(double2 p, double2 q) {
+static inline double rounding_noise(double2 p, double2 q) {
   return 4 * DBL_EPSILON * fmax(fmax(fabs(p.x), fabs(p.y)), fmax(fabs(q.x), fabs(q.y)));
 }
 
 // Are p and q within `noise` of each other (in each coordinate)?
-inline bool indistinct(double2 p, double2 q, double noise) {
+static inline bool indistinct(double2 p, double2 q, double noise) {
   return fabs(p.x - q.x) <= noise && fabs(p.y - q.y) <= noise;
 }
 
 // Do corners p[0..2] lie within rounding noise of the line of their longest
 // edge? Such a triangle is flat: a sliver made by rounding.
-inline bool flat_corners(const double2 *p) {
+static inline bool flat_corners(const double2 *p) {
   const double2 d1 = p[1] - p[0], d2 = p[2] - p[0], d3 = p[2] - p[1];
   const double twice_area = d1.x * d2.y - d1.y * d2.x;
   const double longest2 = fmax(fmax(squared_length(d1), squared_length(d2)), squared_length(d3));
@@ -154,19 +159,19 @@ inline bool flat_corners(const double2 *p) {
   return fabs(twice_area) <= noise * sqrt(longest2);
 }
 
-inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
+static inline int orient_vertices(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y);
 }
 
-inline int orient_point(__global const double2 *points, int a, int b, double2 p) {
+static inline int orient_point(__global const double2 *points, int a, int b, double2 p) {
   const double2 pa = points[a], pb = points[b];
   return clm_orient2d(pa.x, pa.y, pb.x, pb.y, p.x, p.y);
 }
 
 // Is p strictly inside the circumcircle of the real (counter-clockwise)
 // triangle tri? Exact.
-inline bool circumcircle_holds(__global const double2 *points, VertexTriple tri, double2 p) {
+static inline bool circumcircle_holds(__global const double2 *points, VertexTriple tri, double2 p) {
   const double2 pa = points[tri.v[0]], pb = points[tri.v[1]], pc = points[tri.v[2]];
   return clm_incircle(pa.x, pa.y, pb.x, pb.y, pc.x, pc.y, p.x, p.y) > 0;
 }
@@ -185,8 +190,8 @@ typedef struct {
 // One step of a walk in the real triangle tri: the first edge, counted from
 // edge `first`, that separates p from it, or -1 when p is in it (then
 // `result` says where: inside, on an edge, or at a vertex).
-inline int edge_to_cross(__global const double2 *points, VertexTriple tri, double2 p,
-                         WalkResult *result, int first) {
+static inline int edge_to_cross(__global const double2 *points, VertexTriple tri, double2 p,
+                                WalkResult *result, int first) {
   int zeros = 0, nonzero = -1, on_edge = -1;
   for (int k = 0; k < 3; ++k) {
     const int i = (first + k) % 3;
@@ -217,15 +222,17 @@ inline int edge_to_cross(__global const double2 *points, VertexTriple tri, doubl
 // breaks such cycles (the stochastic walk of Devillers, Pion and Teillaud,
 // made deterministic).
 #define CLM_PLAIN_STEPS 64
-inline int first_edge_to_test(int t, int step) {
+static inline int first_edge_to_test(int t, int step) {
   return step < CLM_PLAIN_STEPS ? 0 : (int)(((uint)t * 2654435761u ^ (uint)step) % 3u);
 }
 
 // Visibility walk from triangle t to point p, stepping across the first edge
 // that separates p from the triangle (first_edge_to_test); max_steps guards
 // against anything else.
-inline WalkResult walk_to_point(__global const double2 *points, __global const int *tri_vertex,
-                                __global const int *tri_neighbor, int t, double2 p, int max_steps) {
+static inline WalkResult walk_to_point(__global const double2 *points,
+                                       __global const int *tri_vertex,
+                                       __global const int *tri_neighbor, int t, double2 p,
+                                       int max_steps) {
   WalkResult result = {CLM_WALK_LOST, t, -1, -1};
   for (int step = 0; step < max_steps; ++step) {
     const VertexTriple tri = load_vertices(tri_vertex, t);
@@ -271,8 +278,8 @@ inline WalkResult walk_to_point(__global const double2 *points, __global const i
 #define CLM_CHILDREN 3
 
 // Records that slot x was rewritten at `stamp` into the slots c0, c1, c2 (-1: none).
-inline void record_children(__global int *modified_stamp, __global int *children, int x, int stamp,
-                            int c0, int c1, int c2) {
+static inline void record_children(__global int *modified_stamp, __global int *children, int x,
+                                   int stamp, int c0, int c1, int c2) {
   modified_stamp[x] = stamp;
   children[CLM_CHILDREN * x] = c0;
   children[CLM_CHILDREN * x + 1] = c1;
@@ -281,9 +288,9 @@ inline void record_children(__global int *modified_stamp, __global int *children
 
 // Second step of every topological update: for edge `edge` of triangle t
 // (vertices p -> q), find the true neighbour across it and link both sides.
-inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighbor,
-                        __global const int *modified_stamp, __global const int *children, int stamp,
-                        int t, int edge) {
+static inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighbor,
+                               __global const int *modified_stamp, __global const int *children,
+                               int stamp, int t, int edge) {
   const int link = tri_neighbor[3 * t + edge];
   const int x = link_triangle(link);
   if (modified_stamp[x] != stamp) {
@@ -311,7 +318,7 @@ inline void relink_edge(__global const int *tri_vertex, __global int *tri_neighb
 // t = (a,d,c), u = (b,c,d); edge 0 of both is the new diagonal c-d, edges 1
 // and 2 face outwards and keep the links of the old triangles (the outer
 // neighbours' links back are the caller's). Returns u.
-inline int flip_pair(__global int *tri_vertex, __global int *tri_neighbor, int t, int i) {
+static inline int flip_pair(__global int *tri_vertex, __global int *tri_neighbor, int t, int i) {
   const int link = tri_neighbor[3 * t + i];
   const int u = link_triangle(link), j = link_edge(link);
   const int c = tri_vertex[3 * t + i], a = tri_vertex[3 * t + next3(i)],
@@ -326,9 +333,9 @@ inline int flip_pair(__global int *tri_vertex, __global int *tri_neighbor, int t
 
 // flip_pair for a parallel pass: the outer neighbours are relinked afterwards
 // with relink_edge.
-inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
-                      __global int *modified_stamp, __global int *children, int t, int i,
-                      int stamp) {
+static inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
+                             __global int *modified_stamp, __global int *children, int t, int i,
+                             int stamp) {
   const int u = flip_pair(tri_vertex, tri_neighbor, t, i);
   record_children(modified_stamp, children, t, stamp, t, u, -1);
   record_children(modified_stamp, children, u, stamp, u, t, -1);
@@ -336,8 +343,8 @@ inline void flip_edge(__global int *tri_vertex, __global int *tri_neighbor,
 
 // Is u-v a constraint? The constraints are stored per vertex (both
 // directions) in compressed rows: constraint_adjacent[start[u] .. start[u+1]).
-inline bool is_constraint(__global const int *constraint_start,
-                          __global const int *constraint_adjacent, int u, int v) {
+static inline bool is_constraint(__global const int *constraint_start,
+                                 __global const int *constraint_adjacent, int u, int v) {
   if (u < 0 || v < 0)
     return false;
   for (int k = constraint_start[u]; k < constraint_start[u + 1]; ++k)
@@ -355,7 +362,8 @@ inline bool is_constraint(__global const int *constraint_start,
 // floating-point filter, which may answer CLM_UNCERTAIN, or with `exact` the
 // exact, perturbed predicate, which never does (thesis §3.6.3: the uncertain
 // ones go to a second kernel).
-inline int incircle_verdict(__global const double2 *points, int c, int a, int b, int d, int exact) {
+static inline int incircle_verdict(__global const double2 *points, int c, int a, int b, int d,
+                                   int exact) {
   const double2 pc = points[c], pa = points[a], pb = points[b], pd = points[d];
   const int inside = exact ? clm_incircle_sos_exact(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y)
                            : clm_incircle_filter(pc.x, pc.y, pa.x, pa.y, pb.x, pb.y, pd.x, pd.y);
@@ -370,9 +378,10 @@ inline int incircle_verdict(__global const double2 *points, int c, int a, int b,
 // fixed_boundary (refinement) no ghost edge flips. Constraints never flip
 // (constrained: whether the mesh has any; thesis §4.2 step 3). Real edges take
 // the in-circle test (incircle_verdict).
-inline int edge_must_flip(__global const double2 *points, __global const int *constraint_start,
-                          __global const int *constraint_adjacent, int constrained,
-                          int fixed_boundary, int c, int a, int b, int d, int exact) {
+static inline int edge_must_flip(__global const double2 *points,
+                                 __global const int *constraint_start,
+                                 __global const int *constraint_adjacent, int constrained,
+                                 int fixed_boundary, int c, int a, int b, int d, int exact) {
   if (fixed_boundary && (a == CLM_INFINITE || b == CLM_INFINITE))
     return CLM_KEEP;     // refinement: the boundary stays as split, convex or not
   if (a == CLM_INFINITE) // ghost-ghost edge at hull vertex b: flip if b is reflex

@@ -68,7 +68,7 @@ __kernel void record_vertex_triangles(__global const int *tri_vertex, __global i
 }
 
 // Is v, collinear with a-b, on the side of b (so strictly between a and b)?
-inline bool ahead(__global const double2 *points, int a, int b, int v) {
+static inline bool ahead(__global const double2 *points, int a, int b, int v) {
   const double2 pa = points[a], pb = points[b], pv = points[v];
   return (pv.x - pa.x) * (pb.x - pa.x) + (pv.y - pa.y) * (pb.y - pa.y) > 0;
 }
@@ -76,10 +76,10 @@ inline bool ahead(__global const double2 *points, int a, int b, int v) {
 // A triangle's mark: the constraint crossing it with the smallest index s,
 // and the edges s enters and leaves it through (CLM_NO_EDGE at a and b).
 #define CLM_NO_EDGE 3
-inline int mark_of(int s, int entry, int exit) { return (s << 4) | (entry << 2) | exit; }
-inline int mark_constraint_index(int mark) { return mark >> 4; }
-inline int mark_entry(int mark) { return (mark >> 2) & 3; }
-inline int mark_exit(int mark) { return mark & 3; }
+static inline int mark_of(int s, int entry, int exit) { return (s << 4) | (entry << 2) | exit; }
+static inline int mark_constraint_index(int mark) { return mark >> 4; }
+static inline int mark_entry(int mark) { return (mark >> 2) & 3; }
+static inline int mark_exit(int mark) { return mark & 3; }
 
 // Where constraint a-b leaves a: the triangle t of a's fan whose edge k
 // opposite a it crosses (CLM_FAN_EXIT), or b is a neighbour of a
@@ -91,9 +91,10 @@ inline int mark_exit(int mark) { return mark & 3; }
 #define CLM_FAN_ON_SEGMENT 2
 #define CLM_FAN_LOST 3
 
-inline int leave_endpoint(__global const double2 *points, __global const int *tri_vertex,
-                          __global const int *tri_neighbor, __global const int *vertex_triangle,
-                          int a, int b, int max_steps, int *t_out, int *k_out, int *on) {
+static inline int leave_endpoint(__global const double2 *points, __global const int *tri_vertex,
+                                 __global const int *tri_neighbor,
+                                 __global const int *vertex_triangle, int a, int b, int max_steps,
+                                 int *t_out, int *k_out, int *on) {
   const int first = vertex_triangle[a];
   int t = first, k = index_in(tri_vertex, t, a);
   for (int step = 0; step < max_steps; ++step) {
@@ -124,9 +125,9 @@ inline int leave_endpoint(__global const double2 *points, __global const int *tr
 // crosses, into the triangle u beyond it, entered through its edge *entry.
 // Returns 1 when u holds b (*t = u), -1 when u's third vertex *on lies on
 // a-b, else 0 with *t = u and *e the edge a-b leaves u through.
-inline int walk_step(__global const double2 *points, __global const int *tri_vertex,
-                     __global const int *tri_neighbor, int a, int b, int *t, int *e, int *entry,
-                     int *on) {
+static inline int walk_step(__global const double2 *points, __global const int *tri_vertex,
+                            __global const int *tri_neighbor, int a, int b, int *t, int *e,
+                            int *entry, int *on) {
   const int link = tri_neighbor[3 * *t + *e];
   const int u = link_triangle(link), j = link_edge(link);
   const int z = tri_vertex[3 * u + j];
@@ -150,14 +151,13 @@ inline int walk_step(__global const double2 *points, __global const int *tri_ver
 // Walks constraint s (see the header) and marks the triangles it crosses;
 // returns how many it marked. *pending: set when s is not yet in the mesh
 // and can be walked; *report: set when the host must look at its state.
-inline int mark_constraint(__global const double2 *points, __global const int *tri_vertex,
-                           __global const int *tri_neighbor, __global const int *vertex_triangle,
-                           __global const int *constraint_start,
-                           __global const int *constraint_adjacent, int a, int b, int s,
-                           __global int *segment_state, __global int *split_vertex,
-                           __global int *crossed_vertex, __global int *crossed_triangle,
-                           volatile __global int *constraint_mark, int max_steps, int *pending,
-                           int *report) {
+static inline int
+mark_constraint(__global const double2 *points, __global const int *tri_vertex,
+                __global const int *tri_neighbor, __global const int *vertex_triangle,
+                __global const int *constraint_start, __global const int *constraint_adjacent,
+                int a, int b, int s, __global int *segment_state, __global int *split_vertex,
+                __global int *crossed_vertex, __global int *crossed_triangle,
+                volatile __global int *constraint_mark, int max_steps, int *pending, int *report) {
   int t, e, on;
   const int fan = leave_endpoint(points, tri_vertex, tri_neighbor, vertex_triangle, a, b, max_steps,
                                  &t, &e, &on);
@@ -225,8 +225,8 @@ __kernel void mark_constraint_triangles(CLM_TRIANGULATION_PARAMS, __global const
 }
 
 // Does the open segment a-b cross the interior of triangle t?
-inline bool segment_crosses(__global const double2 *points, __global const int *tri_vertex, int t,
-                            int a, int b) {
+static inline bool segment_crosses(__global const double2 *points, __global const int *tri_vertex,
+                                   int t, int a, int b) {
   int v[3];
   for (int i = 0; i < 3; ++i)
     v[i] = tri_vertex[3 * t + i];
@@ -253,8 +253,8 @@ inline bool segment_crosses(__global const double2 *points, __global const int *
 // one vertex k of t is alone on its side of a-b (no vertex lies on a-b: those
 // split the constraint), and t being counter-clockwise, the constraint leaves
 // through the edge opposite k+1 when k is on its left, opposite k+2 otherwise.
-inline void crossing_edges(__global const double2 *points, __global const int *tri_vertex, int t,
-                           int a, int b, int *entry, int *exit) {
+static inline void crossing_edges(__global const double2 *points, __global const int *tri_vertex,
+                                  int t, int a, int b, int *entry, int *exit) {
   int side[3];
   *entry = -1;
   *exit = -1;
@@ -276,8 +276,8 @@ inline void crossing_edges(__global const double2 *points, __global const int *t
 
 // Configuration of the pair sharing edge p-q (crossed by a-b), with apexes x
 // (first triangle) and y (second), if p-q were flipped to x-y.
-inline int pair_configuration(__global const double2 *points, int p, int q, int x, int y, int a,
-                              int b) {
+static inline int pair_configuration(__global const double2 *points, int p, int q, int x, int y,
+                                     int a, int b) {
   if (orient_vertices(points, x, y, p) * orient_vertices(points, x, y, q) >= 0)
     return CLM_PAIR_CONCAVE;
   if ((x == a && y == b) || (x == b && y == a))
@@ -289,8 +289,8 @@ inline int pair_configuration(__global const double2 *points, int p, int q, int 
   return CLM_PAIR_SINGLE;
 }
 
-inline int apex_across(__global const int *tri_vertex, __global const int *tri_neighbor, int t,
-                       int e) {
+static inline int apex_across(__global const int *tri_vertex, __global const int *tri_neighbor,
+                              int t, int e) {
   const int link = tri_neighbor[3 * t + e];
   return tri_vertex[3 * link_triangle(link) + link_edge(link)];
 }
@@ -298,9 +298,9 @@ inline int apex_across(__global const int *tri_vertex, __global const int *tri_n
 // The thesis's case (0: case 1, 1: case 2, 2: case 3; -1: not flippable) of
 // the pair (A, C) crossing edge `exit` of A, with B the previous triangle
 // across A's edge `entry` (-1: none, or not ours).
-inline int flip_case(__global const double2 *points, __global const int *tri_vertex,
-                     __global const int *tri_neighbor, int A, int entry, int exit, int B, int a,
-                     int b) {
+static inline int flip_case(__global const double2 *points, __global const int *tri_vertex,
+                            __global const int *tri_neighbor, int A, int entry, int exit, int B,
+                            int a, int b) {
   const int p = tri_vertex[3 * A + next3(exit)], q = tri_vertex[3 * A + prev3(exit)];
   const int x = tri_vertex[3 * A + exit], y = apex_across(tri_vertex, tri_neighbor, A, exit);
   const int ac = pair_configuration(points, p, q, x, y, a, b);
@@ -368,8 +368,8 @@ __kernel void claim_runs(__global const int *run_start, __global const int *tri_
 // rewrites the triangles of `run` or of no run, so their links back may be
 // written at once; an edge facing another run waits for
 // relink_run_boundaries.
-inline bool faces_other_run(__global const int *tri_neighbor, __global const int *run_of, int t,
-                            int e, int run) {
+static inline bool faces_other_run(__global const int *tri_neighbor, __global const int *run_of,
+                                   int t, int e, int run) {
   const int x = link_triangle(tri_neighbor[3 * t + e]);
   return run_of[x] >= 0 && run_of[x] != run;
 }
@@ -377,9 +377,9 @@ inline bool faces_other_run(__global const int *tri_neighbor, __global const int
 // Reserves the log entries of the flip of edge i of t: one per outer edge
 // facing another run (*first: the first entry). Returns false when the log
 // is full (the flip is not made).
-inline bool log_room(__global const int *tri_neighbor, __global const int *run_of, int t, int i,
-                     int run, __global int *boundary_log, volatile __global int *log_count,
-                     int log_capacity, int *first) {
+static inline bool log_room(__global const int *tri_neighbor, __global const int *run_of, int t,
+                            int i, int run, __global int *boundary_log,
+                            volatile __global int *log_count, int log_capacity, int *first) {
   const int link = tri_neighbor[3 * t + i];
   const int u = link_triangle(link), j = link_edge(link);
   int foreign = 0;
@@ -398,8 +398,8 @@ inline bool log_room(__global const int *tri_neighbor, __global const int *run_o
 
 // After a flip, links the outer neighbours of the new triangle t back to it,
 // or logs the edges that face another run.
-inline void link_outer_edges(__global int *tri_neighbor, __global const int *run_of, int run, int t,
-                             __global int *boundary_log, int *next_entry) {
+static inline void link_outer_edges(__global int *tri_neighbor, __global const int *run_of, int run,
+                                    int t, __global int *boundary_log, int *next_entry) {
   for (int e = 1; e < 3; ++e) {
     if (faces_other_run(tri_neighbor, run_of, t, e, run)) {
       boundary_log[(*next_entry)++] = encode_link(t, e);
@@ -477,12 +477,12 @@ __kernel void flip_along_runs(CLM_TRIANGULATION_PARAMS, __global const int *run_
 // logged edge p-q (triangle t, edge e) links to where its twin q-p was before
 // the pass; if the twin is still there, both are linked at once, otherwise the
 // two sides meet in a hash table keyed by the edge (open addressing).
-inline uint edge_hash(int p, int q) {
+static inline uint edge_hash(int p, int q) {
   const uint lo = (uint)min(p, q), hi = (uint)max(p, q);
   return (lo * 0x9E3779B1u) ^ (hi * 0x85EBCA77u) ^ (hi >> 15);
 }
 
-inline bool holds_edge(__global const int *tri_vertex, int t, int e, int from, int to) {
+static inline bool holds_edge(__global const int *tri_vertex, int t, int e, int from, int to) {
   return tri_vertex[3 * t + next3(e)] == from && tri_vertex[3 * t + prev3(e)] == to;
 }
 

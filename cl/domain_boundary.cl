@@ -14,13 +14,13 @@
 #include "vertex_star.h"
 
 // Is edge e of kept triangle t on the domain's boundary?
-inline bool on_boundary(__global const int *tri_vertex, __global const int *tri_neighbor,
-                        __global const int *removed, int t, int e) {
+static inline bool on_boundary(__global const int *tri_vertex, __global const int *tri_neighbor,
+                               __global const int *removed, int t, int e) {
   const int u = link_triangle(tri_neighbor[3 * t + e]);
   return removed[u] || is_ghost(load_vertices(tri_vertex, u));
 }
 
-inline bool is_kept(__global const int *tri_vertex, __global const int *removed, int t) {
+static inline bool is_kept(__global const int *tri_vertex, __global const int *removed, int t) {
   const VertexTriple tri = load_vertices(tri_vertex, t);
   return !removed[t] && !is_dead(tri) && !is_ghost(tri);
 }
@@ -39,9 +39,9 @@ __kernel void count_boundary_edges(CLM_TRIANGULATION_PARAMS, __global const int 
 }
 
 // The ghost slot of boundary edge e of kept triangle t.
-inline int ghost_slot(__global const int *tri_vertex, __global const int *tri_neighbor,
-                      __global const int *removed, __global const int *offset, int first_ghost,
-                      int t, int e) {
+static inline int ghost_slot(__global const int *tri_vertex, __global const int *tri_neighbor,
+                             __global const int *removed, __global const int *offset,
+                             int first_ghost, int t, int e) {
   int rank = 0;
   for (int i = 0; i < e; ++i)
     rank += on_boundary(tri_vertex, tri_neighbor, removed, t, i);
@@ -51,8 +51,9 @@ inline int ghost_slot(__global const int *tri_vertex, __global const int *tri_ne
 // The boundary edge that ends at vertex p next counter-clockwise around p from
 // kept triangle t (p at index k), as encode_link(triangle, edge): the ghost on
 // it follows the ghost on the edge of t that starts at p.
-inline int boundary_edge_into(__global const int *tri_vertex, __global const int *tri_neighbor,
-                              __global const int *removed, int t, int p, int max_steps) {
+static inline int boundary_edge_into(__global const int *tri_vertex,
+                                     __global const int *tri_neighbor, __global const int *removed,
+                                     int t, int p, int max_steps) {
   for (int step = 0; step < max_steps; ++step) {
     const int k = index_in(tri_vertex, t, p);
     if (on_boundary(tri_vertex, tri_neighbor, removed, t, next3(k)))
@@ -63,8 +64,9 @@ inline int boundary_edge_into(__global const int *tri_vertex, __global const int
 }
 
 // The boundary edge that starts at vertex q next clockwise around q from t.
-inline int boundary_edge_out_of(__global const int *tri_vertex, __global const int *tri_neighbor,
-                                __global const int *removed, int t, int q, int max_steps) {
+static inline int boundary_edge_out_of(__global const int *tri_vertex,
+                                       __global const int *tri_neighbor,
+                                       __global const int *removed, int t, int q, int max_steps) {
   for (int step = 0; step < max_steps; ++step) {
     const int k = index_in(tri_vertex, t, q);
     if (on_boundary(tri_vertex, tri_neighbor, removed, t, prev3(k)))

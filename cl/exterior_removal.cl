@@ -9,18 +9,18 @@
 #include "common.h"
 #include "mesh_params.h"
 
-inline void claim(__global int *removed, __global int *frontier, volatile __global int *count,
-                  int t) {
+static inline void claim(__global int *removed, __global int *frontier,
+                         volatile __global int *count, int t) {
   if (atomic_xchg(&removed[t], 1) == 0)
     frontier[atomic_inc(count)] = t;
 }
 
 // The real triangle across edge e of t, or -1 when that edge is a constraint,
 // the hull, or leads to a removed triangle: where a flood may go.
-inline int flood_neighbor(__global const int *tri_vertex, __global const int *tri_neighbor,
-                          __global const int *constraint_start,
-                          __global const int *constraint_adjacent, __global const int *removed,
-                          int t, int e) {
+static inline int flood_neighbor(__global const int *tri_vertex, __global const int *tri_neighbor,
+                                 __global const int *constraint_start,
+                                 __global const int *constraint_adjacent,
+                                 __global const int *removed, int t, int e) {
   const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
   const int u = link_triangle(tri_neighbor[3 * t + e]);
   if (is_ghost(load_vertices(tri_vertex, u)) || removed[u] ||
@@ -63,7 +63,7 @@ __kernel void remove_unlabelled(CLM_TRIANGULATION_PARAMS, __global const int *la
 // The real triangle holding seed p; CLM_SEED_OUTSIDE outside the hull,
 // CLM_SEED_ON_SEGMENT on a segment or at one of its vertices. A seed on an
 // edge that is no segment may start on either side: the flood crosses it.
-inline int seed_triangle(CLM_TRIANGULATION_PARAMS, double2 p, int start, int max_steps) {
+static inline int seed_triangle(CLM_TRIANGULATION_PARAMS, double2 p, int start, int max_steps) {
   const WalkResult walk = walk_to_point(points, tri_vertex, tri_neighbor, start, p, max_steps);
   const int t = walk.triangle;
   if (walk.outcome == CLM_WALK_LOST)
@@ -116,8 +116,8 @@ __kernel void seed_label(CLM_TRIANGULATION_PARAMS, __global const int *removed, 
 // Whether wave-front triangle t claims its neighbour u (>= 0): for removal
 // (region < 0) or for region `region` (a later region takes over an earlier
 // one's triangle). Each triangle is claimed once per flood, whatever the order.
-inline bool claim_for_flood(int u, volatile __global int *removed, int region,
-                            volatile __global int *label) {
+static inline bool claim_for_flood(int u, volatile __global int *removed, int region,
+                                   volatile __global int *label) {
   return u >= 0 &&
          (region < 0 ? atomic_xchg(&removed[u], 1) == 0 : atomic_xchg(&label[u], region) != region);
 }

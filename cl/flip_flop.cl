@@ -72,8 +72,8 @@
 // The triangles around p, counter-clockwise, in star[0 .. 3] when there are
 // three or four, all real (star[3] = -1 for three). Returns the
 // count, or 0 for a larger star or one touching the hull.
-inline int small_star(__global const int *tri_vertex, __global const int *tri_neighbor, int t,
-                      int p, int *star) {
+static inline int small_star(__global const int *tri_vertex, __global const int *tri_neighbor,
+                             int t, int p, int *star) {
   star[3] = -1;
   int s = t, degree = 0;
   for (int step = 0; step < 4 && degree == 0; ++step) {
@@ -102,8 +102,8 @@ inline int small_star(__global const int *tri_vertex, __global const int *tri_ne
 // Can p, with the small star found above, be deleted in one flip? Always with
 // three triangles; with four only when p lies on a diagonal x0-x2 or x1-x3 of
 // its star (then no flop can lower its degree): *diagonal = 0 or 1.
-inline bool removable(__global const double2 *points, __global const int *tri_vertex, int p,
-                      const int *star, int degree, int *diagonal) {
+static inline bool removable(__global const double2 *points, __global const int *tri_vertex, int p,
+                             const int *star, int degree, int *diagonal) {
   *diagonal = 0;
   if (degree == 3)
     return true;
@@ -118,13 +118,13 @@ inline bool removable(__global const double2 *points, __global const int *tri_ve
   return orient_vertices(points, x[1], x[3], p) == 0;
 }
 
-inline int smallest_slot(const int *star) {
+static inline int smallest_slot(const int *star) {
   int m = min(star[0], min(star[1], star[2]));
   return star[3] >= 0 ? min(m, star[3]) : m;
 }
 
 // The slots a removal leaves: the smallest one (3-1), or the two smallest (4-2).
-inline void removal_slots(const int *star, int *first, int *second) {
+static inline void removal_slots(const int *star, int *first, int *second) {
   *first = smallest_slot(star);
   *second = -1;
   if (star[3] < 0)
@@ -134,16 +134,16 @@ inline void removal_slots(const int *star, int *first, int *second) {
       *second = star[k];
 }
 
-inline void load_star(__global const int *star, int gid, int *s) {
+static inline void load_star(__global const int *star, int gid, int *s) {
   for (int k = 0; k < 4; ++k)
     s[k] = star[4 * gid + k];
 }
 
 // Would connecting c and d join two points new in this iteration that cannot
 // both stay? Two midpoints always stay (each splits its own hull edge).
-inline bool dependent_pair(__global const double2 *points, __global const int *point_state,
-                           __global const double *insertion_radius2, const int orthogonal_test,
-                           int c, int d) {
+static inline bool dependent_pair(__global const double2 *points, __global const int *point_state,
+                                  __global const double *insertion_radius2,
+                                  const int orthogonal_test, int c, int d) {
   if (c < 0 || d < 0)
     return false;
   const int sc = point_state[c], sd = point_state[d];
@@ -160,8 +160,8 @@ inline bool dependent_pair(__global const double2 *points, __global const int *p
 
 // The one of a dependent pair to delete: never a midpoint; otherwise the one
 // of lower priority (larger value: a longer shortest edge), then the larger index.
-inline int redundant_one(__global const int *point_state, __global const uint *point_priority,
-                         int c, int d) {
+static inline int redundant_one(__global const int *point_state,
+                                __global const uint *point_priority, int c, int d) {
   if (point_state[c] == CLM_POINT_NEW_MIDPOINT)
     return d;
   if (point_state[d] == CLM_POINT_NEW_MIDPOINT)
@@ -180,8 +180,9 @@ inline int redundant_one(__global const int *point_state, __global const uint *p
 // predicate. Returns false, having written nothing, when the filter could
 // not tell an edge it needed (then the exact kernel proposes for t).
 // any_redundant: whether any point is redundant now.
-inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
-                              const int orthogonal_test, const int any_redundant) {
+static inline bool propose_operation(const int gid, const int exact, CLM_MESH_PARAMS,
+                                     CLM_FLIPFLOP_PARAMS, const int orthogonal_test,
+                                     const int any_redundant) {
   const int t = active[gid];
   if (t < 0)
     return true;
@@ -288,9 +289,9 @@ __kernel void flipflop_propose_exact(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
 // turned by one). The results take the smallest slots (removal_slots), the
 // other slots are emptied; every slot records the results as its children,
 // for relink_edge.
-inline void remove_point(__global const double2 *points, __global int *tri_vertex,
-                         __global int *tri_neighbor, __global int *modified_stamp,
-                         __global int *children, const int *star, int p, int stamp) {
+static inline void remove_point(__global const double2 *points, __global int *tri_vertex,
+                                __global int *tri_neighbor, __global int *modified_stamp,
+                                __global int *children, const int *star, int p, int stamp) {
   const int degree = star[3] >= 0 ? 4 : 3;
   int diagonal;
   removable(points, tri_vertex, p, star, degree, &diagonal);
@@ -320,8 +321,8 @@ inline void remove_point(__global const double2 *points, __global int *tri_verte
 // Applies the operation of entry gid if it owns every mark it wrote.
 // applied[gid]: the (first) slot that holds the result, or -1; done: this
 // work-item's Delaunay flips, flops and removals so far.
-inline void apply_operation(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, int *done,
-                            const int stamp) {
+static inline void apply_operation(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, int *done,
+                                   const int stamp) {
   const int op = operation[gid], t = active[gid];
   applied[gid] = -1;
   if (op == CLM_OP_REMOVE) {
@@ -355,11 +356,13 @@ inline void apply_operation(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, int *
 }
 
 // Prefetching for flipflop_apply and flipflop_relink (prefetch.h).
-inline void prefetch_operation(__global const int *active, __global const int *operation,
-                               __global const int *proposal, __global const int *star,
-                               __global const int *tri_vertex, __global const int *tri_neighbor,
-                               __global const int *modified_stamp, __global const int *children,
-                               volatile __global const uint *tri_mark, int gid, int n) {
+static inline void prefetch_operation(__global const int *active, __global const int *operation,
+                                      __global const int *proposal, __global const int *star,
+                                      __global const int *tri_vertex,
+                                      __global const int *tri_neighbor,
+                                      __global const int *modified_stamp,
+                                      __global const int *children,
+                                      volatile __global const uint *tri_mark, int gid, int n) {
   const int k = gid + CLM_AHEAD, op = entry_ahead(operation, gid, 1, n);
   if (op == CLM_OP_DELAUNAY || op == CLM_OP_FLOP) {
     warm_rewritten(tri_vertex, tri_neighbor, modified_stamp, children, tri_mark, active[k]);
@@ -371,11 +374,11 @@ inline void prefetch_operation(__global const int *active, __global const int *o
   }
 }
 
-inline void prefetch_relink(__global const int *operation, __global const int *proposal,
-                            __global const int *star, __global const int *applied,
-                            __global const int *tri_vertex, __global const int *tri_neighbor,
-                            __global const int *modified_stamp, __global const int *children,
-                            volatile __global const uint *tri_mark, int gid, int n) {
+static inline void prefetch_relink(__global const int *operation, __global const int *proposal,
+                                   __global const int *star, __global const int *applied,
+                                   __global const int *tri_vertex, __global const int *tri_neighbor,
+                                   __global const int *modified_stamp, __global const int *children,
+                                   volatile __global const uint *tri_mark, int gid, int n) {
   const int far = gid + 2 * CLM_AHEAD, t_far = entry_ahead(applied, gid, 2, n);
   if (t_far >= 0) {
     const bool removal = operation[far] == CLM_OP_REMOVE;
@@ -414,9 +417,9 @@ __kernel void flipflop_apply(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int sta
 // Entries passed to the next list (count[gid]): the triangles an operation
 // produced, or the proposer itself when its operation was not applied and
 // its triangle was not rewritten by another's.
-inline int next_entries(__global const int *active, __global const int *operation,
-                        __global const int *star, __global const int *applied,
-                        __global const int *modified_stamp, int stamp, int gid) {
+static inline int next_entries(__global const int *active, __global const int *operation,
+                               __global const int *star, __global const int *applied,
+                               __global const int *modified_stamp, int stamp, int gid) {
   const int op = operation[gid];
   if (applied[gid] >= 0)
     return op == CLM_OP_REMOVE && star[4 * gid + 3] < 0 ? 1 : 2;
@@ -425,10 +428,10 @@ inline int next_entries(__global const int *active, __global const int *operatio
 
 // This pass's marks and removal claims are cleared (apply, the last kernel to
 // read them, has run).
-inline void clear_pass_marks(__global const int *active, __global const int *operation,
-                             __global const int *proposal, __global const int *star,
-                             volatile __global uint *tri_mark, volatile __global int *removal_claim,
-                             int gid) {
+static inline void clear_pass_marks(__global const int *active, __global const int *operation,
+                                    __global const int *proposal, __global const int *star,
+                                    volatile __global uint *tri_mark,
+                                    volatile __global int *removal_claim, int gid) {
   const int op = operation[gid];
   if (op == CLM_OP_REMOVE) {
     int s[4];
@@ -444,7 +447,7 @@ inline void clear_pass_marks(__global const int *active, __global const int *ope
 }
 
 // Entry gid's count of next entries, its marks cleared, its results linked.
-inline void relink_results(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp) {
+static inline void relink_results(int gid, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp) {
   count[gid] = next_entries(active, operation, star, applied, modified_stamp, stamp, gid);
   clear_pass_marks(active, operation, proposal, star, tri_mark, removal_claim, gid);
   if (applied[gid] < 0)
@@ -482,7 +485,7 @@ __kernel void flipflop_relink(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int st
 }
 
 // Entry gid's results (or itself) at next_active[offset[gid] ..].
-inline void gather_results(int gid, CLM_FLIPFLOP_PARAMS) {
+static inline void gather_results(int gid, CLM_FLIPFLOP_PARAMS) {
   if (count[gid] == 0)
     return;
   const int o = offset[gid];
@@ -513,7 +516,7 @@ __kernel void flipflop_gather_next(CLM_FLIPFLOP_PARAMS, const int n) {
 // routine marked): the ones marked in this pass become redundant; every redundant point finds a
 // triangle of its star again (its anchor may have been rewritten in this pass: then one of the
 // slot's children holds it) and counts its star in star_size[k] (0 for the others).
-inline void track_point(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp) {
+static inline void track_point(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int stamp) {
   star_size[k] = 0;
   const int p = tracked[k];
   if (redundant_mark[p]) {
@@ -556,7 +559,7 @@ __kernel void track_redundant_points(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const
 
 // Appends the star of every redundant point to the next active list at
 // next_active[base + star_offset[k] ..] (Algorithm 3.2, lines 6-10).
-inline void emit_star(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int base) {
+static inline void emit_star(int k, CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int base) {
   if (star_size[k] == 0)
     return;
   const int p = tracked[k];
@@ -585,11 +588,11 @@ __kernel void emit_redundant_stars(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const i
 // entries in next_active, points marked, stars listed (-1: not looked for,
 // -2: no room for them), the next list's length), the same to every
 // work-item; exact proposals are added to exact[0].
-inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test,
-                          const int any_redundant, const int next_capacity, const int m,
-                          const int find_stars, __global int *rewritten, const int rewritten_size,
-                          __local int *scratch, volatile __global int *exact_total, const int stamp,
-                          const int n) {
+static inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthogonal_test,
+                                 const int any_redundant, const int next_capacity, const int m,
+                                 const int find_stars, __global int *rewritten,
+                                 const int rewritten_size, __local int *scratch,
+                                 volatile __global int *exact_total, const int stamp, const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
   if (lid == 0)
     marked_count[0] = 0;
@@ -651,8 +654,8 @@ inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int orthog
 // stars where neither a flop nor a removal is possible): the tracked point
 // k, when redundant, is kept, as a Steiner point of earlier iterations,
 // after its star was listed.
-inline void keep_stuck_point(__global const int *tracked, __global int *point_state,
-                             volatile __global int *totals, int k) {
+static inline void keep_stuck_point(__global const int *tracked, __global int *point_state,
+                                    volatile __global int *totals, int k) {
   if (point_state[tracked[k]] == CLM_POINT_REDUNDANT) {
     point_state[tracked[k]] = CLM_POINT_STEINER;
     atomic_inc(&totals[CLM_TOTAL_KEPT]);
@@ -668,8 +671,8 @@ __kernel void keep_stuck_points(__global const int *tracked, __global int *point
 
 // End of an iteration: its points become points of earlier iterations;
 // the surviving hull midpoints are counted in totals.
-inline void finish_point(__global const int *new_points, __global int *point_state,
-                         volatile __global int *totals, int k) {
+static inline void finish_point(__global const int *new_points, __global int *point_state,
+                                volatile __global int *totals, int k) {
   const int p = new_points[k], state = point_state[p];
   if (state == CLM_POINT_NEW_MIDPOINT) {
     atomic_inc(&totals[CLM_TOTAL_MIDPOINTS]);

@@ -26,8 +26,8 @@ __kernel void flip_mark_active(__global const int *active, __global int *active_
 // The proposal of triangle t (-1 when none): its first flippable edge i (bits:
 // the edges that must flip), keyed 3t + i; both triangles of the edge take
 // atomic minimum of the key.
-inline int propose_flip(__global const int *tri_neighbor, volatile __global uint *tri_mark, int t,
-                        int bits) {
+static inline int propose_flip(__global const int *tri_neighbor, volatile __global uint *tri_mark,
+                               int t, int bits) {
   if (t < 0 || bits == 0)
     return -1;
   const int i = (bits & 1) ? 0 : ((bits & 2) ? 1 : 2);
@@ -42,10 +42,11 @@ inline int propose_flip(__global const int *tri_neighbor, volatile __global uint
 // i, and bit 3+i for an edge the filter could not tell. An edge between two
 // listed triangles is tested once, by the smaller one (thesis §3.3.2,
 // Algorithm 3.1 line 8).
-inline int check_triangle(int t, __global const double2 *points, __global const int *tri_vertex,
-                          __global const int *tri_neighbor, __global const int *constraint_start,
-                          __global const int *constraint_adjacent, int constrained,
-                          int fixed_boundary, __global const int *active_round, int round) {
+static inline int check_triangle(int t, __global const double2 *points,
+                                 __global const int *tri_vertex, __global const int *tri_neighbor,
+                                 __global const int *constraint_start,
+                                 __global const int *constraint_adjacent, int constrained,
+                                 int fixed_boundary, __global const int *active_round, int round) {
   int bits = 0;
   const VertexTriple tri = t >= 0 ? load_vertices(tri_vertex, t) : (VertexTriple){{CLM_DEAD}};
   if (t >= 0 && !is_dead(tri)) {
@@ -68,8 +69,9 @@ inline int check_triangle(int t, __global const double2 *points, __global const 
 // check_triangle's bits with the uncertain edges decided by the exact,
 // perturbed in-circle test (only real edges that are not constraints are
 // uncertain).
-inline int resolve_uncertain(int t, int bits, __global const double2 *points,
-                             __global const int *tri_vertex, __global const int *tri_neighbor) {
+static inline int resolve_uncertain(int t, int bits, __global const double2 *points,
+                                    __global const int *tri_vertex,
+                                    __global const int *tri_neighbor) {
   for (int i = 0; i < 3; ++i)
     if (bits & (8 << i)) {
       const int link = tri_neighbor[3 * t + i];
@@ -84,9 +86,9 @@ inline int resolve_uncertain(int t, int bits, __global const double2 *points,
 
 // Flips proposal prop of triangle t when it owns both marks (see
 // flip_edge); returns whether it did.
-inline int apply_proposal(int t, int prop, volatile __global const uint *tri_mark,
-                          __global int *tri_vertex, __global int *tri_neighbor,
-                          __global int *modified_stamp, __global int *children, int stamp) {
+static inline int apply_proposal(int t, int prop, volatile __global const uint *tri_mark,
+                                 __global int *tri_vertex, __global int *tri_neighbor,
+                                 __global int *modified_stamp, __global int *children, int stamp) {
   if (prop < 0)
     return 0;
   const int u = link_triangle(prop), i = link_edge(prop);
@@ -102,10 +104,10 @@ inline int apply_proposal(int t, int prop, volatile __global const uint *tri_mar
 // listed[] what goes to the next pass: both sides of a flip, or a proposer
 // whose flip lost (a triangle flipped by a neighbour is listed by that
 // neighbour; a happy one leaves). Returns how many were listed.
-inline int relink_and_list(int t, int prop, int flipped, __global const int *tri_vertex,
-                           __global int *tri_neighbor, __global const int *modified_stamp,
-                           __global const int *children, volatile __global uint *tri_mark,
-                           int stamp, int *listed) {
+static inline int relink_and_list(int t, int prop, int flipped, __global const int *tri_vertex,
+                                  __global int *tri_neighbor, __global const int *modified_stamp,
+                                  __global const int *children, volatile __global uint *tri_mark,
+                                  int stamp, int *listed) {
   if (prop < 0)
     return 0;
   const int u = link_triangle(prop);

@@ -5,7 +5,7 @@
 #define CLMESH_GROUP_SCAN_H
 
 // Hillis-Steele inclusive scan of scratch[0 .. size), one entry per work-item.
-inline void local_inclusive_scan(__local int *scratch, int lid, int size) {
+static inline void local_inclusive_scan(__local int *scratch, int lid, int size) {
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int offset = 1; offset < size; offset <<= 1) {
     const int add = lid >= offset ? scratch[lid - offset] : 0;
@@ -18,14 +18,15 @@ inline void local_inclusive_scan(__local int *scratch, int lid, int size) {
 // A run of consecutive entries, by one work-item: the sum of in[first ..
 // end), and its exclusive scan from `running` into out (returns the sum
 // after the run; each entry is read before out is written).
-inline int sum_run(__global const int *in, int first, int end) {
+static inline int sum_run(__global const int *in, int first, int end) {
   int sum = 0;
   for (int i = first; i < end; ++i)
     sum += in[i];
   return sum;
 }
 
-inline int scan_run(__global const int *in, __global int *out, int first, int end, int running) {
+static inline int scan_run(__global const int *in, __global int *out, int first, int end,
+                           int running) {
   for (int i = first; i < end; ++i) {
     const int count = in[i];
     out[i] = running;
@@ -36,8 +37,8 @@ inline int scan_run(__global const int *in, __global int *out, int first, int en
 
 // out[i] = in[0] + .. + in[i - 1] for i < n, by the whole group (each
 // work-item a run of consecutive entries); returns the total to all.
-inline int group_exclusive_scan(__global const int *in, __global int *out, int n,
-                                __local int *scratch) {
+static inline int group_exclusive_scan(__global const int *in, __global int *out, int n,
+                                       __local int *scratch) {
   const int lid = get_local_id(0), size = get_local_size(0);
   const int run = (n + size - 1) / size;
   const int first = min(lid * run, n), end = min(first + run, n);
@@ -52,17 +53,18 @@ inline int group_exclusive_scan(__global const int *in, __global int *out, int n
 
 // Duplicate removal (PrefixScan::unique): the first entry of each slot
 // takes the slot's mark, is kept, and clears the mark as it moves to its place.
-inline void mark_first_entry(__global const int *list, volatile __global uint *marks, int i) {
+static inline void mark_first_entry(__global const int *list, volatile __global uint *marks,
+                                    int i) {
   if (list[i] >= 0)
     atomic_min(&marks[list[i]], (uint)i);
 }
 
-inline int is_first_entry(__global const int *list, __global const uint *marks, int i) {
+static inline int is_first_entry(__global const int *list, __global const uint *marks, int i) {
   return list[i] >= 0 && marks[list[i]] == (uint)i;
 }
 
-inline void move_first_entry(__global const int *list, __global const int *offset,
-                             __global uint *marks, __global int *out, int i) {
+static inline void move_first_entry(__global const int *list, __global const int *offset,
+                                    __global uint *marks, __global int *out, int i) {
   out[offset[i]] = list[i];
   marks[list[i]] = 0xffffffffu;
 }
@@ -70,9 +72,9 @@ inline void move_first_entry(__global const int *list, __global const int *offse
 // The same inside one group: out receives list[0 .. n) without negative
 // entries and repeats, in list order; marks (all clear before and after) and
 // keep/offset are scratch. Returns the length.
-inline int group_unique(__global const int *list, int n, volatile __global uint *marks,
-                        __global int *keep, __global int *offset, __global int *out,
-                        __local int *scratch) {
+static inline int group_unique(__global const int *list, int n, volatile __global uint *marks,
+                               __global int *keep, __global int *offset, __global int *out,
+                               __local int *scratch) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int i = lid; i < n; i += size)
     mark_first_entry(list, marks, i);

@@ -26,10 +26,10 @@
 // neighbours in the diametral circle of a-b, claimed (step CLAIM) by
 // midpoint k, or marked and counted from `count` on (COUNT, WRITE) when k
 // holds the claim. Returns the count so far.
-inline int mark_around_apex(CLM_MESH_PARAMS, int k, int step, int t, int a, int b, int c,
-                            volatile __global int *claim, __global int *redundant_mark,
-                            __global int *redundant_anchor, __global const int *offset,
-                            __global int *tracked, int first, int count) {
+static inline int mark_around_apex(CLM_MESH_PARAMS, int k, int step, int t, int a, int b, int c,
+                                   volatile __global int *claim, __global int *redundant_mark,
+                                   __global int *redundant_anchor, __global const int *offset,
+                                   __global int *tracked, int first, int count) {
   int s = t, q = c;
   for (int around = 0; around < 64; ++around) {
     if (q >= 0) {
@@ -61,17 +61,18 @@ inline int mark_around_apex(CLM_MESH_PARAMS, int k, int step, int t, int a, int 
 }
 
 // Does w lie on segment sv (added on it, or one of its ends)?
-inline bool on_segment(__global const int *point_segment, __global const int *segment_end, int sv,
-                       int w) {
+static inline bool on_segment(__global const int *point_segment, __global const int *segment_end,
+                              int sv, int w) {
   return w >= 0 &&
          (point_segment[w] == sv || segment_end[2 * sv] == w || segment_end[2 * sv + 1] == w);
 }
 
 // Midpoint k's step of the routine (the three steps above).
-inline void mark_encroaching(int k, CLM_MESH_PARAMS, __global const int *new_points, const int step,
-                             volatile __global int *claim, __global int *redundant_mark,
-                             __global int *redundant_anchor, __global int *owned,
-                             __global const int *offset, __global int *tracked, const int first) {
+static inline void mark_encroaching(int k, CLM_MESH_PARAMS, __global const int *new_points,
+                                    const int step, volatile __global int *claim,
+                                    __global int *redundant_mark, __global int *redundant_anchor,
+                                    __global int *owned, __global const int *offset,
+                                    __global int *tracked, const int first) {
   const int v = new_points[k];
   if (step == CLM_ENCROACH_COUNT)
     owned[k] = 0;

@@ -114,13 +114,14 @@ __kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_nei
   }
 }
 
-inline bool triangle_before(__global const int *out_vertex, int s, int t) {
+static inline bool triangle_before(__global const int *out_vertex, int s, int t) {
   const int s1 = out_vertex[3 * s + 1], t1 = out_vertex[3 * t + 1];
   return s1 < t1 || (s1 == t1 && out_vertex[3 * s + 2] < out_vertex[3 * t + 2]);
 }
 
 // Moves the root of the max-heap bucket[0 .. size) down to its place.
-inline void sift_down(__global const int *out_vertex, __global int *bucket, int root, int size) {
+static inline void sift_down(__global const int *out_vertex, __global int *bucket, int root,
+                             int size) {
   const int t = bucket[root];
   for (int child = 2 * root + 1; child < size; child = 2 * root + 1) {
     if (child + 1 < size && triangle_before(out_vertex, bucket[child], bucket[child + 1]))

@@ -49,8 +49,9 @@ __kernel void locate_points(CLM_TRIANGULATION_PARAMS, const int since,
 // to `g` on side `dir` (0: after, 1: before) that it is strictly outside of,
 // in turn. Returns the next such ghost, or -1 (also back at `start`, which a
 // convex hull never allows).
-inline int next_visible_ghost(__global const double2 *points, __global const int *tri_vertex,
-                              __global const int *tri_neighbor, int g, int start, int p, int dir) {
+static inline int next_visible_ghost(__global const double2 *points, __global const int *tri_vertex,
+                                     __global const int *tri_neighbor, int g, int start, int p,
+                                     int dir) {
   const int h = adjacent_ghost(tri_neighbor, load_vertices(tri_vertex, g), g, dir == 0);
   const VertexTriple next = load_vertices(tri_vertex, h);
   return h != start && orient_vertices(points, ghost_edge_end(next), ghost_edge_start(next), p) > 0
@@ -61,8 +62,8 @@ inline int next_visible_ghost(__global const double2 *points, __global const int
 // Marks the triangle(s) each pending point would split with its priority.
 // placed: the points were not walked to (no locate_points), all pending
 // where they stand; their status is set here.
-inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                           __global int *status, const int placed) {
+static inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                  __global int *status, const int placed) {
   if (placed)
     status[gid] = CLM_PENDING;
   else if (status[gid] != CLM_PENDING)
@@ -87,8 +88,8 @@ __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *rema
 }
 
 // winner[gid] = 1 when every mark written by the point survived.
-inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                          __global const int *status, __global int *winner) {
+static inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                 __global const int *status, __global int *winner) {
   int wins = 0;
   if (status[gid] == CLM_PENDING) {
     const int p = remaining[gid], t = location[p], edge = location_edge[p];
@@ -113,8 +114,8 @@ __kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remai
 }
 
 // Clears the marks of this round (before the topology changes).
-inline void clear_container_mark(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                 __global const int *status) {
+static inline void clear_container_mark(int gid, CLM_TRIANGULATION_PARAMS,
+                                        __global const int *remaining, __global const int *status) {
   if (status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
@@ -137,11 +138,11 @@ __kernel void clear_container_marks(CLM_TRIANGULATION_PARAMS, __global const int
 
 // Prefetching for split_triangles (prefetch.h): a winner's location, then
 // the triangle it splits.
-inline void prefetch_split(__global const int *remaining, __global const int *winner,
-                           __global const int *location, __global const int *location_edge,
-                           __global const int *tri_vertex, __global const int *tri_neighbor,
-                           __global const int *modified_stamp, __global const int *children,
-                           int gid, int n) {
+static inline void prefetch_split(__global const int *remaining, __global const int *winner,
+                                  __global const int *location, __global const int *location_edge,
+                                  __global const int *tri_vertex, __global const int *tri_neighbor,
+                                  __global const int *modified_stamp, __global const int *children,
+                                  int gid, int n) {
   const int far = gid + 2 * CLM_AHEAD, p_far = entry_ahead(remaining, gid, 2, n);
   if (p_far >= 0 && winner[far]) {
     warm(location + p_far);
@@ -162,10 +163,10 @@ inline void prefetch_split(__global const int *remaining, __global const int *wi
 // allocate_slot); every child has the new point at index 2,
 // so its edge 2 is the only one facing outwards. Children are listed in
 // changed[4 * winner_offset .. +3] (-1 when unused) for relinking and flipping.
-inline void split_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                         __global const int *winner_offset, __global int *changed, const int stamp,
-                         __global const int *free_list, const int free_first, const int free_count,
-                         const int first_slot) {
+static inline void split_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
+                                __global const int *winner_offset, __global int *changed,
+                                const int stamp, __global const int *free_list,
+                                const int free_first, const int free_count, const int first_slot) {
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
   const int s1 =
       allocate_slot(free_list, free_first, free_count, first_slot, 2 * winner_offset[gid]);
@@ -252,8 +253,8 @@ __kernel void relink_split_children(CLM_TRIANGULATION_PARAMS, __global const int
 // keep[gid] = 1 for points still waiting (neither inserted nor duplicate);
 // counts lost walks, which would be a bug, in counters[0]. Reads what
 // select_winners leaves. Returns keep[gid].
-inline int count_waiting(int gid, __global const int *status, __global const int *winner,
-                         __global int *keep, volatile __global int *counters) {
+static inline int count_waiting(int gid, __global const int *status, __global const int *winner,
+                                __global int *keep, volatile __global int *counters) {
   const int waiting = status[gid] == CLM_PENDING && !winner[gid];
   keep[gid] = waiting;
   if (status[gid] == CLM_LOST)

@@ -32,7 +32,7 @@
 // its inverse):
 // the top bit is free to rank off-centers after midpoints.
 #define CLM_OFFCENTER_RANK 0x80000000u
-inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCENTER_RANK); }
+static inline bool is_midpoint_priority(uint priority) { return !(priority & CLM_OFFCENTER_RANK); }
 // A tie mark with no candidate (the host fills tie_mark with it too).
 #define CLM_NO_CANDIDATE 0x7fffffff
 
@@ -83,7 +83,7 @@ __kernel void flag_hull_vertices(CLM_MESH_PARAMS, const int acute_bound, const d
 }
 
 // Whether a corner of the triangle is a hull vertex.
-inline bool touches_hull(__global const int *point_state, VertexTriple tri) {
+static inline bool touches_hull(__global const int *point_state, VertexTriple tri) {
   return on_hull(point_state[tri.v[0]]) || on_hull(point_state[tri.v[1]]) ||
          on_hull(point_state[tri.v[2]]);
 }
@@ -110,8 +110,9 @@ typedef struct {
 // angle, at the same distance from where they meet? Then the triangle's small
 // angle is the input's, and splitting it would only cut the shells around that
 // vertex finer (Triangle leaves such triangles too).
-inline bool across_input_angle(__global const double2 *points, __global const int *point_segment,
-                               __global const int *segment_end, int x, int y) {
+static inline bool across_input_angle(__global const double2 *points,
+                                      __global const int *point_segment,
+                                      __global const int *segment_end, int x, int y) {
   const int sx = point_segment[x], sy = point_segment[y];
   if (sx < 0 || sy < 0 || sx == sy)
     return false;
@@ -128,7 +129,7 @@ inline bool across_input_angle(__global const double2 *points, __global const in
 }
 
 // The tighter of two area bounds (<= 0: none).
-inline double tighter_bound(double a, double b) {
+static inline double tighter_bound(double a, double b) {
   if (b <= 0)
     return a;
   return a > 0 ? fmin(a, b) : b;
@@ -138,9 +139,10 @@ inline double tighter_bound(double a, double b) {
 // regions, its region's (region_area, <= 0: none); with a sizing field or
 // callback (sized), the slot's own (size_bound, size_bound.cl): the
 // tightest.
-inline double area_bound_of(__global const int *tri_region, int regional,
-                            __global const double *region_area, __global const double *size_bound,
-                            int sized, double max_area, int t) {
+static inline double area_bound_of(__global const int *tri_region, int regional,
+                                   __global const double *region_area,
+                                   __global const double *size_bound, int sized, double max_area,
+                                   int t) {
   const int r = regional ? tri_region[t] : -1;
   const double bound = tighter_bound(max_area, r >= 0 ? region_area[r] : -1);
   return sized ? tighter_bound(bound, size_bound[t]) : bound;
@@ -149,8 +151,8 @@ inline double area_bound_of(__global const int *tri_region, int regional,
 // Do all three corners of tri lie on one segment (at least one added on it)?
 // Rounded split points leave a segment a hair from straight, so flips may
 // make such a sliver; splitting it would only make more.
-inline bool along_one_segment(__global const int *point_segment, __global const int *segment_end,
-                              VertexTriple tri) {
+static inline bool along_one_segment(__global const int *point_segment,
+                                     __global const int *segment_end, VertexTriple tri) {
   int s = -1;
   for (int i = 0; i < 3 && s < 0; ++i)
     s = point_segment[tri.v[i]] >= 0 ? point_segment[tri.v[i]] : -1;
@@ -163,9 +165,9 @@ inline bool along_one_segment(__global const int *point_segment, __global const 
   return true;
 }
 
-inline Quality assess(__global const double2 *points, __global const int *point_state,
-                      __global const int *point_segment, __global const int *segment_end,
-                      VertexTriple tri, double ratio_bound_squared, double max_area) {
+static inline Quality assess(__global const double2 *points, __global const int *point_state,
+                             __global const int *point_segment, __global const int *segment_end,
+                             VertexTriple tri, double ratio_bound_squared, double max_area) {
   Quality q;
   for (int i = 0; i < 3; ++i)
     q.p[i] = points[tri.v[i]];
@@ -197,13 +199,13 @@ inline Quality assess(__global const double2 *points, __global const int *point_
 // search and the location both compute it, so that no per-slot copy is kept.
 // -Y (protect 1): does edge i of real triangle t lie on the domain's
 // boundary? -YY (protect 2): or on a segment? No point may split it.
-inline bool is_protected(CLM_MESH_PARAMS, int t, int i, int protect) {
+static inline bool is_protected(CLM_MESH_PARAMS, int t, int i, int protect) {
   return protect && (is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
                      (protect > 1 && subsegment_at(CLM_MESH_ARGS, t, i)));
 }
 
 // The protected edges of real triangle t, bit i for edge i.
-inline int protected_edges(CLM_MESH_PARAMS, int t, int protect) {
+static inline int protected_edges(CLM_MESH_PARAMS, int t, int protect) {
   int mask = 0;
   for (int i = 0; i < 3 && protect; ++i)
     mask |= is_protected(CLM_MESH_ARGS, t, i, protect) << i;
@@ -211,7 +213,7 @@ inline int protected_edges(CLM_MESH_PARAMS, int t, int protect) {
 }
 
 // Does c lie on or beyond (right of) an edge of triangle p[] in mask?
-inline bool beyond_edges(const double2 *p, int mask, double2 c) {
+static inline bool beyond_edges(const double2 *p, int mask, double2 c) {
   for (int i = 0; i < 3; ++i) {
     const double2 a = p[next3(i)], e = p[prev3(i)] - a, f = c - a;
     if ((mask >> i & 1) && e.x * f.y - e.y * f.x <= 0)
@@ -220,12 +222,13 @@ inline bool beyond_edges(const double2 *p, int mask, double2 c) {
   return false;
 }
 
-inline bool bad_triangle_candidate(__global const double2 *points, __global const int *point_state,
-                                   __global const int *point_segment,
-                                   __global const int *segment_end, VertexTriple tri,
-                                   double ratio_bound_squared, double max_area, double offconstant,
-                                   bool encroaching, int protected_mask, double2 *steiner,
-                                   uint *priority) {
+static inline bool bad_triangle_candidate(__global const double2 *points,
+                                          __global const int *point_state,
+                                          __global const int *point_segment,
+                                          __global const int *segment_end, VertexTriple tri,
+                                          double ratio_bound_squared, double max_area,
+                                          double offconstant, bool encroaching, int protected_mask,
+                                          double2 *steiner, uint *priority) {
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
@@ -258,15 +261,15 @@ inline bool bad_triangle_candidate(__global const double2 *points, __global cons
 
 // The second triangle a candidate on an edge splits (a ghost for a hull
 // midpoint), or -1.
-inline int split_partner(__global const int *tri_neighbor, __global const int *container,
-                         __global const int *split_edge, int k) {
+static inline int split_partner(__global const int *tri_neighbor, __global const int *container,
+                                __global const int *split_edge, int k) {
   return split_edge[k] < 0 ? -1 : link_triangle(tri_neighbor[3 * container[k] + split_edge[k]]);
 }
 
 // Whether located candidate k splits a hull edge (its partner is a ghost) or
 // a subsegment.
-inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
-                              __global const int *split_edge, int k) {
+static inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
+                                     __global const int *split_edge, int k) {
   const int partner = split_partner(tri_neighbor, container, split_edge, k);
   if (partner < 0)
     return false;
@@ -276,13 +279,13 @@ inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *container,
 }
 
 // Is edge i of real triangle t a subsegment or on the domain's boundary?
-inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
+static inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
   return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
          subsegment_at(CLM_MESH_ARGS, t, i);
 }
 
 // The cosine of the angle at vertex o between o-x and o-y.
-inline double corner_cosine(__global const double2 *points, int o, int x, int y) {
+static inline double corner_cosine(__global const double2 *points, int o, int x, int y) {
   const double2 u = points[x] - points[o], w = points[y] - points[o];
   return (u.x * w.x + u.y * w.y) / sqrt(squared_length(u) * squared_length(w));
 }
@@ -296,7 +299,7 @@ inline double corner_cosine(__global const double2 *points, int o, int x, int y)
 // a segment leaving a fan of small angles is split on the fan's shells
 // however its far end meets the boundary (two ends at equal angles: the
 // midpoint).
-inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
+static inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
   const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
   const bool joint_a = point_segment[a] == CLM_SEGMENT_JOINT,
              joint_b = point_segment[b] == CLM_SEGMENT_JOINT;
@@ -325,7 +328,7 @@ inline int shell_centre(CLM_MESH_PARAMS, int t, int e) {
 // it between a third and two thirds of the way (concentric shells: segments
 // that meet at a small angle are split at the same distances from their
 // common vertex, so that they stop encroaching on each other).
-inline double2 subsegment_split(__global const double2 *points, int centre, int a, int b) {
+static inline double2 subsegment_split(__global const double2 *points, int centre, int a, int b) {
   if (centre < 0)
     return 0.5 * (points[a] + points[b]);
   const bool from_a = centre == a;
@@ -345,7 +348,7 @@ inline double2 subsegment_split(__global const double2 *points, int centre, int 
 // flat triangles; `inward`, see Refinement), the domain then never grows by
 // rounding into another part. Otherwise nothing lies beyond, and the split
 // point stays as rounding leaves it.
-inline double2 inside_edge(__global const double2 *points, int a, int b, double2 s) {
+static inline double2 inside_edge(__global const double2 *points, int a, int b, double2 s) {
   const double2 normal = (double2)(points[a].y - points[b].y, points[b].x - points[a].x);
   for (int step = 0; step < 4 && orient_point(points, a, b, s) < 0; ++step) {
     if (normal.x != 0)
@@ -368,7 +371,7 @@ inline double2 inside_edge(__global const double2 *points, int a, int b, double2
 // split is kept whole as -Y keeps the boundary: a candidate in its lens goes
 // in all the same, one beyond it is dropped, and a bad triangle whose
 // candidate lies beyond it is left (stranded).
-inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split) {
+static inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split) {
   const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)],
             apex = tri_vertex[3 * t + e];
   const int link = tri_neighbor[3 * t + e], u = link_triangle(link);
@@ -392,7 +395,7 @@ inline bool splittable(CLM_MESH_PARAMS, int inward, int t, int e, double2 *split
 
 // The edges of real triangle t that bound the domain and that candidate c
 // lies on or beyond, bit i for edge i.
-inline int edges_behind(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
+static inline int edges_behind(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
   double2 p[3];
   for (int i = 0; i < 3; ++i)
     p[i] = points[tri.v[i]];
@@ -404,7 +407,7 @@ inline int edges_behind(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c) {
 }
 
 // Can an edge of real triangle t in mask not be split (splittable)?
-inline bool unsplittable_edge(CLM_MESH_PARAMS, int inward, int t, int mask) {
+static inline bool unsplittable_edge(CLM_MESH_PARAMS, int inward, int t, int mask) {
   double2 split;
   for (int i = 0; i < 3; ++i)
     if ((mask >> i & 1) && !splittable(CLM_MESH_ARGS, inward, t, i, &split))
@@ -415,7 +418,7 @@ inline bool unsplittable_edge(CLM_MESH_PARAMS, int inward, int t, int mask) {
 // Does candidate c of bad real triangle t lie on or beyond an edge of t
 // that bounds the domain and cannot be split (splittable)? No point then
 // mends t: it is left and counted.
-inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, double2 c) {
+static inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, double2 c) {
   return unsplittable_edge(CLM_MESH_ARGS, inward, t, edges_behind(CLM_MESH_ARGS, t, tri, c));
 }
 
@@ -441,8 +444,8 @@ inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri, doubl
 // by the next search, which clears the bit (find_bad_triangles). Such a
 // triangle is left and counted as a stranded one is, until a compaction or
 // growth renews the steps (the notes) and its candidate is located again.
-inline bool is_stuck(__global const int *modified_stamp, __global const int *notes,
-                     int located_stamp, int t) {
+static inline bool is_stuck(__global const int *modified_stamp, __global const int *notes,
+                            int located_stamp, int t) {
   return (notes[t] & CLM_NOTE_STUCK) && modified_stamp[t] < located_stamp;
 }
 
@@ -452,8 +455,8 @@ inline bool is_stuck(__global const int *modified_stamp, __global const int *not
 // location (locate_candidates) then nearly always makes c that edge's
 // midpoint; the other candidates of triangles with a corner on the boundary
 // become midpoints far less often.
-inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c, double lens,
-                            int protect) {
+static inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c, double lens,
+                                   int protect) {
   for (int i = 0; i < 3; ++i) {
     const int a = tri.v[next3(i)], b = tri.v[prev3(i)];
     if (!on_hull(point_state[a]) || !on_hull(point_state[b]))
@@ -470,7 +473,7 @@ inline bool splits_own_edge(CLM_MESH_PARAMS, int t, VertexTriple tri, double2 c,
 // or the boundary whose diametral circle holds the opposite vertex (the angle
 // there is obtuse)? Its circumcenter then lies beyond that edge, so the walk
 // to it stops there and the edge is split.
-inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
+static inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
   for (int i = 0; i < 3; ++i) {
     const double2 r = points[tri.v[i]], a = points[tri.v[next3(i)]] - r,
                   b = points[tri.v[prev3(i)]] - r;
@@ -486,7 +489,7 @@ inline bool encroaches_subsegment(CLM_MESH_PARAMS, int t, VertexTriple tri) {
 // the apex across them: an end was added on a segment. The test of the
 // others, and whether an edge lies on the domain's boundary (a ghost
 // across), stay as they are while t is not rewritten.
-inline int apex_dependent_edges(CLM_MESH_PARAMS, VertexTriple tri) {
+static inline int apex_dependent_edges(CLM_MESH_PARAMS, VertexTriple tri) {
   int mask = 0;
   for (int i = 0; i < 3 && constrained; ++i)
     if (point_segment[tri.v[next3(i)]] >= 0 || point_segment[tri.v[prev3(i)]] >= 0)
@@ -501,7 +504,7 @@ inline int apex_dependent_edges(CLM_MESH_PARAMS, VertexTriple tri) {
 // states of its corners: a Steiner point marked redundant since was either
 // deleted, which rewrote t, or kept as it was (points added since are corners
 // of rewritten triangles only).
-inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
+static inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
   if (modified_stamp[t] >= stamp)
     return false;
   for (int i = 0; i < 3; ++i)
@@ -515,10 +518,11 @@ inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
 // needs its stamp, notes and triangle; one carried from the last
 // search (below `carried`) that is as assessed needs its mark, the others
 // their corners.
-inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
-                            __global const double2 *points, __global const int *point_state,
-                            __global const int *tri_vertex, __global const int *modified_stamp,
-                            __global const int *notes, volatile __global const uint *tri_mark) {
+static inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
+                                   __global const double2 *points, __global const int *point_state,
+                                   __global const int *tri_vertex,
+                                   __global const int *modified_stamp, __global const int *notes,
+                                   volatile __global const uint *tri_mark) {
   const int far = entry_ahead(list, gid, 2, n);
   if (far >= 0) {
     warm(modified_stamp + far);
@@ -557,7 +561,7 @@ inline void prefetch_search(__global const int *list, int gid, int n, int carrie
       is_bad, election, lens, notes
 
 // Entry gid of find_bad_triangles (of n).
-inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
+static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
   if (use_list)
     prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
                     modified_stamp, notes, tri_mark);
@@ -652,10 +656,11 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
 // sum), so that candidate k is the same on every device and for every
 // work-group size; with an election, each one's mark in carried_mark, for
 // the next search (find_bad_triangles).
-inline void gather_bad_entry(__global const int *is_bad, __global const int *offset,
-                             __global const int *list, const int use_list,
-                             volatile __global const uint *tri_mark, const int election,
-                             __global int *origin, __global uint *carried_mark, const int gid) {
+static inline void gather_bad_entry(__global const int *is_bad, __global const int *offset,
+                                    __global const int *list, const int use_list,
+                                    volatile __global const uint *tri_mark, const int election,
+                                    __global int *origin, __global uint *carried_mark,
+                                    const int gid) {
   if (!is_bad[gid])
     return;
   const int t = use_list ? list[gid] : gid;
@@ -677,9 +682,10 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
 // around each triangle of `list` (prefetch.h): the triangle's mark (and its
 // tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and
 // links, then the marks of theirs.
-inline void prefetch_two_rings(__global const int *list, int k, int n,
-                               volatile __global const uint *tri_mark, __global const int *tie_mark,
-                               __global const int *tri_neighbor) {
+static inline void prefetch_two_rings(__global const int *list, int k, int n,
+                                      volatile __global const uint *tri_mark,
+                                      __global const int *tie_mark,
+                                      __global const int *tri_neighbor) {
   const int far = entry_ahead(list, k, 3, n);
   if (far >= 0) {
     warm(tri_mark + far);
@@ -715,9 +721,9 @@ inline void prefetch_two_rings(__global const int *list, int k, int n,
 // boundary rank before the rest but take part: along a PSLG's jagged
 // outline they are most bad triangles, their candidates are mostly
 // off-centers, and most of those would lose in the filter.
-inline bool is_elected(__global const int *bad, __global const int *tri_neighbor,
-                       volatile __global const uint *tri_mark, const int rings,
-                       __global const int *notes, const int k) {
+static inline bool is_elected(__global const int *bad, __global const int *tri_neighbor,
+                              volatile __global const uint *tri_mark, const int rings,
+                              __global const int *notes, const int k) {
   const int t = bad[k];
   const uint mine = tri_mark[t];
   bool best = true;
@@ -744,9 +750,11 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
 // The elected bad triangles as the candidates' origins (offsets by prefix sum),
 // each bad triangle's mark cleared. One left waiting forgets where its last
 // candidate was: it may be rewritten before the next search that locates it.
-inline void gather_elected_entry(__global const int *bad, __global const int *elected,
-                                 __global const int *offset, volatile __global uint *tri_mark,
-                                 __global int *last_container, __global int *origin, const int k) {
+static inline void gather_elected_entry(__global const int *bad, __global const int *elected,
+                                        __global const int *offset,
+                                        volatile __global uint *tri_mark,
+                                        __global int *last_container, __global int *origin,
+                                        const int k) {
   const int t = bad[k];
   tri_mark[t] = CLM_NO_MARK;
   if (elected[k])
@@ -782,7 +790,7 @@ __kernel void gather_elected(__global const int *bad, __global const int *electe
   bad, last_bad, changed, changed_count, search, unique_keep, unique_offset, offset, rings,        \
       last_container, origin, scratch, counts, slots
 // Returns the bad triangles and the candidates to every work-item.
-inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS) {
+static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int i = lid; i < last_bad; i += size)
     search[i] = bad[i];
@@ -820,9 +828,9 @@ inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP
 // The insertion radius of located candidate k at c (thesis §3.5): the
 // distance to the nearest vertex of its bad triangle; for a split of a hull
 // edge or subsegment, to the nearer end. Squared.
-inline double insertion_radius2_of(CLM_MESH_PARAMS, __global const int *container,
-                                   __global const int *split_edge, __global const int *origin,
-                                   double2 c, int k) {
+static inline double insertion_radius2_of(CLM_MESH_PARAMS, __global const int *container,
+                                          __global const int *split_edge,
+                                          __global const int *origin, double2 c, int k) {
   if (splits_subsegment(CLM_MESH_ARGS, container, split_edge, k)) {
     const int t = container[k], e = split_edge[k];
     const int a = tri_vertex[3 * t + next3(e)], b = tri_vertex[3 * t + prev3(e)];
@@ -841,7 +849,7 @@ inline double insertion_radius2_of(CLM_MESH_PARAMS, __global const int *containe
 // walk_to_point within the domain: the walk stops before it would cross the
 // domain's boundary (into a ghost) or a subsegment; that edge of
 // result.triangle is result.edge (outcome CLM_WALK_BLOCKED).
-inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_steps) {
+static inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_steps) {
   WalkResult result = {CLM_WALK_LOST, t, -1, -1};
   for (int step = 0; step < max_steps; ++step) {
     const VertexTriple tri = load_vertices(tri_vertex, t);
@@ -875,11 +883,11 @@ inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int max_step
 // vertex or is dropped.
 // Prefetching for locate_candidates (prefetch.h): the bad triangle where a
 // walk starts, its corners and its neighbours.
-inline void prefetch_walk_start(__global const int *origin, int k, int n,
-                                __global const double2 *points, __global const int *point_state,
-                                __global const int *tri_vertex, __global const int *tri_neighbor,
-                                __global const int *modified_stamp,
-                                __global const int *last_container) {
+static inline void
+prefetch_walk_start(__global const int *origin, int k, int n, __global const double2 *points,
+                    __global const int *point_state, __global const int *tri_vertex,
+                    __global const int *tri_neighbor, __global const int *modified_stamp,
+                    __global const int *last_container) {
   const int far = entry_ahead(origin, k, 2, n);
   if (far >= 0) {
     warm_triangle(tri_vertex, tri_neighbor, far);
@@ -907,7 +915,7 @@ inline void prefetch_walk_start(__global const int *origin, int k, int n,
       radius2, lens, inward, stamp, notes, stuck_count, max_steps
 
 // Candidate k of locate_candidates.
-inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k) {
+static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k) {
   const int bad = origin[k], known = last_container[bad];
   double2 c;
   uint rank;
@@ -982,9 +990,10 @@ __kernel void locate_candidates(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int n)
 }
 
 // Marks each candidate's container (and its partner) with its priority.
-inline void mark_container_of(__global const int *container, __global const int *split_edge,
-                              __global const int *tri_neighbor, __global const uint *priority,
-                              volatile __global uint *tri_mark, const int k) {
+static inline void mark_container_of(__global const int *container, __global const int *split_edge,
+                                     __global const int *tri_neighbor,
+                                     __global const uint *priority,
+                                     volatile __global uint *tri_mark, const int k) {
   if (container[k] < 0)
     return;
   atomic_min(&tri_mark[container[k]], priority[k]);
@@ -1008,10 +1017,10 @@ __kernel void mark_candidate_containers(__global const int *container,
 // better priority. Among candidates of equal priority, the smallest index
 // keeps the container. The survivors' triangles are then pairwise distinct,
 // so they are all inserted in one round, in place.
-inline void mark_tie_of(__global const int *container, __global const int *split_edge,
-                        __global const int *tri_neighbor, __global const uint *priority,
-                        volatile __global const uint *tri_mark, volatile __global int *tie_mark,
-                        const int k) {
+static inline void mark_tie_of(__global const int *container, __global const int *split_edge,
+                               __global const int *tri_neighbor, __global const uint *priority,
+                               volatile __global const uint *tri_mark,
+                               volatile __global int *tie_mark, const int k) {
   if (container[k] < 0)
     return;
   if (tri_mark[container[k]] == priority[k])
@@ -1032,8 +1041,8 @@ __kernel void mark_candidate_ties(__global const int *container, __global const 
 
 // Whether candidates j and k are closer than sqrt(factor2) times the
 // distance at which they would be orthogonal (|c_j - c_k|^2 = r_j^2 + r_k^2).
-inline bool closer_than(__global const double2 *candidate, __global const double *radius2, int j,
-                        int k, double factor2) {
+static inline bool closer_than(__global const double2 *candidate, __global const double *radius2,
+                               int j, int k, double factor2) {
   return squared_length(candidate[j] - candidate[k]) < factor2 * (radius2[j] + radius2[k]);
 }
 
@@ -1044,9 +1053,9 @@ inline bool closer_than(__global const double2 *candidate, __global const double
 // when it goes first (better priority, or equal and a smaller index) and the
 // two would be a dependent pair of GPU-QM-V (Claim 3.5.1: less than
 // orthogonal), of which k would be deleted again.
-inline bool beaten(volatile __global const uint *tri_mark, __global const int *tie_mark,
-                   __global const double2 *candidate, __global const double *radius2, int x,
-                   int ring, int rings, int distance_rings, double near2, int k, uint mine) {
+static inline bool beaten(volatile __global const uint *tri_mark, __global const int *tie_mark,
+                          __global const double2 *candidate, __global const double *radius2, int x,
+                          int ring, int rings, int distance_rings, double near2, int k, uint mine) {
   const uint mark = tri_mark[x];
   if (mark > mine)
     return false;
@@ -1089,11 +1098,12 @@ inline bool beaten(volatile __global const uint *tri_mark, __global const int *t
       parallel_midpoints, survive
 
 // Whether candidate k survives.
-inline bool survives(CLM_MESH_PARAMS, __global const int *container, __global const int *split_edge,
-                     __global const uint *priority, __global const int *tie_mark,
-                     __global const double2 *candidate, __global const double *radius2,
-                     const int rings, const int distance_rings, const double near2,
-                     const int parallel_midpoints, const int k) {
+static inline bool survives(CLM_MESH_PARAMS, __global const int *container,
+                            __global const int *split_edge, __global const uint *priority,
+                            __global const int *tie_mark, __global const double2 *candidate,
+                            __global const double *radius2, const int rings,
+                            const int distance_rings, const double near2,
+                            const int parallel_midpoints, const int k) {
   const int t = container[k];
   const uint mine = priority[k];
   const int reach = rings + distance_rings;
@@ -1130,7 +1140,7 @@ inline bool survives(CLM_MESH_PARAMS, __global const int *container, __global co
 }
 
 // Candidate k of insertion_filter, its prefetching first (of n).
-inline void filter_entry(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int k, const int n) {
+static inline void filter_entry(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int k, const int n) {
   prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k < n)
     survive[k] = survives(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate,
@@ -1144,9 +1154,9 @@ __kernel void insertion_filter(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int n) 
 // Candidate k's marks on its container and partner cleared, after the
 // filter (by append_survivors, or by clear_candidate_marks when none is
 // appended).
-inline void clear_marks_of(__global const int *container, __global const int *split_edge,
-                           __global const int *tri_neighbor, volatile __global uint *tri_mark,
-                           __global int *tie_mark, int k) {
+static inline void clear_marks_of(__global const int *container, __global const int *split_edge,
+                                  __global const int *tri_neighbor,
+                                  volatile __global uint *tri_mark, __global int *tie_mark, int k) {
   if (container[k] < 0)
     return;
   tri_mark[container[k]] = CLM_NO_MARK;
@@ -1176,13 +1186,13 @@ __kernel void clear_candidate_marks(__global const int *container, __global cons
 // candidate clears the filter's marks (tie_mark and tri_mark): nothing here
 // reads them. append_entry: candidate k's part (of append_survivors and of
 // the in-group placement).
-inline void append_entry(CLM_MESH_PARAMS, __global const double2 *candidate,
-                         __global const int *container, __global const int *split_edge,
-                         __global const double *radius2, __global const uint *priority,
-                         __global const int *survive, __global const int *offset,
-                         __global const int *free_points, const int free_first,
-                         const int free_count, const int first_new, __global int *new_points,
-                         __global int *tie_mark, const int count, const int k) {
+static inline void append_entry(CLM_MESH_PARAMS, __global const double2 *candidate,
+                                __global const int *container, __global const int *split_edge,
+                                __global const double *radius2, __global const uint *priority,
+                                __global const int *survive, __global const int *offset,
+                                __global const int *free_points, const int free_first,
+                                const int free_count, const int first_new, __global int *new_points,
+                                __global int *tie_mark, const int count, const int k) {
   clear_marks_of(container, split_edge, tri_neighbor, tri_mark, tie_mark, k);
   if (!survive[k] || offset[k] >= count)
     return;
@@ -1234,7 +1244,7 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
       __global const int *free_points, const int free_first, const int free_count,                 \
       const int first_new, __global int *new_points, const int room, __local int *scratch,         \
       __global int *counts, const int n
-inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
+static inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size) {
     prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,

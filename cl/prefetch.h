@@ -20,19 +20,19 @@
 
 #ifdef CLM_PREFETCH
 // (volatile: the marks taken with atomics can be warmed too.)
-inline void warm(const volatile __global void *p) {
+static inline void warm(const volatile __global void *p) {
   __builtin_prefetch((const __global void *)p, 0, 3);
 }
-inline void warm_for_write(const volatile __global void *p) {
+static inline void warm_for_write(const volatile __global void *p) {
   __builtin_prefetch((const __global void *)p, 1, 3);
 }
 #else
-inline void warm(const volatile __global void *p) {}
-inline void warm_for_write(const volatile __global void *p) {}
+static inline void warm(const volatile __global void *p) {}
+static inline void warm_for_write(const volatile __global void *p) {}
 #endif
 
 // The entry `stage` stages ahead of gid in list[0 .. n), or -1.
-inline int entry_ahead(__global const int *list, int gid, int stage, int n) {
+static inline int entry_ahead(__global const int *list, int gid, int stage, int n) {
 #ifdef CLM_PREFETCH
   const int k = gid + stage * CLM_AHEAD;
   return k < n ? list[k] : -1;
@@ -42,7 +42,7 @@ inline int entry_ahead(__global const int *list, int gid, int stage, int n) {
 }
 
 // The slot `stage` stages ahead of slot t in a sweep of slots [0 .. n), or -1.
-inline int slot_ahead(int t, int stage, int n) {
+static inline int slot_ahead(int t, int stage, int n) {
 #ifdef CLM_PREFETCH
   const int k = t + stage * CLM_AHEAD;
   return k < n ? k : -1;
@@ -52,7 +52,8 @@ inline int slot_ahead(int t, int stage, int n) {
 }
 
 // Triangle t's vertices and links.
-inline void warm_triangle(__global const int *tri_vertex, __global const int *tri_neighbor, int t) {
+static inline void warm_triangle(__global const int *tri_vertex, __global const int *tri_neighbor,
+                                 int t) {
   if (t < 0)
     return;
   warm(tri_vertex + 3 * t);
@@ -61,7 +62,8 @@ inline void warm_triangle(__global const int *tri_vertex, __global const int *tr
 
 // A vertex's point and state (point_state may be 0: none; nothing for the
 // vertex at infinity or a dead slot's mark).
-inline void warm_vertex(__global const double2 *points, __global const int *point_state, int v) {
+static inline void warm_vertex(__global const double2 *points, __global const int *point_state,
+                               int v) {
   if (v < 0)
     return;
   warm(points + v);
@@ -70,8 +72,8 @@ inline void warm_vertex(__global const double2 *points, __global const int *poin
 }
 
 // The points of triangle t's corners (t's record warm).
-inline void warm_corners(__global const double2 *points, __global const int *point_state,
-                         __global const int *tri_vertex, int t) {
+static inline void warm_corners(__global const double2 *points, __global const int *point_state,
+                                __global const int *tri_vertex, int t) {
   if (t < 0)
     return;
   for (int i = 0; i < 3; ++i)
@@ -79,8 +81,8 @@ inline void warm_corners(__global const double2 *points, __global const int *poi
 }
 
 // The vertices of triangle t's neighbours (t's record warm).
-inline void warm_neighbours(__global const int *tri_vertex, __global const int *tri_neighbor,
-                            int t) {
+static inline void warm_neighbours(__global const int *tri_vertex, __global const int *tri_neighbor,
+                                   int t) {
   if (t < 0)
     return;
   for (int i = 0; i < 3; ++i) {
@@ -91,8 +93,9 @@ inline void warm_neighbours(__global const int *tri_vertex, __global const int *
 }
 
 // The points across triangle t's edges (its neighbours' records warm).
-inline void warm_opposite(__global const double2 *points, __global const int *point_state,
-                          __global const int *tri_vertex, __global const int *tri_neighbor, int t) {
+static inline void warm_opposite(__global const double2 *points, __global const int *point_state,
+                                 __global const int *tri_vertex, __global const int *tri_neighbor,
+                                 int t) {
   if (t < 0)
     return;
   for (int i = 0; i < 3; ++i) {
@@ -104,9 +107,9 @@ inline void warm_opposite(__global const double2 *points, __global const int *po
 
 // What a flip or a removal rewrites in triangle t: its vertices and links,
 // its mark, its stamp and its record of children.
-inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
-                           __global const int *modified_stamp, __global const int *children,
-                           volatile __global const uint *tri_mark, int t) {
+static inline void warm_rewritten(__global const int *tri_vertex, __global const int *tri_neighbor,
+                                  __global const int *modified_stamp, __global const int *children,
+                                  volatile __global const uint *tri_mark, int t) {
   if (t < 0)
     return;
   warm_for_write(tri_vertex + 3 * t);
@@ -118,8 +121,9 @@ inline void warm_rewritten(__global const int *tri_vertex, __global const int *t
 
 // What relink_edge reads across edges first .. last - 1 of triangle t (t's
 // record warm): the neighbour's stamp, link slots and children.
-inline void warm_across_edges(__global const int *tri_neighbor, __global const int *modified_stamp,
-                              __global const int *children, int t, int first, int last) {
+static inline void warm_across_edges(__global const int *tri_neighbor,
+                                     __global const int *modified_stamp,
+                                     __global const int *children, int t, int first, int last) {
   if (t < 0)
     return;
   for (int e = first; e < last; ++e) {
@@ -135,11 +139,11 @@ inline void warm_across_edges(__global const int *tri_neighbor, __global const i
 // For a kernel that reads, per entry of `list`, a triangle, its corners,
 // its neighbours' vertices and the points across its edges (point_state: 0
 // when the kernel does not read the states).
-inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, int n,
-                                             __global const double2 *points,
-                                             __global const int *point_state,
-                                             __global const int *tri_vertex,
-                                             __global const int *tri_neighbor) {
+static inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, int n,
+                                                    __global const double2 *points,
+                                                    __global const int *point_state,
+                                                    __global const int *tri_vertex,
+                                                    __global const int *tri_neighbor) {
   warm_triangle(tri_vertex, tri_neighbor, entry_ahead(list, gid, 3, n));
   const int t = entry_ahead(list, gid, 2, n);
   warm_neighbours(tri_vertex, tri_neighbor, t);
@@ -149,9 +153,9 @@ inline void prefetch_triangle_and_neighbours(__global const int *list, int gid, 
 
 // For a kernel that reads, per entry of `list`, a triangle's vertices and
 // their points (and states, unless point_state is 0).
-inline void prefetch_corners(__global const int *list, int gid, int n,
-                             __global const double2 *points, __global const int *point_state,
-                             __global const int *tri_vertex) {
+static inline void prefetch_corners(__global const int *list, int gid, int n,
+                                    __global const double2 *points, __global const int *point_state,
+                                    __global const int *tri_vertex) {
   const int t = entry_ahead(list, gid, 2, n);
   if (t >= 0)
     warm(tri_vertex + 3 * t);

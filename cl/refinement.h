@@ -22,19 +22,19 @@
 // domain's boundary: the convex hull of a point set, or the segments around a
 // PSLG's domain, which stand on ghost triangles as the hull does.) Midpoint
 // states mark every vertex added on a segment or hull edge.
-inline bool on_hull(int state) {
+static inline bool on_hull(int state) {
   return state == CLM_POINT_HULL || state == CLM_POINT_ACUTE_HULL || state == CLM_POINT_MIDPOINT ||
          state == CLM_POINT_NEW_MIDPOINT;
 }
 
-inline bool is_new_point(int state) {
+static inline bool is_new_point(int state) {
   return state == CLM_POINT_NEW || state == CLM_POINT_NEW_MIDPOINT;
 }
 
 // Is c inside the diametral lens of the edge pa-pb? Triangle's encroachment
 // test: c sees the edge at an angle whose cosine squared is at least `lens`
 // (cos(2 x minimum angle) squared) while negative.
-inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
+static inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
   const double2 da = pa - c, db = pb - c;
   const double dot = da.x * db.x + da.y * db.y;
   return dot < 0 && dot * dot >= lens * (da.x * da.x + da.y * da.y) * (db.x * db.x + db.y * db.y);
@@ -46,8 +46,8 @@ inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
 #define CLM_SEGMENT_JOINT (-2) // an input vertex where two or more segments meet
 
 // The entry of edge a-b in the constraint rows, or -1.
-inline int constraint_entry(__global const int *constraint_start,
-                            __global const int *constraint_adjacent, int a, int b) {
+static inline int constraint_entry(__global const int *constraint_start,
+                                   __global const int *constraint_adjacent, int a, int b) {
   for (int k = constraint_start[a]; k < constraint_start[a + 1]; ++k)
     if (constraint_adjacent[k] == b)
       return k;
@@ -57,15 +57,16 @@ inline int constraint_entry(__global const int *constraint_start,
 // constraint_segment holds each entry's segment s as it is, or -1 - s once
 // refinement has split the segment: then the edge between its ends, should
 // flips make one, is an ordinary edge.
-inline int segment_of_entry(__global const int *constraint_segment, int k) {
+static inline int segment_of_entry(__global const int *constraint_segment, int k) {
   const int s = constraint_segment[k];
   return s >= 0 ? s : -1 - s;
 }
 
 // Does vertex w, a vertex added on segment s, lie strictly between a and b
 // (on s or its ends) along s? Distances from s's first end order them.
-inline bool between_on_segment(__global const double2 *points, __global const int *point_segment,
-                               __global const int *segment_end, int s, int w, int a, int b) {
+static inline bool between_on_segment(__global const double2 *points,
+                                      __global const int *point_segment,
+                                      __global const int *segment_end, int s, int w, int a, int b) {
   if (w < 0 || point_segment[w] != s)
     return false;
   const double2 origin = points[segment_end[2 * s]];
@@ -82,10 +83,12 @@ inline bool between_on_segment(__global const double2 *points, __global const in
 // piece of s unless a vertex of s lies between its ends. Rounded split points
 // leave s a hair from straight, and flips may join two vertices of s around
 // one between them: that vertex is then an apex of the edge.
-inline bool is_subsegment(__global const double2 *points, __global const int *constraint_start,
-                          __global const int *constraint_adjacent,
-                          __global const int *constraint_segment, __global const int *point_segment,
-                          __global const int *segment_end, int a, int b, int c, int d) {
+static inline bool is_subsegment(__global const double2 *points,
+                                 __global const int *constraint_start,
+                                 __global const int *constraint_adjacent,
+                                 __global const int *constraint_segment,
+                                 __global const int *point_segment, __global const int *segment_end,
+                                 int a, int b, int c, int d) {
   if (a < 0 || b < 0)
     return false;
   const int sa = point_segment[a], sb = point_segment[b];
@@ -105,7 +108,7 @@ inline bool is_subsegment(__global const double2 *points, __global const int *co
 }
 
 // Is edge i of triangle t (opposite its vertex i) a subsegment?
-inline bool subsegment_at(CLM_MESH_PARAMS, int t, int i) {
+static inline bool subsegment_at(CLM_MESH_PARAMS, int t, int i) {
   if (!constrained)
     return false;
   const int link = tri_neighbor[3 * t + i];
@@ -117,10 +120,10 @@ inline bool subsegment_at(CLM_MESH_PARAMS, int t, int i) {
 
 // The segment that subsegment a-b is part of (is_subsegment holds), or -1 for
 // a hull edge of a point set.
-inline int segment_of_edge(__global const int *constraint_start,
-                           __global const int *constraint_adjacent,
-                           __global const int *constraint_segment,
-                           __global const int *point_segment, int a, int b) {
+static inline int segment_of_edge(__global const int *constraint_start,
+                                  __global const int *constraint_adjacent,
+                                  __global const int *constraint_segment,
+                                  __global const int *point_segment, int a, int b) {
   if (point_segment[a] >= 0)
     return point_segment[a];
   if (point_segment[b] >= 0)
@@ -131,9 +134,9 @@ inline int segment_of_edge(__global const int *constraint_start,
 
 // Refinement splits input segment a-b (both ends input vertices): both of
 // its entries in the constraint rows say so.
-inline void mark_segment_split(__global const int *constraint_start,
-                               __global const int *constraint_adjacent,
-                               __global int *constraint_segment, int a, int b) {
+static inline void mark_segment_split(__global const int *constraint_start,
+                                      __global const int *constraint_adjacent,
+                                      __global int *constraint_segment, int a, int b) {
   const int ab = constraint_entry(constraint_start, constraint_adjacent, a, b),
             ba = constraint_entry(constraint_start, constraint_adjacent, b, a);
   if (ab >= 0 && constraint_segment[ab] >= 0)

@@ -52,7 +52,7 @@ __kernel void leave_out_flagged_sites(__global int *bad, __global int *site_stat
   atomic_inc(count);
 }
 
-inline bool lexicographically_below(double2 p, double2 q) {
+static inline bool lexicographically_below(double2 p, double2 q) {
   return p.y < q.y || (p.y == q.y && p.x < q.x);
 }
 

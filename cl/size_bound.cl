@@ -12,10 +12,12 @@
 #include "common.h"
 
 // The slot of entry i: list[i] (use_list), else i; -1 for none.
-inline int slot_of(__global const int *list, int use_list, int i) { return use_list ? list[i] : i; }
+static inline int slot_of(__global const int *list, int use_list, int i) {
+  return use_list ? list[i] : i;
+}
 
 // The tighter of two area bounds (<= 0: none).
-inline double tighter(double a, double b) {
+static inline double tighter(double a, double b) {
   if (b <= 0)
     return a;
   return a > 0 ? fmin(a, b) : b;
@@ -23,8 +25,8 @@ inline double tighter(double a, double b) {
 
 // The barycentric coordinates of p in background triangle k (l[0..2]);
 // returns the smallest.
-inline double barycentric(double2 p, __global const double2 *field_points,
-                          __global const int *field_triangles, int k, double *l) {
+static inline double barycentric(double2 p, __global const double2 *field_points,
+                                 __global const int *field_triangles, int k, double *l) {
   const double2 a = field_points[field_triangles[3 * k]],
                 b = field_points[field_triangles[3 * k + 1]],
                 c = field_points[field_triangles[3 * k + 2]];
@@ -42,11 +44,11 @@ inline double barycentric(double2 p, __global const double2 *field_points,
 // arithmetic of clmesh::size_at on the host. Per triangle, `hint` (>= 0: the
 // given triangle the slot descends from, which usually holds p) is tried
 // first.
-inline double field_at(double2 p, __global const double2 *field_points,
-                       __global const double *field_area, int per_triangle,
-                       __global const int *field_triangles, __global const int *cell_start,
-                       __global const int *cell_entry, double4 grid, int columns, int rows,
-                       int hint) {
+static inline double field_at(double2 p, __global const double2 *field_points,
+                              __global const double *field_area, int per_triangle,
+                              __global const int *field_triangles, __global const int *cell_start,
+                              __global const int *cell_entry, double4 grid, int columns, int rows,
+                              int hint) {
   double l[3];
   if (per_triangle && hint >= 0 && barycentric(p, field_points, field_triangles, hint, l) >= 0)
     return field_area[hint];

@@ -16,7 +16,7 @@
 
 // The site colours of block b's corners, counter-clockwise from its
 // lower-left pixel.
-inline void load_corners(__global const int *voronoi, int grid, int b, int *c) {
+static inline void load_corners(__global const int *voronoi, int grid, int b, int *c) {
   const int side = grid - 1, x = b % side, y = b / side;
   c[0] = voronoi[y * grid + x];
   c[1] = voronoi[y * grid + x + 1];
@@ -26,7 +26,7 @@ inline void load_corners(__global const int *voronoi, int grid, int b, int *c) {
 
 // The distinct sites of block b counter-clockwise from its lower-left pixel,
 // consecutive repeats removed; returns how many triangles they make.
-inline int block_sites(__global const int *voronoi, int grid, int b, int *s) {
+static inline int block_sites(__global const int *voronoi, int grid, int b, int *s) {
   int c[4];
   load_corners(voronoi, grid, b, c);
   int k = 0;
@@ -133,8 +133,8 @@ __kernel void flag_repeated_border_sites(__global const int *cycle, __global con
 // corners k and k + 1 (0 bottom, 1 right, 2 top, 3 left).
 
 // The link of the directed edge from -> to among the triangles of block b, or -1.
-inline int block_edge(__global const int *tri_vertex, __global const int *offsets, int b,
-                      int blocks, int real, int from, int to) {
+static inline int block_edge(__global const int *tri_vertex, __global const int *offsets, int b,
+                             int blocks, int real, int from, int to) {
   const int end = b + 1 < blocks ? offsets[b + 1] : real;
   for (int t = offsets[b]; t < end; ++t)
     for (int i = 0; i < 3; ++i)
@@ -145,7 +145,7 @@ inline int block_edge(__global const int *tri_vertex, __global const int *offset
 
 // Border position (counter-clockwise from the lower-left pixel) of the second
 // pixel of side k of a block on the texture's edge.
-inline int border_position(int grid, int x, int y, int k) {
+static inline int border_position(int grid, int x, int y, int k) {
   const int side = grid - 1;
   return k == 0 ? x + 1
                 : (k == 1 ? side + y + 1 : (k == 2 ? 3 * side - x : (4 * side - y) % (4 * side)));

@@ -7,12 +7,12 @@
 #include "common.h"
 
 // The triangle after t counter-clockwise around its vertex p (at index k).
-inline int next_around(__global const int *tri_neighbor, int t, int k) {
+static inline int next_around(__global const int *tri_neighbor, int t, int k) {
   return link_triangle(tri_neighbor[3 * t + next3(k)]);
 }
 
 // The neighbour of p that follows it in star triangle s: x_k for star[k].
-inline int star_vertex(__global const int *tri_vertex, int s, int p) {
+static inline int star_vertex(__global const int *tri_vertex, int s, int p) {
   return tri_vertex[3 * s + next3(index_in(tri_vertex, s, p))];
 }
 

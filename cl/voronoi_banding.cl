@@ -14,8 +14,8 @@
 
 // Pixel of a point, and how far the point lies from the pixel's centre (its
 // squared distance in pixel units, in fixed point).
-inline int pixel_and_centre_distance(double2 q, double min_x, double min_y, double scale, int grid,
-                                     int *pixel) {
+static inline int pixel_and_centre_distance(double2 q, double min_x, double min_y, double scale,
+                                            int grid, int *pixel) {
   const double fx = (q.x - min_x) * scale, fy = (q.y - min_y) * scale;
   const int x = min((int)fx, grid - 1), y = min((int)fy, grid - 1);
   *pixel = y * grid + x;
@@ -98,13 +98,13 @@ __kernel void column_sweep(__global const int *site_of_pixel, __global int *colu
 
 // Is the middle site b (column bx) hidden on row y by its neighbours a and c
 // (ax < bx < cx)? True when the a|b bisector meets the row no left of the b|c one.
-inline bool dominated(long ax, long ay, long bx, long by, long cx, long cy, long y) {
+static inline bool dominated(long ax, long ay, long bx, long by, long cx, long cy, long y) {
   const long ab = (bx * bx - ax * ax) + (by - y) * (by - y) - (ay - y) * (ay - y);
   const long bc = (cx * cx - bx * bx) + (cy - y) * (cy - y) - (by - y) * (by - y);
   return ab * (cx - bx) >= bc * (bx - ax);
 }
 
-inline long squared_distance(long x, long y, long sx, long sy) {
+static inline long squared_distance(long x, long y, long sx, long sy) {
   return (x - sx) * (x - sx) + (y - sy) * (y - sy);
 }
 

@@ -35,7 +35,7 @@ typedef struct {
   int n;
 } Difference;
 
-inline Difference exact_difference(double p, double q) {
+static inline Difference exact_difference(double p, double q) {
   Difference d;
   double hi, lo;
   clm_two_sum(p, -q, &hi, &lo);
@@ -47,7 +47,7 @@ inline Difference exact_difference(double p, double q) {
 
 // h = e * f for an expansion e of en components (at most CLM_VV_QUADRATIC)
 // and an exact difference f: at most 4 en components (2 en when f has one).
-inline int times_difference(int en, const double *e, const Difference *f, double *h) {
+static inline int times_difference(int en, const double *e, const Difference *f, double *h) {
   if (f->n == 1)
     return clm_scale_expansion(en, e, f->c[0], h);
   double low[2 * CLM_VV_QUADRATIC], high[2 * CLM_VV_QUADRATIC];
@@ -58,8 +58,8 @@ inline int times_difference(int en, const double *e, const Difference *f, double
 
 // h = e0 * f0 + sign * e1 * f1 (sign +1 or -1) for four exact differences:
 // at most CLM_VV_QUADRATIC components.
-inline int product_sum(const Difference *e0, const Difference *f0, const Difference *e1,
-                       const Difference *f1, double sign, double *h) {
+static inline int product_sum(const Difference *e0, const Difference *f0, const Difference *e1,
+                              const Difference *f1, double sign, double *h) {
   double first[CLM_VV_PRODUCT], second[CLM_VV_PRODUCT];
   const int first_n = times_difference(e0->n, e0->c, f0, first);
   const int second_n = times_difference(e1->n, e1->c, f1, second);
@@ -70,8 +70,8 @@ inline int product_sum(const Difference *e0, const Difference *f0, const Differe
 
 // h = f0 * q0 - f1 * q1 for exact differences and quadratics: a numerator,
 // at most CLM_VV_NUMERATOR components.
-inline int numerator(const Difference *f0, int q0n, const double *q0, const Difference *f1, int q1n,
-                     const double *q1, double *h) {
+static inline int numerator(const Difference *f0, int q0n, const double *q0, const Difference *f1,
+                            int q1n, const double *q1, double *h) {
   double first[CLM_VV_CUBIC], second[CLM_VV_CUBIC];
   const int first_n = times_difference(q0n, q0, f0, first);
   const int second_n = times_difference(q1n, q1, f1, second);
@@ -81,7 +81,7 @@ inline int numerator(const Difference *f0, int q0n, const double *q0, const Diff
 }
 
 // The sum of an expansion's components, from the smallest.
-inline double component_sum(int n, const double *e) {
+static inline double component_sum(int n, const double *e) {
   double sum = 0.0;
   for (int i = 0; i < n; ++i)
     sum += e[i];
@@ -93,7 +93,7 @@ inline double component_sum(int n, const double *e) {
 // the sum of the exact residual e - s. A sum of n non-overlapping components
 // errs by a few n eps relative at most, so the residual is that small and its
 // own sum's error is of the order n^2 eps^2.
-inline double nearest_double(int n, const double *e) {
+static inline double nearest_double(int n, const double *e) {
   const double sum = component_sum(n, e), minus_sum = -sum;
   double residual[CLM_VV_NUMERATOR + 1];
   const int residual_n = clm_expansion_sum(n, e, 1, &minus_sum, residual);
@@ -132,7 +132,7 @@ CLM_COLD CenterParts exact_parts(const Difference *bx, const Difference *by, con
 
 // q + ql = x^2 + y^2 within 4.01 eps^2 of it (all four exact parts are
 // positive, so nothing cancels).
-inline void square_sum(double x, double y, double *q, double *ql) {
+static inline void square_sum(double x, double y, double *q, double *ql) {
   double p1, e1, p2, e2, t;
   clm_two_product(x, x, &p1, &e1);
   clm_two_product(y, y, &p2, &e2);
@@ -142,8 +142,8 @@ inline void square_sum(double x, double y, double *q, double *ql) {
 
 // f0 (q0 + q0l) - f1 (q1 + q1l) in double-double arithmetic; false when the
 // check cannot certify it within (1 + 1e-9) eps.
-inline bool fast_numerator(double f0, double q0, double q0l, double f1, double q1, double q1l,
-                           double *value) {
+static inline bool fast_numerator(double f0, double q0, double q0l, double f1, double q1,
+                                  double q1l, double *value) {
   double x1, x2, y1, y2, s, t;
   clm_two_product(f0, q0, &x1, &x2);
   clm_two_product(f1, q1, &y1, &y2);
@@ -156,8 +156,8 @@ inline bool fast_numerator(double f0, double q0, double q0l, double f1, double q
 // and the triangle not too flat (D and the numerators are then known in
 // double-double arithmetic to far better than eps, and rounded like the
 // exact path's). False when it does not apply.
-inline bool fast_parts(const Difference *bx, const Difference *by, const Difference *cx,
-                       const Difference *cy, CenterParts *parts) {
+static inline bool fast_parts(const Difference *bx, const Difference *by, const Difference *cx,
+                              const Difference *cy, CenterParts *parts) {
   if (bx->n != 1 || by->n != 1 || cx->n != 1 || cy->n != 1)
     return false;
   const double x = bx->c[0], y = by->c[0], u = cx->c[0], v = cy->c[0];

@@ -12,7 +12,7 @@
 #include "prefetch.h"
 #include "refinement.h"
 
-inline uint spread_bits(uint x) { // bit i of x to bit 2i
+static inline uint spread_bits(uint x) { // bit i of x to bit 2i
   x &= 0xffffu;
   x = (x | (x << 8)) & 0x00ff00ffu;
   x = (x | (x << 4)) & 0x0f0f0f0fu;
@@ -20,11 +20,11 @@ inline uint spread_bits(uint x) { // bit i of x to bit 2i
   return (x | (x << 1)) & 0x55555555u;
 }
 
-inline int cell_coordinate(double x, double low, double scale, int bits) {
+static inline int cell_coordinate(double x, double low, double scale, int bits) {
   return clamp((int)((x - low) * scale), 0, (1 << bits) - 1);
 }
 
-inline int z_cell(double2 p, double2 low, double scale, int bits) {
+static inline int z_cell(double2 p, double2 low, double scale, int bits) {
   return (int)(spread_bits((uint)cell_coordinate(p.x, low.x, scale, bits)) |
                (spread_bits((uint)cell_coordinate(p.y, low.y, scale, bits)) << 1));
 }
@@ -36,7 +36,7 @@ inline int z_cell(double2 p, double2 low, double scale, int bits) {
 // infinity counts as the largest), and a cell's triangles go in the order of
 // their first two vertices, a directed edge that no other triangle starts with.
 // (The output's canonical order, mesh_output.cl, starts triangles likewise.)
-inline VertexTriple rotated_by(VertexTriple tri, int r) {
+static inline VertexTriple rotated_by(VertexTriple tri, int r) {
   const int a = tri.v[0], b = tri.v[1], c = tri.v[2];
   VertexTriple rotated; // rotated.v[i] = tri.v[(i + r) % 3], without private indexing
   rotated.v[0] = r == 0 ? a : (r == 1 ? b : c);
@@ -91,7 +91,8 @@ __kernel void steiner_point_cells(__global const double2 *points, __global const
 }
 
 // Moves a[root] down the max-heap a[0 .. size), ordered by key[a[i]], to its place.
-inline void sift_down_by_key(__global int *a, __global const ulong *key, int root, int size) {
+static inline void sift_down_by_key(__global int *a, __global const ulong *key, int root,
+                                    int size) {
   const int x = a[root];
   const ulong x_key = key[x];
   for (int child = 2 * root + 1; child < size; child = 2 * root + 1) {
@@ -107,7 +108,7 @@ inline void sift_down_by_key(__global int *a, __global const ulong *key, int roo
 
 // Sorts a[0 .. size) by key[a[i]] ascending: insertion sort when short, else
 // heap sort (a crowded cell must not cost its size squared).
-inline void sort_by_key(__global int *a, __global const ulong *key, int size) {
+static inline void sort_by_key(__global int *a, __global const ulong *key, int size) {
   if (size <= 32) {
     for (int i = 1; i < size; ++i) {
       const int x = a[i];

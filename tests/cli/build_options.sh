@@ -2,7 +2,7 @@
 # CLMESH_BUILD_OPTIONS (docs/reference.md): its options reach the device's
 # compiler, with the same meshes; options that relax IEEE arithmetic are
 # refused before any program is built, as an option error (exit status 2),
-# with no output file.
+# with no output file. The device sources declare every function static.
 # Usage: build_options.sh CLMESH_BINARY SOURCE_DIR [TEST_DATA_DIR]
 set -euo pipefail
 source "$(dirname "$0")/common.bash" "$@"
@@ -25,6 +25,13 @@ CLMESH_BUILD_OPTIONS=-cl-no-such-option "$bin" dots.node > out 2> err || status=
 [[ $status != 0 ]] || fail "an unknown build option was accepted"
 grep -q "predicate_check.cl" err || fail "unknown build option: stderr: $(cat err)"
 [[ ! -e dots.1.node && ! -e dots.1.ele ]] || fail "unknown build option: output files written"
+
+# Every device function is static: a plain C99 inline function has no
+# external definition, so a compiler that keeps the call (NVIDIA's with
+# -cl-opt-disable) cannot link the program.
+if plain=$(grep -nE '^inline ' "$source_dir"/cl/*.cl "$source_dir"/cl/*.h); then
+  fail "device functions declared inline without static: $plain"
+fi
 
 "$bin" -Q dots.node
 mv dots.1.ele plain.ele

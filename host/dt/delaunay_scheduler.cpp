@@ -337,8 +337,10 @@ std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
 }
 
 void PhaseTimer::charge(const std::string &name) {
-  profile_wait("phase timer");
-  device_.queue().finish();
+  {
+    const ProfiledCall timed("phase timer");
+    device_.queue().finish();
+  }
   const auto now = Clock::now();
   const double seconds = std::chrono::duration<double>(now - last_).count();
   last_ = now;

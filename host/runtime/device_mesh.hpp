@@ -34,7 +34,7 @@ public:
   void upload(Device &device, const std::vector<T> &data, std::size_t offset = 0) const {
     if (data.empty())
       return;
-    profile_wait("blocking write");
+    const ProfiledCall timed("blocking write");
     guarded("transfer", "uploading", [&] {
       device.queue().enqueueWriteBuffer(buffer_, CL_TRUE, offset * sizeof(T),
                                         data.size() * sizeof(T), data.data());
@@ -43,7 +43,7 @@ public:
   std::vector<T> download(Device &device, std::size_t count, std::size_t offset = 0) const {
     std::vector<T> data(count);
     if (count) {
-      profile_wait("blocking read");
+      const ProfiledCall timed("blocking read");
       guarded("transfer", "downloading", [&] {
         device.queue().enqueueReadBuffer(buffer_, CL_TRUE, offset * sizeof(T), count * sizeof(T),
                                          data.data());

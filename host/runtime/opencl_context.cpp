@@ -391,6 +391,7 @@ private:
 };
 
 cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
+  const ProfiledCall timed("buffer creation");
   // Smaller buffers come from the driver: a mapping each would cost more
   // system calls than the memory it gives back.
   constexpr std::size_t own_mapping = std::size_t{64} << 10;
@@ -544,11 +545,12 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
 cl::Kernel Device::kernel(const std::string &file, const std::string &name,
                           const std::string &phase) {
   cl::Program &built = program(file, phase);
+  const ProfiledCall timed("kernel creation");
   return guarded(phase, "creating kernel", [&] { return cl::Kernel(built, name.c_str()); });
 }
 
 void Device::wait(const std::string &phase) {
-  profile_wait("finish");
+  const ProfiledCall timed("finish");
   guarded(phase, "waiting for the device", [&] { queue_.finish(); });
 }
 
@@ -588,7 +590,7 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
   if (last < first + least)
     return;
   // No kernel writes the pages while they go.
-  profile_wait("discard");
+  const ProfiledCall timed("discard");
   guarded(phase, "waiting for the device", [&] { queue_.finish(); });
   madvise(reinterpret_cast<void *>(first), last - first, MADV_DONTNEED);
 }
@@ -600,8 +602,8 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 namespace {
 
 // CLMESH_PROFILE=1 (development aid): per kernel its seconds (each launch
-// waited for), launches and work-items, and the host's waits for the device
-// by cause, on stderr at exit.
+// waited for), launches and work-items, and the host's calls into the driver
+// by cause (ProfiledCall) with their seconds, on stderr at exit.
 const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
 
 struct ProfileTotal {
@@ -612,13 +614,14 @@ struct ProfileTotal {
 
 struct Profile {
   std::map<std::string, ProfileTotal> kernels;
-  std::map<std::string, long> waits;
+  std::map<std::string, ProfileTotal> calls;
   ~Profile() {
     for (const auto &[name, total] : kernels)
       std::fprintf(stderr, "%-32s %9.4f s %7ld launches %12.0f items\n", name.c_str(),
                    total.seconds, total.launches, total.items);
-    for (const auto &[cause, count] : waits)
-      std::fprintf(stderr, "wait: %-26s %7ld waits\n", cause.c_str(), count);
+    for (const auto &[cause, total] : calls)
+      std::fprintf(stderr, "host: %-26s %9.6f s %7ld calls\n", cause.c_str(), total.seconds,
+                   total.launches);
   }
 };
 
@@ -629,9 +632,17 @@ Profile &profile_totals() {
 
 } // namespace
 
-void profile_wait(const char *cause) {
+ProfiledCall::ProfiledCall(const char *cause) : cause_(cause) {
   if (profile)
-    ++profile_totals().waits[cause];
+    start_ = std::chrono::steady_clock::now();
+}
+
+ProfiledCall::~ProfiledCall() {
+  if (!profile)
+    return;
+  ProfileTotal &total = profile_totals().calls[cause_];
+  total.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  ++total.launches;
 }
 
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,

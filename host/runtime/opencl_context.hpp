@@ -6,6 +6,7 @@
 
 #include <CL/opencl.hpp>
 
+#include <chrono>
 #include <cstddef>
 #include <map>
 #include <memory>
@@ -138,9 +139,20 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase,
             std::size_t group);
 
-// With CLMESH_PROFILE set (see launch), counts one wait of the host for the
-// device (a blocking transfer, a finish) under `cause`.
-void profile_wait(const char *cause);
+// With CLMESH_PROFILE set (see launch), counts a host call into the driver
+// (a blocking transfer, a finish, a buffer or kernel made) under `cause`, with
+// the seconds from its construction to its end; otherwise does nothing.
+class ProfiledCall {
+public:
+  explicit ProfiledCall(const char *cause);
+  ~ProfiledCall();
+  ProfiledCall(const ProfiledCall &) = delete;
+  ProfiledCall &operator=(const ProfiledCall &) = delete;
+
+private:
+  const char *cause_;
+  std::chrono::steady_clock::time_point start_;
+};
 
 // Sets kernel arguments in order from index `first`; returns the index after
 // the last one set.

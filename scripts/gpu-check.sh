@@ -3,7 +3,9 @@
 # devices, meshes every input of datasets/ (its PSLGs at -pq30 -pcq30 -pq20,
 # its point sets plain and at -q30) on both and compares the files, then
 # runs the test suite on the GPU; before that, A.poly -pcq30 -C as built,
-# unoptimised (-cl-opt-disable) and without the predicate check. NVIDIA's
+# unoptimised (-cl-opt-disable) and without the predicate check. Between the
+# two, the PSLGs of datasets/pslg/ -pq30 as one batch with CLMESH_PROFILE=1:
+# what the GPU's kernels and the host's calls into its driver cost. NVIDIA's
 # driver library is registered as an ICD when it is found and no ICD names it
 # yet (as root).
 #   bash scripts/gpu-check.sh [BUILD_DIR] [OUT_DIR]
@@ -80,6 +82,16 @@ for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datase
 done
 echo "meshes: $runs runs on '$gpu': $failed failed; against PoCL $same the same, $differ differ" |
   tee -a "$out/summary.txt"
+
+# Where small inputs' time goes on the GPU: one worker, every kernel waited
+# for; the host's calls (blocking reads, buffers and kernels made) go to the summary.
+mkdir -p "$out/profile"
+cp "$root"/datasets/pslg/*.poly "$out/profile/"
+(cd "$out/profile" && CLMESH_PROFILE=1 CLMESH_DEVICE="$gpu" timeout 300 "$clmesh" -Q -pq30 \
+  --jobs 1 ./*.poly) > "$out/profile.txt" 2>&1
+echo "profile of $(ls "$out"/profile/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
+  tee -a "$out/summary.txt"
+grep "^host:" "$out/profile.txt" | tee -a "$out/summary.txt"
 
 if [[ -x "$build/tests/clmesh_tests" ]]; then
   (cd "$build/tests" && CLMESH_DEVICE="$gpu" timeout 600 ./clmesh_tests --no-intro) \

@@ -43,8 +43,10 @@
  * work-group's items in one thread, whose stack would hold every item's expansion arrays
  * (kilobytes each) if they were inlined, and overflows at large work-groups.  On other devices
  * they are inlined: called out of line, NVIDIA's OpenCL (driver 580 on an H100) returns wrong
- * signs from them, as the device's predicate check (predicate_check.cl) shows. */
-#if defined(__OPENCL_VERSION__) && !defined(CLM_EXACT_OUT_OF_LINE)
+ * signs from them, as the device's predicate check (predicate_check.cl) shows.  CLM_EXACT_INLINE
+ * (CLMESH_BUILD_OPTIONS=-DCLM_EXACT_INLINE) inlines them on a CPU device too, as a GPU builds
+ * them, for tests. */
+#if defined(__OPENCL_VERSION__) && (defined(CLM_EXACT_INLINE) || !defined(CLM_EXACT_OUT_OF_LINE))
 #define CLM_COLD static inline
 #else
 #define CLM_COLD static __attribute__((noinline))

@@ -37,4 +37,16 @@ fi
 mv dots.1.ele plain.ele
 CLMESH_BUILD_OPTIONS=-w "$bin" -Q dots.node
 cmp -s <(grep -v '^#' plain.ele) <(grep -v '^#' dots.1.ele) || fail "-w changed the mesh"
+
+# The exact predicate stages inlined as a GPU builds them (cl/predicates.h),
+# on the GPU paths: the predicate check passes and the quality mesh is the same.
+cp "$source_dir/datasets/A.poly" .
+"$bin" -Q -pq30 A.poly
+mv A.1.ele A-plain.ele
+status=0
+CLMESH_DEVICE_PATHS=gpu CLMESH_BUILD_OPTIONS=-DCLM_EXACT_INLINE "$bin" -Q -pq30 A.poly 2> err ||
+  status=$?
+[[ $status == 0 ]] || fail "-DCLM_EXACT_INLINE: exit status $status: $(cat err)"
+cmp -s <(grep -v '^#' A-plain.ele) <(grep -v '^#' A.1.ele) ||
+  fail "the exact stages inlined changed the mesh"
 finish build_options

@@ -27,8 +27,11 @@ process start to exit, with its parts from --stats-json (reading, compute,
 writing) and what remains (process start, OpenCL set-up, built kernels).
 
 Usage: python3 scripts/bench_batch.py [--count 2000] [--points 2000]
-           [--vertices 500] [--build-dir build] [--triangle PATH] [--clmesh PATH]
-           [--python PATH] [--markdown FILE.md]
+           [--vertices 500] [--kinds points,pslgs] [--build-dir build]
+           [--triangle PATH] [--clmesh PATH] [--python PATH] [--markdown FILE.md]
+
+--kinds measures only the batches named (a device session with little time,
+say --kinds pslgs).
 
 --markdown FILE also writes the table as the batch section of FILE (the
 other sections are kept).
@@ -129,6 +132,8 @@ def main():
     ap.add_argument("--count", type=int, default=2000)
     ap.add_argument("--points", type=int, default=2000)
     ap.add_argument("--vertices", type=int, default=500)
+    ap.add_argument("--kinds", default="points,pslgs",
+                    help="comma-separated batches to measure: points, pslgs")
     ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
     ap.add_argument("--clmesh")
     ap.add_argument("--triangle")
@@ -145,7 +150,13 @@ def main():
                "ratio", "Python loop s", "ratio to loop"]
     print("  ".join(f"{c:>16}" for c in columns))
     table = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    kinds = a.kinds.split(",")
+    unknown = set(kinds) - {"points", "pslgs"}
+    if unknown:
+        ap.error(f"--kinds: unknown batch {', '.join(sorted(unknown))}")
     for kind, size, switches in (("points", a.points, ""), ("pslgs", a.vertices, "pq30")):
+        if kind not in kinds:
+            continue
         directory = os.path.join(bench, f"batch-{kind}-{a.count}x{size}")
         paths = generate(directory, kind, a.count, size)
         listing = os.path.join(directory, "list.txt")

@@ -7,6 +7,7 @@
 #include "clmesh/device.hpp"
 #include "runtime/opencl_context.hpp"
 #include "runtime/program_cache.hpp"
+#include "test_support.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -27,27 +28,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// An environment variable set to `value` (nullopt: unset) while it lives.
-class Environment {
-public:
-  Environment(const char *name, const std::optional<std::string> &value) : name_(name) {
-    if (const char *old = std::getenv(name))
-      old_ = old;
-    set(value);
-  }
-  ~Environment() { set(old_); }
-
-private:
-  void set(const std::optional<std::string> &value) {
-    if (value)
-      setenv(name_, value->c_str(), 1);
-    else
-      unsetenv(name_);
-  }
-  const char *name_;
-  std::optional<std::string> old_;
-};
-
 // CLMESH_CACHE_DIR set to `value` (nullopt: unset) while it lives. The
 // device's check of its predicates is off meanwhile: the folder holds the
 // entries of the programs a test builds, and no other.
@@ -57,7 +37,7 @@ public:
       : directory_("CLMESH_CACHE_DIR", value), check_("CLMESH_PREDICATE_CHECK", "off") {}
 
 private:
-  Environment directory_, check_;
+  test_support::Environment directory_, check_;
 };
 
 fs::path fresh_directory(const std::string &name) {

@@ -7,12 +7,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace test_support {
+
+// An environment variable set to `value` (nullopt: unset) while it lives.
+class Environment {
+public:
+  Environment(const char *name, const std::optional<std::string> &value) : name_(name) {
+    if (const char *old = std::getenv(name))
+      old_ = old;
+    set(value);
+  }
+  ~Environment() { set(old_); }
+  Environment(const Environment &) = delete;
+  Environment &operator=(const Environment &) = delete;
+
+private:
+  void set(const std::optional<std::string> &value) {
+    if (value)
+      setenv(name_, value->c_str(), 1);
+    else
+      unsetenv(name_);
+  }
+  const char *name_;
+  std::optional<std::string> old_;
+};
 
 // One device for the whole test run ($CLMESH_DEVICE or the first with fp64).
 inline clmesh::Device &device() {

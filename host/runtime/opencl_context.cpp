@@ -496,6 +496,13 @@ void Device::fit_prefetching(std::size_t points, std::size_t from) {
   prefetching_ = points >= from;
 }
 
+ProgramCache Device::result_cache(const std::string &file, const std::string &question) const {
+  const bool prefetch = can_prefetch_ && prefetching_;
+  return ProgramCache(kernel_source(file) + "\n" + question,
+                      build_options_ + (prefetch ? " -DCLM_PREFETCH" : "") + "\n" +
+                          build_identity_);
+}
+
 cl::Program &Device::program(const std::string &file, const std::string &phase) {
   const bool prefetch = can_prefetch_ && prefetching_;
   const std::string key = prefetch ? file + " (prefetching)" : file;

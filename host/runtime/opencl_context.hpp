@@ -3,6 +3,7 @@
 
 #include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
+#include "runtime/program_cache.hpp"
 
 #include <CL/opencl.hpp>
 
@@ -52,6 +53,10 @@ public:
   // Sources come from CLMESH_KERNEL_DIR when set, else from the embedded copies.
   // Binaries are kept between runs (program_cache.hpp).
   cl::Program &program(const std::string &file, const std::string &phase);
+  // The program cache's entry for a result that `file`'s program, as this
+  // device builds it now, gives for `question` (the predicate check's
+  // verdict): keyed by the source, the build options, the device and driver.
+  ProgramCache result_cache(const std::string &file, const std::string &question) const;
   cl::Kernel kernel(const std::string &file, const std::string &name, const std::string &phase);
 
   // Software prefetching (cl/prefetch.h, PoCL's CPU devices) pays only once

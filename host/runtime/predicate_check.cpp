@@ -88,6 +88,14 @@ void check_device_predicates(Device &device) {
   std::vector<cl_double> coords;
   for (const PredicateCase &c : cases)
     coords.insert(coords.end(), c.begin(), c.end());
+  // A pass is kept in the program cache, keyed by the check's program as the
+  // device builds it and by the cases: later runs with the same sources,
+  // options, device and driver skip the check.
+  const ProgramCache verdict = device.result_cache(
+      kFile, "passed: " + std::string(reinterpret_cast<const char *>(coords.data()),
+                                      coords.size() * sizeof(cl_double)));
+  if (verdict.load())
+    return;
   const DeviceArray<cl_double> device_coords(device, coords.size());
   device_coords.upload(device, coords);
   const DeviceArray<cl_int> signs(device, kSigns * cases.size());
@@ -112,6 +120,7 @@ void check_device_predicates(Device &device) {
                       kSignNames[first_sign] + " of case " + std::to_string(first_case) +
                       "): its OpenCL compiler does not keep their arithmetic exact, so meshes "
                       "made on it could be wrong; choose another device (clmesh --list-devices)");
+  verdict.store({1});
 }
 
 } // namespace clmesh

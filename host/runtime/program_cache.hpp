@@ -5,6 +5,8 @@
 // most of a small mesh's run). The cache keeps each
 // device's binary (CL_PROGRAM_BINARIES) under a name that hashes everything
 // the binary depends on, so a later run builds from the binary instead.
+// Beside them it keeps results found with such a program (the predicate
+// check's pass: Device::result_cache), keyed the same way.
 //
 // Best effort, never a failed run: an entry is handed to the driver only when
 // its clmesh header checks out (magic, format version, the key it was stored

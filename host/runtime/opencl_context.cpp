@@ -496,11 +496,15 @@ void Device::fit_prefetching(std::size_t points, std::size_t from) {
   prefetching_ = points >= from;
 }
 
+std::string Device::options_now() const {
+  // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
+  // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
+  return build_options_ + (can_prefetch_ && prefetching_ ? " -DCLM_PREFETCH" : "");
+}
+
 ProgramCache Device::result_cache(const std::string &file, const std::string &question) const {
-  const bool prefetch = can_prefetch_ && prefetching_;
   return ProgramCache(kernel_source(file) + "\n" + question,
-                      build_options_ + (prefetch ? " -DCLM_PREFETCH" : "") + "\n" +
-                          build_identity_);
+                      options_now() + "\n" + build_identity_);
 }
 
 cl::Program &Device::program(const std::string &file, const std::string &phase) {
@@ -514,9 +518,7 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
     check_device_predicates(*this);
   }
   const std::string source = kernel_source(file);
-  // No -cl-fast-relaxed-math, no -cl-mad-enable: the exact predicates need
-  // IEEE arithmetic without contraction (the sources also say FP_CONTRACT OFF).
-  const std::string options = build_options_ + (prefetch ? " -DCLM_PREFETCH" : "");
+  const std::string options = options_now();
   const ProgramCache cache(source, options + "\n" + build_identity_);
   if (const auto binary = cache.load()) {
     try {

@@ -116,6 +116,9 @@ public:
   std::size_t global_memory() const;
 
 private:
+  // The options programs are built with now (prefetching or not).
+  std::string options_now() const;
+
   cl::Device device_;
   DeviceDescription description_;
   cl::Context context_;

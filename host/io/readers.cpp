@@ -166,6 +166,12 @@ private:
 
 // Whole token as a double (strtod syntax); false when it is not one.
 bool parse_double(std::string_view token, double &value) {
+  // The common decimal forms by from_chars (correctly rounded, as strtod);
+  // the rest (a sign '+', hexadecimal, out of range) by strtod.
+  const char *last = token.data() + token.size();
+  if (const auto [stop, error] = std::from_chars(token.data(), last, value);
+      error == std::errc() && stop == last && !token.empty())
+    return true;
   char small[64];
   std::string large;
   const char *text;
@@ -184,6 +190,11 @@ bool parse_double(std::string_view token, double &value) {
 
 // Whole token as a base-10 integer; false when it is not one or overflows.
 bool parse_long(std::string_view token, long &value) {
+  // Plain digits by from_chars; the rest (a sign '+', overflow) by strtol.
+  const char *last = token.data() + token.size();
+  if (const auto [stop, error] = std::from_chars(token.data(), last, value, 10);
+      error == std::errc() && stop == last && !token.empty())
+    return true;
   char small[64];
   if (token.empty() || token.size() >= sizeof small)
     return false;

@@ -2,6 +2,7 @@
 #include "clmesh/input.hpp"
 
 #include "api/triangle_error.hpp"
+#include "io/directed_edges.hpp"
 
 #include "clmesh/errors.hpp"
 
@@ -10,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <tuple>
 
 namespace clmesh {
 
@@ -47,8 +47,6 @@ void validate_triangles(const Input &input) {
   for (std::size_t t = 0; t < input.triangle_max_area.size(); ++t)
     if (std::isnan(input.triangle_max_area[t]))
       throw_triangle_error(input, t, "its maximum area is not a number");
-  std::vector<std::tuple<int32_t, int32_t, std::size_t>> directed;
-  directed.reserve(3 * count);
   for (std::size_t t = 0; t < count; ++t) {
     const Triangle &v = input.triangles[t];
     for (int32_t corner : v)
@@ -66,20 +64,20 @@ void validate_triangles(const Input &input) {
                            side == 0
                                ? "its corners are collinear (it has no area)"
                                : "its corners are in clockwise order (counter-clockwise expected)");
-    for (int k = 0; k < 3; ++k)
-      directed.emplace_back(v[k], v[(k + 1) % 3], t);
   }
-  std::sort(directed.begin(), directed.end());
-  for (std::size_t i = 1; i < directed.size(); ++i)
-    if (std::get<0>(directed[i]) == std::get<0>(directed[i - 1]) &&
-        std::get<1>(directed[i]) == std::get<1>(directed[i - 1]))
-      throw_triangle_error(
-          input, std::get<2>(directed[i]),
-          "it overlaps triangle " +
-              std::to_string(static_cast<long>(std::get<2>(directed[i - 1])) + input.first_index) +
-              " (both take the edge from vertex " +
-              std::to_string(std::get<0>(directed[i]) + input.first_index) + " to " +
-              std::to_string(std::get<1>(directed[i]) + input.first_index) + ")");
+  // The first edge taken twice, in the order of (from, to, triangle).
+  const DirectedEdges directed(input.triangles, n);
+  const std::vector<DirectedEdges::Edge> &edges = directed.edges();
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t e = directed.first(a) + 1; e < directed.first(a + 1); ++e)
+      if (edges[e].head == edges[e - 1].head)
+        throw_triangle_error(
+            input, edges[e].triangle,
+            "it overlaps triangle " +
+                std::to_string(static_cast<long>(edges[e - 1].triangle) + input.first_index) +
+                " (both take the edge from vertex " +
+                std::to_string(static_cast<long>(a) + input.first_index) + " to " +
+                std::to_string(edges[e].head + input.first_index) + ")");
 }
 
 } // namespace

@@ -20,6 +20,7 @@
 #include "cdt/mesh_reconstruction.hpp"
 #include "dt/delaunay_scheduler.hpp"
 #include "dt/missing_point_insertion.hpp"
+#include "io/directed_edges.hpp"
 #include "refine/domain_boundary.hpp"
 #include "refine/flip_flop.hpp"
 #include "refine/free_slots.hpp"
@@ -778,27 +779,23 @@ private:
 // edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
 // later, keeping the first.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
-                                      const std::vector<Segment> &segments) {
-  std::vector<std::pair<int32_t, int32_t>> directed;
-  directed.reserve(3 * triangles.size());
-  for (const Triangle &t : triangles)
-    for (int k = 0; k < 3; ++k)
-      directed.emplace_back(t[k], t[(k + 1) % 3]);
-  std::sort(directed.begin(), directed.end());
-  auto has = [&](int32_t a, int32_t b) {
-    return std::binary_search(directed.begin(), directed.end(), std::make_pair(a, b));
-  };
-  auto on_boundary = [&](int32_t a, int32_t b) { return has(a, b) != has(b, a); };
+                                      const std::vector<Segment> &segments, std::size_t vertices) {
+  const DirectedEdges directed(triangles, vertices);
+  auto on_boundary = [&](int32_t a, int32_t b) { return directed.has(a, b) != directed.has(b, a); };
   std::vector<Segment> constraints = segments;
   for (Segment &s : constraints)
     if (s.marker == 0 && on_boundary(s.a, s.b))
       s.marker = 1;
-  for (const auto &[a, b] : directed)
-    if (!has(b, a))
-      constraints.push_back({a, b, 1});
-  for (const auto &[a, b] : directed)
-    if (a < b && has(b, a))
-      constraints.push_back({a, b, kInnerEdge});
+  // The edges in the order of (from, to): the boundary's, then the inner ones.
+  const std::vector<DirectedEdges::Edge> &edges = directed.edges();
+  for (const bool inner : {false, true})
+    for (std::size_t a = 0; a < vertices; ++a)
+      for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
+        const auto from = static_cast<int32_t>(a), to = edges[e].head;
+        if (directed.has(to, from) != inner || (inner && from > to))
+          continue;
+        constraints.push_back({from, to, inner ? kInnerEdge : 1});
+      }
   return constraints;
 }
 
@@ -861,7 +858,7 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
     s.a = index_of[static_cast<std::size_t>(s.a)];
     s.b = index_of[static_cast<std::size_t>(s.b)];
   }
-  const std::vector<Segment> constraints = mesh_constraints(corners, segments);
+  const std::vector<Segment> constraints = mesh_constraints(corners, segments, points.size());
   const std::vector<Region> no_regions;
   const Pslg subset{points, constraints, pslg.holes, no_regions};
 

@@ -3,41 +3,175 @@
 //
 // The triangles of Phase 2 join sites as the digital diagram saw them, at
 // pixel positions; at the real coordinates a triangle may turn over. Every
-// predicate of the mesh reads the real coordinates, so shifting is a check:
-// of a triangle that is not strictly counter-clockwise there, the site
-// opposite its longest edge is left out of the diagram (it becomes a missing
-// point, inserted exactly in Phase 4) and the construction is repeated until
-// nothing turns over. Then
-// the ghost flips of Phase 5 make the outer cycle convex, and a last check
-// proves the result a triangulation of the convex hull of its vertices: all
-// triangles counter-clockwise (flips keep them so), every link returned, and
-// an outer cycle that turns left or goes straight on at every vertex and
-// winds around once (a single lowest vertex). Missing points outside it are
-// inserted in Phase 4 like the others, in the ghost triangles.
+// predicate of the mesh reads the real coordinates, so shifting is a check,
+// and a repair where one flip does it: a turned-over triangle whose middle
+// site (opposite its longest edge) has crossed into the triangle beyond that
+// edge, or beyond the hull there, is flipped with it (untangling below). Of
+// a triangle still turned over, that site is left out of the diagram (it
+// becomes a missing point, inserted exactly in Phase 4) and the construction
+// is repeated until nothing turns over. Then the ghost flips of Phase 5 make
+// the outer cycle convex, and a last check proves the result a triangulation
+// of the convex hull of its vertices: all triangles counter-clockwise (flips
+// keep them so), every link returned, and an outer cycle that turns left or
+// goes straight on at every vertex and winds around once (a single lowest
+// vertex). Missing points outside it are inserted in Phase 4 like the
+// others, in the ghost triangles.
 #include "common.h"
 
-__kernel void flag_inverted_triangles(__global const double2 *points,
-                                      __global const int *tri_vertex, __global int *bad,
-                                      const int real) {
-  const int t = get_global_id(0);
-  if (t >= real)
-    return;
-  const int a = tri_vertex[3 * t], b = tri_vertex[3 * t + 1], c = tri_vertex[3 * t + 2];
-  if (orient_vertices(points, a, b, c) > 0)
-    return;
-  // A turned-over triangle is nearly flat: its middle site, opposite the
-  // longest edge, lies on the wrong side of the other two. Leaving out only
-  // that one keeps the others, hull sites often, as sites: all three would
-  // expose the next layer of a dense hull to the same fate, round after round.
+// The corner (0-2) of triangle (a, b, c) opposite its longest edge: of a
+// turned-over triangle, which is nearly flat, the site that lies on the wrong
+// side of the other two.
+static inline int middle_corner(__global const double2 *points, int a, int b, int c) {
   const double2 pa = points[a], pb = points[b], pc = points[c];
   const double lab = squared_length(pb - pa), lbc = squared_length(pc - pb),
                lca = squared_length(pa - pc);
   if (lab >= lbc && lab >= lca)
-    bad[c] = 1;
-  else if (lbc >= lca)
-    bad[a] = 1;
-  else
-    bad[b] = 1;
+    return 2;
+  return lbc >= lca ? 0 : 1;
+}
+
+// Lists the triangles of [0, real) that are not strictly counter-clockwise
+// (turned) and counts them. The list's order depends on the schedule; what
+// is done with it does not (the claims below).
+__kernel void list_turned_triangles(__global const double2 *points, __global const int *tri_vertex,
+                                    __global int *turned, volatile __global int *count,
+                                    const int real) {
+  const int t = get_global_id(0);
+  if (t >= real)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (orient_vertices(points, tri.v[0], tri.v[1], tri.v[2]) <= 0)
+    turned[atomic_inc(count)] = t;
+}
+
+static inline bool is_turned(__global const double2 *points, VertexTriple tri) {
+  return !is_ghost(tri) && orient_vertices(points, tri.v[0], tri.v[1], tri.v[2]) <= 0;
+}
+
+// Untangling (thesis §4.1.2: "modify the triangulation if necessary"). A
+// turned triangle t = (c, a, b) is nearly flat: its middle corner c, opposite
+// its longest edge, has crossed a-b. Where c lies strictly inside the real
+// triangle u = (d, b, a) beyond a-b, t and u cover the part (b, a, c) of u
+// with opposite signs: the flip of a-b into c-d leaves (a, d, c) and
+// (b, c, d), both counter-clockwise, covering what the two covered together.
+// Where a-b is a hull edge (u a ghost, d at infinity) and c lies strictly
+// beyond it, the same flip makes t two ghosts: c joins the hull between a and
+// b, and the ghost flips of Phase 5 make the hull convex again. The edge of t
+// to flip, or -1.
+static inline int untangling_edge(__global const double2 *points, __global const int *tri_vertex,
+                                  __global const int *tri_neighbor, int t) {
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (!is_turned(points, tri))
+    return -1;
+  const int i = middle_corner(points, tri.v[0], tri.v[1], tri.v[2]);
+  const int link = tri_neighbor[3 * t + i];
+  const int c = tri.v[i], a = tri.v[next3(i)], b = tri.v[prev3(i)];
+  const int d = tri_vertex[3 * link_triangle(link) + link_edge(link)];
+  if (orient_vertices(points, b, a, c) <= 0)
+    return -1;
+  if (d == CLM_INFINITE)
+    return i;
+  return orient_vertices(points, a, d, c) > 0 && orient_vertices(points, d, b, c) > 0 ? i : -1;
+}
+
+// A pass of untangling over the turned triangles listed, in four launches:
+// the claims of each flip's two slots are reset (reset: 1), then taken with
+// the atomic minimum of the turned slot (reset: 0), so that the flips that go
+// ahead are disjoint and the same whatever the schedule; the flips that own
+// both claims (flip_pair), each recording its partner slot in
+// flipped_with[k] (else -1); the outer neighbours relinked.
+__kernel void claim_untangling_flips(__global const double2 *points, __global const int *tri_vertex,
+                                     __global const int *tri_neighbor, __global const int *turned,
+                                     volatile __global int *claim, const int reset,
+                                     const int count) {
+  const int k = get_global_id(0);
+  if (k >= count)
+    return;
+  const int t = turned[k];
+  const int i = untangling_edge(points, tri_vertex, tri_neighbor, t);
+  if (i < 0)
+    return;
+  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  if (reset) {
+    claim[t] = INT_MAX;
+    claim[u] = INT_MAX;
+  } else {
+    atomic_min(&claim[t], t);
+    atomic_min(&claim[u], t);
+  }
+}
+
+// flips[0] counts the flips.
+__kernel void apply_untangling_flips(__global const double2 *points, __global int *tri_vertex,
+                                     __global int *tri_neighbor, __global const int *turned,
+                                     __global const int *claim, __global int *flipped_with,
+                                     volatile __global int *flips, const int count) {
+  const int k = get_global_id(0);
+  if (k >= count)
+    return;
+  const int t = turned[k];
+  flipped_with[k] = -1;
+  // Owning its claim, t is no other flip's; its edge is read only then.
+  if (claim[t] != t)
+    return;
+  const int i = untangling_edge(points, tri_vertex, tri_neighbor, t);
+  if (i < 0)
+    return;
+  const int u = link_triangle(tri_neighbor[3 * t + i]);
+  if (claim[u] != t)
+    return;
+  flip_pair(tri_vertex, tri_neighbor, t, i);
+  flipped_with[k] = u;
+  atomic_inc(flips);
+}
+
+// Links outer edge `edge` of triangle t, just flipped, and its neighbour x
+// across it. An x that still holds the edge where the old link says was not
+// flipped (or keeps the edge in place): it gets the link back. Otherwise x
+// was flipped: the edge is in x or its partner, the slot across x's edge 0.
+static inline void relink_untangled_edge(__global const int *tri_vertex, __global int *tri_neighbor,
+                                         int t, int edge) {
+  const int link = tri_neighbor[3 * t + edge];
+  const int x = link_triangle(link), j = link_edge(link);
+  // Edge `edge` of t runs from p to q; the neighbour holds q -> p.
+  const int p = tri_vertex[3 * t + next3(edge)], q = tri_vertex[3 * t + prev3(edge)];
+  if (tri_vertex[3 * x + next3(j)] == q && tri_vertex[3 * x + prev3(j)] == p) {
+    tri_neighbor[3 * x + j] = encode_link(t, edge);
+    return;
+  }
+  const int candidates[2] = {x, link_triangle(tri_neighbor[3 * x])};
+  for (int c = 0; c < 2; ++c)
+    for (int i = 0; i < 3; ++i)
+      if (tri_vertex[3 * candidates[c] + next3(i)] == q &&
+          tri_vertex[3 * candidates[c] + prev3(i)] == p)
+        tri_neighbor[3 * t + edge] = encode_link(candidates[c], i);
+}
+
+__kernel void relink_untangled(__global const int *tri_vertex, __global int *tri_neighbor,
+                               __global const int *turned, __global const int *flipped_with,
+                               const int count) {
+  const int k = get_global_id(0);
+  if (k >= count || flipped_with[k] < 0)
+    return;
+  const int pair[2] = {turned[k], flipped_with[k]};
+  for (int s = 0; s < 2; ++s)
+    for (int edge = 1; edge < 3; ++edge)
+      relink_untangled_edge(tri_vertex, tri_neighbor, pair[s], edge);
+}
+
+// Flags in `bad` the middle corner of each listed triangle still turned:
+// leaving out only that site keeps the others, hull sites often, as sites;
+// all three would expose the next layer of a dense hull to the same fate,
+// round after round.
+__kernel void flag_turned_sites(__global const double2 *points, __global const int *tri_vertex,
+                                __global const int *turned, __global int *bad, const int count) {
+  const int k = get_global_id(0);
+  if (k >= count)
+    return;
+  const VertexTriple tri = load_vertices(tri_vertex, turned[k]);
+  if (!is_turned(points, tri))
+    return;
+  bad[tri.v[middle_corner(points, tri.v[0], tri.v[1], tri.v[2])]] = 1;
 }
 
 // Leaves the flagged sites out of the next diagram, counting them; clears

@@ -332,6 +332,31 @@ TEST_CASE("delaunay: the construction settles on a dense disk") {
   CHECK(result.statistics.delaunay.constructed_triangles > static_cast<long>(points.size()) / 4);
 }
 
+// Phase 3 mends turned-over triangles by flips (untangling, cl/shifting.cl)
+// instead of leaving their middle sites out and building the diagram again.
+// Uniform points at the default grid turn dozens of triangles over, each
+// with its middle site just across the edge into the next triangle: one
+// diagram, no site left out, and the hull fan's mesh.
+TEST_CASE("delaunay: turned-over triangles are mended by flips in the first diagram") {
+  const auto points = fixtures::uniform(300000, 43);
+  const clmesh::Mesh result = triangulate_and_check(points);
+  const clmesh::DelaunayStats &stats = result.statistics.delaunay;
+  CHECK(stats.construction == "voronoi");
+  CHECK(stats.untangling_flips > 10);
+  CHECK(stats.construction_rounds == 1);
+  CHECK(stats.dropped_sites == 0);
+  clmesh::Options options;
+  options.tuning.construction = clmesh::Construction::fan;
+  CHECK(triangulate_points(points, options).triangles == result.triangles);
+  // Any work-group size: the same flips, the same mesh.
+  options.tuning.construction = clmesh::Construction::automatic;
+  options.tuning.work_group = 1;
+  const clmesh::Mesh single = triangulate_points(points, options);
+  CHECK(single.statistics.delaunay.untangling_flips == stats.untangling_flips);
+  CHECK(single.triangles == result.triangles);
+  CHECK(single.neighbors == result.neighbors);
+}
+
 // By default, inputs below Tuning::kFanBelow points start from the hull fan
 // and larger ones from the diagram; a grid or --construction overrides it,
 // and the triangles never change.

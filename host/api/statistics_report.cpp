@@ -80,6 +80,7 @@ std::string format_statistics(const Mesh &mesh) {
   if (s.grid > 0) {
     add("  Voronoi grid: %d x %d, %ld diagram(s)\n", s.grid, s.grid, s.construction_rounds);
     add("  Triangles from Voronoi vertices: %ld\n", s.constructed_triangles);
+    add("  Turned-over triangles mended by flips: %ld\n", s.untangling_flips);
     add("  Sites left out after shifting: %ld\n", s.dropped_sites);
   }
   add("  Vertices placed by missing-point insertion: %ld\n", s.missing_points);
@@ -142,6 +143,7 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
   json += count("construction_rounds", s.construction_rounds);
   json += count("constructed_triangles", s.constructed_triangles);
   json += count("dropped_sites", s.dropped_sites);
+  json += count("untangling_flips", s.untangling_flips);
   json += count("pixel_collisions", s.pixel_collisions);
   json += count("insertion_rounds", s.insertion_rounds);
   json += count("flip_passes", s.flip_passes);

@@ -487,8 +487,9 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
   bad.fill(device_, 0, n);
   TriangulationConstruction::Built built;
   bool settled = false;
-  long left_out_before = 0;
+  long left_out_before = 0, left_out_two_before = 0;
   stats_.dropped_sites = 0;
+  stats_.untangling_flips = 0;
   for (int round = 0; round < kConstructionRounds && !settled; ++round) {
     // Phase 1: the digital Voronoi diagram of the sites not left out.
     const std::size_t not_sites = banding.run(stats_.grid, low, span, &site_state);
@@ -504,18 +505,23 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
     timer_->charge(TriangulationConstruction::kPhase);
     if (!built.fits)
       break;
-    // Phase 3: at the real coordinates; sites of turned-over or unmatched
+    // Phase 3: at the real coordinates, turned-over triangles are untangled
+    // by flips where they can be; the sites of the others and of unmatched
     // triangles are left out of the next diagram.
-    shifting.flag_inverted(built.real, bad);
+    stats_.untangling_flips += shifting.untangle(built.real, built.real + built.ghosts, bad);
     const long left_out = shifting.leave_out_flagged(bad, site_state);
     stats_.dropped_sites += left_out;
     timer_->charge(Shifting::kPhase);
     settled = left_out == 0;
     // Each round should fix a good part of what is left (a dense hull turns
-    // over layer after layer, a few sites fewer each time); when it does not,
-    // the hull fan is cheaper than more rounds.
-    if (round >= 2 && left_out > kStalledSites && 4 * left_out > 3 * left_out_before)
+    // over layer after layer, a few sites fewer each time), and every two
+    // rounds a quarter of it even when little is left (the few sites that a
+    // clustered input leaves out again and again); when they do not, the
+    // hull fan is cheaper than more rounds.
+    if (round >= 2 && ((left_out > kStalledSites && 4 * left_out > 3 * left_out_before) ||
+                       4 * left_out > 3 * left_out_two_before))
       break;
+    left_out_two_before = left_out_before;
     left_out_before = left_out;
   }
   if (!settled)

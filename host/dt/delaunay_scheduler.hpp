@@ -101,7 +101,8 @@ private:
   // Rounds of Phases 1-3 before the hull fan is used instead.
   static constexpr int kConstructionRounds = 12;
   // Sites left out in a round that did not cut the previous round's count by
-  // a quarter: more than this many, and the rounds stop (from the third on).
+  // a quarter: more than this many, and the rounds stop (from the third on;
+  // whatever their number when two rounds did not cut it by a quarter).
   static constexpr long kStalledSites = 64;
 
   // The Voronoi texture's side: --grid, else VoronoiBanding::choose_grid.

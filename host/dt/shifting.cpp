@@ -10,17 +10,57 @@ const char *kFile = "shifting.cl";
 
 Shifting::Shifting(Device &device, DeviceMesh &mesh, PrefixScan &scan)
     : device_(device), mesh_(mesh), scan_(scan),
-      flag_inverted_(device.kernel(kFile, "flag_inverted_triangles", kPhase)),
+      list_turned_(device.kernel(kFile, "list_turned_triangles", kPhase)),
+      claim_flips_(device.kernel(kFile, "claim_untangling_flips", kPhase)),
+      apply_flips_(device.kernel(kFile, "apply_untangling_flips", kPhase)),
+      relink_(device.kernel(kFile, "relink_untangled", kPhase)),
+      flag_turned_(device.kernel(kFile, "flag_turned_sites", kPhase)),
       leave_out_(device.kernel(kFile, "leave_out_flagged_sites", kPhase)),
 
       count_lowest_(device.kernel(kFile, "count_lowest_boundary_vertices", kPhase)),
       record_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
       flag_missing_(device.kernel(kFile, "flag_missing_points", kPhase)), counter_(device, 1) {}
 
-void Shifting::flag_inverted(std::size_t real, const DeviceArray<cl_int> &bad) {
-  set_args(flag_inverted_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), bad.buffer(),
-           static_cast<cl_int>(real));
-  launch(device_, flag_inverted_, real, kPhase);
+long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad) {
+  // Sized for the largest round; pages come as written, a few for a short list.
+  if (turned_.size() < real)
+    turned_ = DeviceArray<cl_int>(device_, real);
+  if (claim_.size() < slots)
+    claim_ = DeviceArray<cl_int>(device_, slots);
+  counter_.fill(device_, 0, 1);
+  set_args(list_turned_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), turned_.buffer(),
+           counter_.buffer(), static_cast<cl_int>(real));
+  launch(device_, list_turned_, real, kPhase);
+  const long turned = counter_.read(device_, 0);
+  long flips = 0;
+  if (turned == 0)
+    return flips;
+  const auto count = static_cast<cl_int>(turned);
+  if (flipped_with_.size() < static_cast<std::size_t>(turned))
+    flipped_with_ = DeviceArray<cl_int>(device_, turned);
+  const cl::Buffer &points = mesh_.points.buffer(), &vertices = mesh_.tri_vertex.buffer(),
+                   &neighbors = mesh_.tri_neighbor.buffer();
+  // A flip can only make room for another (a claim lost, a neighbour's turn).
+  for (int pass = 0; pass < kUntanglingPasses; ++pass) {
+    for (const cl_int reset : {1, 0}) {
+      set_args(claim_flips_, points, vertices, neighbors, turned_.buffer(), claim_.buffer(), reset,
+               count);
+      launch(device_, claim_flips_, turned, kPhase);
+    }
+    counter_.fill(device_, 0, 1);
+    set_args(apply_flips_, points, vertices, neighbors, turned_.buffer(), claim_.buffer(),
+             flipped_with_.buffer(), counter_.buffer(), count);
+    launch(device_, apply_flips_, turned, kPhase);
+    set_args(relink_, vertices, neighbors, turned_.buffer(), flipped_with_.buffer(), count);
+    launch(device_, relink_, turned, kPhase);
+    const long flipped = counter_.read(device_, 0);
+    flips += flipped;
+    if (flipped == 0)
+      break;
+  }
+  set_args(flag_turned_, points, vertices, turned_.buffer(), bad.buffer(), count);
+  launch(device_, flag_turned_, turned, kPhase);
+  return flips;
 }
 
 long Shifting::leave_out_flagged(const DeviceArray<cl_int> &bad,

@@ -10,12 +10,20 @@ namespace clmesh {
 class Shifting {
 public:
   static constexpr const char *kPhase = "shifting";
+  // A bound on untangle's passes; each pass after the first flips only what
+  // the flips before made possible, and few of them flip anything.
+  static constexpr int kUntanglingPasses = 8;
 
   Shifting(Device &device, DeviceMesh &mesh, PrefixScan &scan);
 
-  // Flags in `bad` the sites of the triangles in slots [0, real) that are not
-  // strictly counter-clockwise at the real coordinates.
-  void flag_inverted(std::size_t real, const DeviceArray<cl_int> &bad);
+  // The check at the real coordinates of the triangles in slots [0, real)
+  // (ghosts follow up to `slots`): turned ones (not strictly counter-
+  // clockwise) are untangled by flips where their middle site lies inside
+  // the triangle across their longest edge or beyond a hull edge there
+  // (cl/shifting.cl), pass after pass while flips go ahead; the middle sites
+  // of those still turned are flagged in `bad`. Returns how many flips there
+  // were.
+  long untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad);
 
   // Leaves the sites flagged in `bad` out of the next diagram (site_state)
   // and clears `bad`; returns how many were left out.
@@ -36,8 +44,12 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  cl::Kernel flag_inverted_, leave_out_, count_lowest_, record_triangles_, flag_missing_;
+  cl::Kernel list_turned_, claim_flips_, apply_flips_, relink_, flag_turned_, leave_out_,
+      count_lowest_, record_triangles_, flag_missing_;
   DeviceArray<cl_int> counter_;
+  // untangle's: the turned triangles, the claims of slots, each turned
+  // triangle's partner in a flip.
+  DeviceArray<cl_int> turned_, claim_, flipped_with_;
 };
 
 } // namespace clmesh

@@ -25,6 +25,7 @@ struct DelaunayStats {
   long construction_rounds = 0;   // diagrams built by Phases 1-3
   long constructed_triangles = 0; // triangles of the last Phase 2 (ghosts excluded)
   long dropped_sites = 0;         // sites Phase 3 left out (their triangles turned over)
+  long untangling_flips = 0;      // flips by which Phase 3 mended turned-over triangles
   long flips = 0;
   long insertion_rounds = 0;
   long flip_passes = 0;

@@ -158,7 +158,8 @@ assert isinstance(s["phases"], list)
 for p in s["phases"]:
     assert set(p) == {"name", "seconds"} and isinstance(p["name"], str)
 keys = {"input_points", "duplicates", "missing_points", "flips", "triangles",
-        "construction_rounds", "constructed_triangles", "dropped_sites", "pixel_collisions",
+        "construction_rounds", "constructed_triangles", "dropped_sites", "untangling_flips",
+        "pixel_collisions",
         "insertion_rounds", "flip_passes", "exact_predicate_calls"}
 assert set(s["counts"]) == keys, sorted(s["counts"])
 assert all(isinstance(v, int) for v in s["counts"].values())

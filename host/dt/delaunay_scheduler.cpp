@@ -6,6 +6,7 @@
 #include "dt/shifting.hpp"
 #include "dt/triangulation_construction.hpp"
 #include "predicates.h"
+#include "runtime/host_memory.hpp"
 
 #include <algorithm>
 #include <array>
@@ -641,6 +642,7 @@ void DelaunayScheduler::flip_flagged(const DeviceArray<cl_int> &flags, FlipCount
 void DelaunayScheduler::download(DelaunayResult &result, const DeviceArray<cl_int> *removed,
                                  const DeviceArray<cl_int> *label, std::vector<int32_t> *labels) {
   flipping_.reset(); // its lists are not needed any more: room for the output's
+  release_free_heap();
   MeshOutput(device_, *mesh_, *scan_)
       .download(result.triangles, result.neighbors, result.duplicate_of, removed, label, labels);
   // The last use of the mesh: its memory goes before the host works on the result.

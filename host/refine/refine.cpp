@@ -28,6 +28,7 @@
 #include "refine/size_bound.hpp"
 #include "refine/steiner_renumbering.hpp"
 #include "refine/zorder_compaction.hpp"
+#include "runtime/host_memory.hpp"
 
 #include "clmesh/errors.hpp"
 
@@ -289,6 +290,7 @@ public:
 
   // The iterations, until no triangle is bad or a limit is reached.
   void iterate() {
+    release_free_heap(); // the set-up's temporaries: the iterations need the room
     for (long iteration = 0;; ++iteration) {
       if (iteration == 0 || compaction_pays())
         compact();
@@ -845,19 +847,30 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
       index_of[i] = static_cast<int32_t>(kept.size());
       kept.push_back(static_cast<int32_t>(i));
     }
-  std::vector<Point> points;
-  points.reserve(kept.size());
-  for (int32_t i : kept)
-    points.push_back(pslg.points[static_cast<std::size_t>(i)]);
-  std::vector<Triangle> corners = triangles;
-  for (Triangle &t : corners)
-    for (int32_t &v : t)
-      v = index_of[static_cast<std::size_t>(v)];
-  std::vector<Segment> segments = pslg.segments;
-  for (Segment &s : segments) {
-    s.a = index_of[static_cast<std::size_t>(s.a)];
-    s.b = index_of[static_cast<std::size_t>(s.b)];
+  std::vector<char>().swap(used);
+  // Renumbered copies only when some points stay out.
+  const bool every_point = kept.size() == n;
+  std::vector<Point> kept_points;
+  std::vector<Triangle> renumbered_triangles;
+  std::vector<Segment> renumbered_segments;
+  if (!every_point) {
+    kept_points.reserve(kept.size());
+    for (int32_t i : kept)
+      kept_points.push_back(pslg.points[static_cast<std::size_t>(i)]);
+    renumbered_triangles = triangles;
+    for (Triangle &t : renumbered_triangles)
+      for (int32_t &v : t)
+        v = index_of[static_cast<std::size_t>(v)];
+    renumbered_segments = pslg.segments;
+    for (Segment &s : renumbered_segments) {
+      s.a = index_of[static_cast<std::size_t>(s.a)];
+      s.b = index_of[static_cast<std::size_t>(s.b)];
+    }
   }
+  std::vector<int32_t>().swap(index_of);
+  const std::vector<Point> &points = every_point ? pslg.points : kept_points;
+  const std::vector<Triangle> &corners = every_point ? triangles : renumbered_triangles;
+  const std::vector<Segment> &segments = every_point ? pslg.segments : renumbered_segments;
   const std::vector<Segment> constraints = mesh_constraints(corners, segments, points.size());
   const std::vector<Region> no_regions;
   const Pslg subset{points, constraints, pslg.holes, no_regions};
@@ -870,7 +883,7 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
     refinement.iterate();
     refinement.finish();
   }
-  if (kept.size() == n)
+  if (every_point)
     return result;
   // Back to the input's numbering; the added points follow all its points.
   const auto m = static_cast<int32_t>(kept.size());

@@ -48,15 +48,12 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
   auto row = [&](double y) {
     return std::clamp(static_cast<int>(std::floor((y - low_y) * grid.s[3])), 0, rows - 1);
   };
-  // Each cell's triangles: those whose box meets it.
+  // Each cell's triangles: those whose box meets it, in order, in rows
+  // (own_start, own): counted, then placed.
   const std::size_t cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
-  std::vector<std::vector<cl_int>> listed(cells);
-  std::vector<cl_int> corners;
-  for (std::size_t k = 0; k < field.triangles.size(); ++k) {
-    const Triangle &t = field.triangles[k];
+  auto for_each_cell = [&](const Triangle &t, auto &&visit) {
     double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
     for (int32_t v : t) {
-      corners.push_back(v);
       x0 = std::min(x0, field.points[v].x);
       y0 = std::min(y0, field.points[v].y);
       x1 = std::max(x1, field.points[v].x);
@@ -64,14 +61,31 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
     }
     for (int r = row(y0); r <= row(y1); ++r)
       for (int c = column(x0); c <= column(x1); ++c)
-        listed[static_cast<std::size_t>(r * columns + c)].push_back(static_cast<cl_int>(k));
+        visit(static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) +
+              static_cast<std::size_t>(c));
+  };
+  std::vector<cl_int> own_start(cells + 1, 0);
+  for (const Triangle &t : field.triangles)
+    for_each_cell(t, [&](std::size_t cell) { ++own_start[cell + 1]; });
+  for (std::size_t c = 0; c < cells; ++c)
+    own_start[c + 1] += own_start[c];
+  std::vector<cl_int> own(static_cast<std::size_t>(own_start[cells])), cursor(own_start);
+  std::vector<cl_int> corners;
+  corners.reserve(3 * field.triangles.size());
+  for (std::size_t k = 0; k < field.triangles.size(); ++k) {
+    for (int32_t v : field.triangles[k])
+      corners.push_back(v);
+    for_each_cell(field.triangles[k], [&](std::size_t cell) {
+      own[static_cast<std::size_t>(cursor[cell]++)] = static_cast<cl_int>(k);
+    });
   }
+  std::vector<cl_int>().swap(cursor);
   // An empty cell takes the triangles of the nearest cell that has some
   // (breadth first over the grid, in cell order).
   std::vector<long> source(cells, -1);
   std::deque<long> queue;
   for (std::size_t c = 0; c < cells; ++c)
-    if (!listed[c].empty()) {
+    if (own_start[c + 1] > own_start[c]) {
       source[c] = static_cast<long>(c);
       queue.push_back(static_cast<long>(c));
     }
@@ -90,9 +104,10 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
       }
   }
   std::vector<cl_int> start(cells + 1, 0), entries;
+  entries.reserve(own.size());
   for (std::size_t c = 0; c < cells; ++c) {
-    const std::vector<cl_int> &own = listed[static_cast<std::size_t>(source[c])];
-    entries.insert(entries.end(), own.begin(), own.end());
+    const auto from = static_cast<std::size_t>(source[c]);
+    entries.insert(entries.end(), own.begin() + own_start[from], own.begin() + own_start[from + 1]);
     start[c + 1] = static_cast<cl_int>(entries.size());
   }
   const std::vector<double> &values = field.area;

@@ -1,9 +1,12 @@
 // clmesh — how much of the host's memory a run may use (Linux's /proc and
-// control groups).
+// control groups), and the heap's free pages given back.
 #include "runtime/host_memory.hpp"
 
 #include <algorithm>
 #include <fstream>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -156,6 +159,12 @@ std::optional<std::size_t> host_memory_for_process(const std::string &root) {
     if (const std::optional<std::size_t> limited = room_under_limits(hierarchy))
       room = std::min(room, *limited);
   return room + resident_memory(root);
+}
+
+void release_free_heap() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 } // namespace clmesh

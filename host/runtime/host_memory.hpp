@@ -1,4 +1,5 @@
-// clmesh — how much of the host's memory a run may use.
+// clmesh — how much of the host's memory a run may use, and giving back
+// what it has freed.
 #pragma once
 
 #include <cstddef>
@@ -21,5 +22,12 @@ namespace clmesh {
 // `root`: a folder that stands for `/` (/proc and /sys/fs/cgroup are read
 // under it), for tests; empty for the system itself.
 std::optional<std::size_t> host_memory_for_process(const std::string &root = "");
+
+// Gives the free pages of the heap back to the system (glibc's malloc_trim;
+// nothing elsewhere). A run's set-up frees much more than it keeps (the
+// readers' lines, a given mesh's edge lists, the size field's grid), in
+// blocks scattered among those still in use, and the allocator keeps those
+// pages otherwise: the phases after would add their memory to them.
+void release_free_heap();
 
 } // namespace clmesh

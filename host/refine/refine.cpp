@@ -282,6 +282,7 @@ public:
       device_.program("size_bound.cl", "setup");
       size_bound_ = std::make_unique<SizeBound>(device_, mesh(), options_.size_field,
                                                 triangle_areas_.get(), options_.unsuitable);
+      triangle_areas_.reset(); // on the device now
     }
     make_steps();
     steps_->offcenter.flag_hull_vertices();
@@ -759,10 +760,11 @@ private:
   // Parts of the domain lie a hair apart (flat triangles among the removed
   // ones): split points of boundary edges are kept inside (inside_edge).
   bool inward_ = false;
-  std::size_t first_steiner_ = 0;             // slot of the first Steiner point
-  std::unique_ptr<SizeField> triangle_areas_; // -r's .area bounds on the given mesh
-  std::unique_ptr<SizeBound> size_bound_;     // with a sizing field, .area bounds or callback
-  bool sizes_stale_ = true;                   // every slot's size bound is to be set again
+  std::size_t first_steiner_ = 0; // slot of the first Steiner point
+  // -r's .area bounds on the given mesh, until SizeBound has them.
+  std::unique_ptr<SizeField> triangle_areas_;
+  std::unique_ptr<SizeBound> size_bound_; // with a sizing field, .area bounds or callback
+  bool sizes_stale_ = true;               // every slot's size bound is to be set again
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   Point low_{};

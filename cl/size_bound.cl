@@ -7,7 +7,8 @@
 // triangle (-r's .area) taken from the triangle that holds the centroid;
 // the background triangle is found through a grid of cells, each listing
 // the background triangles its box meets (an empty cell: those of the
-// nearest cell that has some). Or from a user's callback on the host: the
+// nearest cell that has some), or for -r's .area by a walk from the given
+// triangle the slot descends from. Or from a user's callback on the host: the
 // corners gathered here, the answers scattered back.
 #include "common.h"
 
@@ -37,21 +38,41 @@ static inline double barycentric(double2 p, __global const double2 *field_points
   return fmin(l[0], fmin(l[1], l[2]));
 }
 
+// Steps of the walk from a slot's given triangle (field_at).
+#define CLM_FIELD_WALK 8
+
 // The background at p: among the cell's background triangles, the one whose
 // smallest barycentric coordinate of p is largest (the one holding p, or
 // the nearest), first on ties; its value (per_triangle), else the values of
 // its corners interpolated, its coordinates clamped to its edges. The
 // arithmetic of clmesh::size_at on the host. Per triangle, `hint` (>= 0: the
 // given triangle the slot descends from, which usually holds p) is tried
-// first.
+// first, then a walk from it across the edge p lies farthest beyond
+// (`across`: the neighbours), which takes a triangle holding p strictly
+// inside; a walk that leaves the mesh or takes too many steps leaves p to
+// the cell. *walked: the triangle the walk took, else -1.
 static inline double field_at(double2 p, __global const double2 *field_points,
                               __global const double *field_area, int per_triangle,
-                              __global const int *field_triangles, __global const int *cell_start,
-                              __global const int *cell_entry, double4 grid, int columns, int rows,
-                              int hint) {
+                              __global const int *field_triangles, __global const int *across,
+                              __global const int *cell_start, __global const int *cell_entry,
+                              double4 grid, int columns, int rows, int hint, int *walked) {
+  *walked = -1;
   double l[3];
-  if (per_triangle && hint >= 0 && barycentric(p, field_points, field_triangles, hint, l) >= 0)
-    return field_area[hint];
+  if (per_triangle && hint >= 0) {
+    if (barycentric(p, field_points, field_triangles, hint, l) >= 0)
+      return field_area[hint];
+    int k = hint;
+    for (int step = 0; step < CLM_FIELD_WALK; ++step) {
+      const int beyond = l[0] <= l[1] && l[0] <= l[2] ? 0 : (l[1] <= l[2] ? 1 : 2);
+      k = across[3 * k + beyond];
+      if (k < 0)
+        break;
+      if (barycentric(p, field_points, field_triangles, k, l) > 0) {
+        *walked = k;
+        return field_area[k];
+      }
+    }
+  }
   const int column = clamp((int)floor((p.x - grid.x) * grid.z), 0, columns - 1);
   const int row = clamp((int)floor((p.y - grid.y) * grid.w), 0, rows - 1);
   const int cell = row * columns + column;
@@ -77,16 +98,17 @@ static inline double field_at(double2 p, __global const double2 *field_points,
 // bound[t] for the slot of each entry: the background at its centroid (-1
 // for a ghost or a dead slot); with combine, the tighter of that and the
 // bound already there. hint (hinted): per slot, a background triangle to
-// try first (-1: none).
+// try first (-1: none); with relabel, replaced by the triangle a walk from it
+// found, so that the slot's next triangles start there.
 __kernel void evaluate_size_field(__global const double2 *points, __global const int *tri_vertex,
                                   __global const int *list, const int use_list,
                                   __global const double2 *field_points,
                                   __global const double *field_area, const int per_triangle,
-                                  __global const int *field_triangles,
+                                  __global const int *field_triangles, __global const int *across,
                                   __global const int *cell_start, __global const int *cell_entry,
                                   const double4 grid, const int columns, const int rows,
-                                  __global const int *hint, const int hinted, const int combine,
-                                  __global double *bound, const int n) {
+                                  __global int *hint, const int hinted, const int relabel,
+                                  const int combine, __global double *bound, const int n) {
   const int i = get_global_id(0);
   if (i >= n)
     return;
@@ -100,9 +122,13 @@ __kernel void evaluate_size_field(__global const double2 *points, __global const
   }
   const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]];
   const double2 centroid = (double2)((a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3);
-  const double value = field_at(centroid, field_points, field_area, per_triangle, field_triangles,
-                                cell_start, cell_entry, grid, columns, rows, hinted ? hint[t] : -1);
+  int walked;
+  const double value =
+      field_at(centroid, field_points, field_area, per_triangle, field_triangles, across,
+               cell_start, cell_entry, grid, columns, rows, hinted ? hint[t] : -1, &walked);
   bound[t] = combine ? tighter(bound[t], value) : value;
+  if (relabel && walked >= 0)
+    hint[t] = walked;
 }
 
 // The corners of each entry's slot for the host's callback (NaN for a ghost,

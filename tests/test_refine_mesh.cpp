@@ -236,6 +236,29 @@ TEST_CASE("refine mesh: .area bounds the triangles in each given triangle; attri
   }
 }
 
+// Without attributes, a slot's label is only where the search for the given
+// triangle that holds its centroid starts, and follows what it found
+// (size_bound.cl): the bounds hold all the same.
+TEST_CASE("refine mesh: .area bounds hold where the labels follow the walks") {
+  clmesh::Input grid = skewed_grid(6, 5, 2);
+  for (std::size_t t = 0; t < grid.triangles.size(); ++t)
+    grid.triangle_max_area.push_back(t % 3 == 0 ? 0.0004 : (t % 3 == 1 ? 0.002 : -1));
+  for (const char *switches : {"ra", "rq30a"}) {
+    CAPTURE(switches);
+    const clmesh::Mesh mesh = refine_checked(grid, switches);
+    long bounded = 0;
+    for (const auto &t : mesh.triangles) {
+      const Point a = mesh.points[t[0]], b = mesh.points[t[1]], c = mesh.points[t[2]];
+      const double bound = area_bound_at(grid, {(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3});
+      if (bound > 0) {
+        ++bounded;
+        CHECK(area(mesh.points, t) <= bound * (1 + 1e-9));
+      }
+    }
+    CHECK(bounded >= 500);
+  }
+}
+
 TEST_CASE("refine mesh: triangles that are no triangulation are refused, naming one") {
   clmesh::Input input;
   input.points = {{0, 0}, {4, 0}, {0, 4}, {1, 1}, {5, 1}, {1, 5}};

@@ -30,12 +30,14 @@ DirectedEdges::DirectedEdges(const std::vector<Triangle> &triangles, std::size_t
               edges_.begin() + static_cast<std::ptrdiff_t>(first_[a + 1]), order);
 }
 
-bool DirectedEdges::has(int32_t a, int32_t b) const {
+bool DirectedEdges::has(int32_t a, int32_t b) const { return triangle_of(a, b) >= 0; }
+
+int64_t DirectedEdges::triangle_of(int32_t a, int32_t b) const {
   const auto from = edges_.begin() + static_cast<std::ptrdiff_t>(first_[a]),
              to = edges_.begin() + static_cast<std::ptrdiff_t>(first_[a + 1]);
   const auto at =
       std::lower_bound(from, to, b, [](const Edge &e, int32_t head) { return e.head < head; });
-  return at != to && at->head == b;
+  return at != to && at->head == b ? static_cast<int64_t>(at->triangle) : -1;
 }
 
 } // namespace clmesh

@@ -29,6 +29,8 @@ public:
   const std::vector<Edge> &edges() const { return edges_; }
   // Is there an edge a -> b?
   bool has(int32_t a, int32_t b) const;
+  // The first triangle with the edge a -> b, or -1.
+  int64_t triangle_of(int32_t a, int32_t b) const;
 
 private:
   std::vector<std::size_t> first_; // vertices + 1 offsets

@@ -280,8 +280,9 @@ public:
     scheduler_.release_flipping(); // the iterations flip by FlipFlop
     if (options_.size_field || options_.unsuitable || triangle_areas_) {
       device_.program("size_bound.cl", "setup");
-      size_bound_ = std::make_unique<SizeBound>(device_, mesh(), options_.size_field,
-                                                triangle_areas_.get(), options_.unsuitable);
+      size_bound_ =
+          std::make_unique<SizeBound>(device_, mesh(), options_.size_field, triangle_areas_.get(),
+                                      options_.unsuitable, options_.attributes);
       triangle_areas_.reset(); // on the device now
     }
     make_steps();

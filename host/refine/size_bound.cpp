@@ -1,5 +1,7 @@
 #include "refine/size_bound.hpp"
 
+#include "io/directed_edges.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -11,8 +13,8 @@ const char *kFile = "size_bound.cl";
 }
 
 SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
-                     const SizeField *areas, const Unsuitable *unsuitable)
-    : device_(device), mesh_(mesh), unsuitable_(unsuitable),
+                     const SizeField *areas, const Unsuitable *unsuitable, bool keep_regions)
+    : device_(device), mesh_(mesh), unsuitable_(unsuitable), keep_regions_(keep_regions),
       evaluate_(device.kernel(kFile, "evaluate_size_field", kPhase)),
       gather_(device.kernel(kFile, "gather_corners", kPhase)),
       scatter_(device.kernel(kFile, "scatter_bounds", kPhase)),
@@ -117,6 +119,19 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
   value.upload(device, std::vector<cl_double>(values.begin(), values.end()));
   triangles = DeviceArray<cl_int>(device, corners.size());
   triangles.upload(device, corners);
+  std::vector<cl_int>().swap(corners);
+  if (per_triangle) { // a walk from the given triangle a slot descends from
+    const DirectedEdges directed(field.triangles, field.points.size());
+    std::vector<cl_int> neighbor(3 * field.triangles.size());
+    for (std::size_t k = 0; k < field.triangles.size(); ++k)
+      for (int i = 0; i < 3; ++i)
+        neighbor[3 * k + static_cast<std::size_t>(i)] = static_cast<cl_int>(
+            directed.triangle_of(field.triangles[k][(i + 2) % 3], field.triangles[k][(i + 1) % 3]));
+    across = DeviceArray<cl_int>(device, neighbor.size());
+    across.upload(device, neighbor);
+  } else {
+    across = DeviceArray<cl_int>(device, 1);
+  }
   cell_start = DeviceArray<cl_int>(device, start.size());
   cell_start.upload(device, start);
   cell_entry = DeviceArray<cl_int>(device, entries.size());
@@ -162,13 +177,14 @@ void SizeBound::update(const DeviceList<cl_int> *changed) {
 
 void SizeBound::evaluate(const Background &background, const cl::Buffer &list, bool use_list,
                          std::size_t n, bool combine) {
+  const bool hinted = background.per_triangle && mesh_.has_regions;
   set_args(evaluate_, mesh_.points.buffer(), mesh_.tri_vertex.buffer(), list,
            static_cast<cl_int>(use_list), background.points.buffer(), background.value.buffer(),
            static_cast<cl_int>(background.per_triangle), background.triangles.buffer(),
-           background.cell_start.buffer(), background.cell_entry.buffer(), background.grid,
-           static_cast<cl_int>(background.columns), static_cast<cl_int>(background.rows),
-           mesh_.tri_region.buffer(),
-           static_cast<cl_int>(background.per_triangle && mesh_.has_regions),
+           background.across.buffer(), background.cell_start.buffer(),
+           background.cell_entry.buffer(), background.grid, static_cast<cl_int>(background.columns),
+           static_cast<cl_int>(background.rows), mesh_.tri_region.buffer(),
+           static_cast<cl_int>(hinted), static_cast<cl_int>(hinted && !keep_regions_),
            static_cast<cl_int>(combine), bound_.buffer(), static_cast<cl_int>(n));
   launch(device_, evaluate_, n, kPhase);
 }

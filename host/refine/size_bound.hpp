@@ -18,9 +18,11 @@ public:
   // Any of them may be null, not all; `areas`: a mesh with one maximum area
   // per triangle (<= 0: none), in SizeField's shape. With `areas`, the
   // mesh's regions (DeviceMesh::tri_region), when it has them, are the
-  // triangles of `areas` its slots descend from: tried first.
+  // triangles of `areas` its slots descend from: tried first, and unless
+  // `keep_regions` (the slots take those triangles' attributes) replaced by
+  // the triangle that holds the slot's centroid, where a walk finds one.
   SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field, const SizeField *areas,
-            const Unsuitable *unsuitable);
+            const Unsuitable *unsuitable, bool keep_regions);
 
   // Room for every triangle slot of the mesh (after it grew).
   void fit();
@@ -39,6 +41,9 @@ private:
     DeviceArray<cl_double2> points;
     DeviceArray<cl_double> value;
     DeviceArray<cl_int> triangles, cell_start, cell_entry;
+    // Per triangle (per_triangle only): the triangle across the edge
+    // opposite each corner, -1 on the boundary.
+    DeviceArray<cl_int> across;
     cl_double4 grid{};
     int columns = 1, rows = 1;
   };
@@ -50,6 +55,7 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   const Unsuitable *unsuitable_;
+  bool keep_regions_;
   std::vector<Background> backgrounds_;
   cl::Kernel evaluate_, gather_, scatter_;
   DeviceArray<cl_double> bound_;

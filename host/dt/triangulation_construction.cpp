@@ -62,12 +62,15 @@ TriangulationConstruction::Built TriangulationConstruction::run(const DeviceArra
   set_args(link_, diagram.buffer(), offsets.buffer(), block_of.buffer(), mesh_.tri_vertex.buffer(),
            mesh_.tri_neighbor.buffer(), border_offsets.buffer(), real, m, real, g);
   launch(device_, link_, built.real, kPhase);
-  const std::size_t slots = built.real + built.ghosts;
+  check_links(built.real + built.ghosts, bad);
+  built.fits = true;
+  return built;
+}
+
+void TriangulationConstruction::check_links(std::size_t slots, const DeviceArray<cl_int> &bad) {
   set_args(check_links_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), bad.buffer(),
            static_cast<cl_int>(slots));
   launch(device_, check_links_, slots, kPhase);
-  built.fits = true;
-  return built;
 }
 
 } // namespace clmesh

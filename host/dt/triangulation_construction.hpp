@@ -24,6 +24,10 @@ public:
   // fit together are flagged in `bad` (1 per point).
   Built run(const DeviceArray<cl_int> &diagram, int grid, const DeviceArray<cl_int> &bad);
 
+  // Flags in `bad` the sites of every edge of slots [0, slots) whose link is
+  // missing, not returned or not the edge reversed.
+  void check_links(std::size_t slots, const DeviceArray<cl_int> &bad);
+
 private:
   Device &device_;
   DeviceMesh &mesh_;

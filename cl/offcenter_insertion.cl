@@ -635,10 +635,12 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t);
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, bound);
+  const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
+  if (!q.skinny && !q.large && !encroaching)
+    return; // a good triangle: no candidate, nothing to count
   double2 steiner;
   uint priority;
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
-  const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
   if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
        bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,

@@ -162,8 +162,12 @@ std::optional<std::size_t> host_memory_for_process(const std::string &root) {
 }
 
 void release_free_heap() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+  // The walk over the heap pays only where much of it is free (a large
+  // mesh's set-up); each small mesh of a batch would pay it for little.
+  constexpr std::size_t kWorthIt = std::size_t{16} << 20;
+  if (mallinfo2().fordblks >= kWorthIt)
+    malloc_trim(0);
 #endif
 }
 

@@ -27,7 +27,9 @@ std::optional<std::size_t> host_memory_for_process(const std::string &root = "")
 // nothing elsewhere). A run's set-up frees much more than it keeps (the
 // readers' lines, a given mesh's edge lists, the size field's grid), in
 // blocks scattered among those still in use, and the allocator keeps those
-// pages otherwise: the phases after would add their memory to them.
+// pages otherwise: the phases after would add their memory to them. Only
+// when 16 MiB or more are free: a small mesh's few pages are not worth the
+// walk.
 void release_free_heap();
 
 } // namespace clmesh

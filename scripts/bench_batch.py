@@ -162,6 +162,12 @@ def main():
         listing = os.path.join(directory, "list.txt")
         with open(listing, "w") as f:
             f.write("\n".join(os.path.basename(p) for p in paths) + "\n")
+        # Untimed, one input each: the programs and libraries come into memory
+        # (the first run after a pause paid up to a second more).
+        first = os.path.basename(paths[0])
+        for tool in (clmesh, triangle):
+            subprocess.run([tool, "-Q" + switches, first], check=True, cwd=directory,
+                           stdout=subprocess.DEVNULL)
         clean(directory)
         ours = wall([clmesh, "-Q" + switches, "--batch", "list.txt"], cwd=directory)
         clean(directory)
@@ -207,7 +213,8 @@ def main():
                  f"switches) and {a.count} coastlines of about {a.vertices} vertices "
                  f"(scripts/gen_pslg.py coast: an outline and islands as holes, -pq30).",
                  "Wall time from start to exit of everything the batch needs, reading and "
-                 "writing the files included.  clmesh: one run of build/clmesh -Q SWITCHES "
+                 "writing the files included, after one untimed run of clmesh and of "
+                 "Triangle on the first input.  clmesh: one run of build/clmesh -Q SWITCHES "
                  "--batch LIST with its default workers (one process a CPU), and "
                  "with --jobs 1.  Triangle x N: the native binary (-O3 -march=native, "
                  "build-triangle.sh) run once per file, one after the other.  Python loop: "

@@ -70,6 +70,56 @@ inline std::vector<Point> ring(int n, double thickness, unsigned seed) {
   return p;
 }
 
+// Hard for the digital Voronoi construction: uniform points, a ring of
+// points on one circle, and a run along one line with every other point a
+// hair (1e-12) above it.
+inline std::vector<Point> rings_and_hairs(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point> p(n);
+  for (auto &q : p) {
+    const double kind = u(rng), t = u(rng);
+    if (kind < 0.3)
+      q = {t, u(rng)};
+    else if (kind < 0.6)
+      q = {0.5 + 0.4 * std::cos(2 * M_PI * t), 0.5 + 0.4 * std::sin(2 * M_PI * t)};
+    else
+      q = {t, 0.5 + (u(rng) < 0.5 ? 1e-12 : 0.0)};
+  }
+  return p;
+}
+
+// Points on four circles, two of them 1e-7 apart.
+inline std::vector<Point> concentric_rings(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+  const double radii[4] = {1, 1 + 1e-7, 2, 3};
+  std::vector<Point> p(n);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double a = angle(rng), r = radii[i % 4];
+    p[i] = {r * std::cos(a), r * std::sin(a)};
+  }
+  return p;
+}
+
+// A third as many points as asked, each repeated up to three times, some
+// copies moved by 1e-15.
+inline std::vector<Point> near_duplicates(int n, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point> base(static_cast<std::size_t>(n / 3 + 1));
+  for (auto &q : base)
+    q = {u(rng), u(rng)};
+  std::uniform_int_distribution<std::size_t> pick(0, base.size() - 1);
+  const double nudge[3] = {0, 1e-15, -1e-15};
+  std::vector<Point> p(n);
+  for (auto &q : p) {
+    const Point b = base[pick(rng)];
+    q = {b.x + nudge[pick(rng) % 3], b.y + nudge[pick(rng) % 2]};
+  }
+  return p;
+}
+
 inline std::vector<Point> lattice(int side, double spacing = 1, Point origin = {0, 0}) {
   std::vector<Point> p;
   for (int i = 0; i < side; ++i)

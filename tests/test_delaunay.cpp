@@ -357,6 +357,33 @@ TEST_CASE("delaunay: turned-over triangles are mended by flips in the first diag
   CHECK(single.neighbors == result.neighbors);
 }
 
+// Inputs that turn many triangles over in Phase 3, on coarse and default
+// grids: whatever the flips mend and the rounds leave out, the result is the
+// hull fan's mesh and CGAL's (triangulate_and_check).
+TEST_CASE("delaunay: untangling on rings, hairs and near duplicates gives the fan's mesh") {
+  const std::vector<std::pair<std::string, std::vector<Point>>> inputs = {
+      {"rings and hairs", fixtures::rings_and_hairs(9000, 61)},
+      {"concentric rings", fixtures::concentric_rings(9000, 62)},
+      {"near duplicates", fixtures::near_duplicates(6000, 63)}};
+  long flips = 0;
+  for (const auto &[name, points] : inputs) {
+    clmesh::Options options;
+    options.tuning.construction = clmesh::Construction::fan;
+    const auto fan = triangulate_points(points, options);
+    options.tuning.construction = clmesh::Construction::automatic;
+    for (const int grid : {16, 64, 0}) {
+      CAPTURE(name);
+      CAPTURE(grid);
+      if (grid > 0)
+        options.tuning.grid = grid;
+      const auto result = triangulate_and_check(points, options);
+      CHECK(result.triangles == fan.triangles);
+      flips += result.statistics.delaunay.untangling_flips;
+    }
+  }
+  CHECK(flips > 100);
+}
+
 // By default, inputs below Tuning::kFanBelow points start from the hull fan
 // and larger ones from the diagram; a grid or --construction overrides it,
 // and the triangles never change.

@@ -67,7 +67,8 @@ struct CommandLine {
     return sources.size() > 1 || sharded || (!sources.empty() && sources[0].list);
   }
   // Worker processes: --jobs, else for a batch one an allowed CPU (at most
-  // 8), for a single input none but this process.
+  // 8; on a GPU all but one retire at their start, run_batch()), for a
+  // single input none but this process.
   unsigned workers() const {
     if (jobs > 0)
       return jobs;
@@ -198,8 +199,9 @@ void print_help() {
       "  --shard K/N           Mesh only the inputs at positions K, K+N, K+2N... (from 1)\n"
       "                        of the inputs and lists, in order (1 <= K <= N).\n"
       "  --jobs N              Mesh up to N inputs at once, each in a worker process\n"
-      "                        (default: one a CPU it may use, at most 8); messages\n"
-      "                        and files are those of the inputs meshed in turn.\n"
+      "                        (default: one a CPU it may use, at most 8, or one on\n"
+      "                        a GPU); messages and files are those of the inputs\n"
+      "                        meshed in turn.\n"
       "  --help                Print this help.\n"
       "  --version             Print the version.\n"
       "\n"
@@ -906,6 +908,7 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
   progress.draw(0);
   std::size_t failed = 0;
   if (workers <= 1 || inputs.size() <= 1) {
+    workers = 1; // this process
     if (!inputs.empty())
       devices.check(); // a device that fails fails the run, not an input
     for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -918,13 +921,18 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
     batch.count = inputs.size();
     batch.workers = workers < inputs.size() ? workers : static_cast<unsigned>(inputs.size());
     batch.follows = same_outputs(command, inputs);
-    batch.start = [&devices]() {
+    // Without --jobs, a device that processes take in turns (a GPU) gets
+    // one worker: more would only wait for it, and switching between them
+    // costs (twice the time on an H100).
+    batch.start = [&](unsigned slot) {
       try {
         devices.check();
-        return true;
+        if (slot > 0 && command.jobs == 0 && clmesh::device_taken_in_turns(command.options.device))
+          return cli::WorkerStart::retire;
+        return cli::WorkerStart::mesh;
       } catch (...) {
         report_error("");
-        return false;
+        return cli::WorkerStart::failed;
       }
     };
     batch.mesh = [&](std::size_t i) { return mesh_one(command, inputs[i], devices); };
@@ -935,14 +943,19 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
       progress.draw(i + 1);
     };
     batch.name = [&](std::size_t i) { return clmesh::printable(inputs[i]); };
-    if (cli::run_worker_processes(batch) != 0)
+    const cli::WorkerOutcome outcome = cli::run_worker_processes(batch);
+    if (outcome.status != 0)
       return 1;
+    workers = outcome.worked;
   }
   progress.clear();
   std::fflush(stdout);
   if (failed > 0)
     warn("clmesh: %zu of %zu inputs failed, %zu meshed\n", failed, inputs.size(),
          inputs.size() - failed);
+  else if (command.options.verbose > 0)
+    say("clmesh: %zu inputs meshed by %u worker process%s\n", inputs.size(), workers,
+        workers == 1 ? "" : "es");
   else if (talk)
     say("clmesh: %zu inputs meshed\n", inputs.size());
   return failed > 0 ? 1 : 0;

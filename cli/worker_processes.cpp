@@ -17,6 +17,10 @@ namespace cli {
 namespace {
 
 constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+// The input field of a record that is not an input's: the worker's start
+// failed, or it retired.
+constexpr long kStartFailed = -1;
+constexpr long kRetired = -2;
 
 // The memory the parent and its workers share: the next input to take, the
 // inputs written, and the input each worker slot holds.
@@ -53,11 +57,11 @@ private:
 };
 
 // A record on a worker's pipe: "input status length\n" then the packed
-// messages; input kNone: the worker's start failed.
-void send(int fd, std::size_t input, int status, const Messages &messages) {
+// messages; input kStartFailed or kRetired: the worker's start.
+void send(int fd, long input, int status, const Messages &messages) {
   const std::string body = messages.pack();
-  std::string record = std::to_string(input == kNone ? -1L : static_cast<long>(input)) + " " +
-                       std::to_string(status) + " " + std::to_string(body.size()) + "\n" + body;
+  std::string record = std::to_string(input) + " " + std::to_string(status) + " " +
+                       std::to_string(body.size()) + "\n" + body;
   const char *at = record.data();
   std::size_t left = record.size();
   while (left > 0) {
@@ -74,13 +78,13 @@ void send(int fd, std::size_t input, int status, const Messages &messages) {
 [[noreturn]] void work(const WorkerBatch &batch, Shared &shared, unsigned slot, int fd) {
   {
     Messages messages;
-    bool started;
+    WorkerStart start;
     {
       Capture capture(messages);
-      started = batch.start();
+      start = batch.start(slot);
     }
-    if (!started) {
-      send(fd, kNone, 1, messages);
+    if (start != WorkerStart::mesh) {
+      send(fd, start == WorkerStart::retire ? kRetired : kStartFailed, 1, messages);
       ::_exit(0);
     }
   }
@@ -99,7 +103,7 @@ void send(int fd, std::size_t input, int status, const Messages &messages) {
       status = batch.mesh(i);
     }
     shared.written(i) = 1;
-    send(fd, i, status, messages);
+    send(fd, static_cast<long>(i), status, messages);
     shared.holding(slot) = kNone;
   }
   std::fflush(nullptr);
@@ -110,6 +114,7 @@ struct Worker {
   pid_t pid = -1;
   int fd = -1;
   std::string received;
+  bool retired = false;
 };
 
 Worker start_worker(const WorkerBatch &batch, Shared &shared, unsigned slot,
@@ -144,7 +149,7 @@ std::string death(int status) {
 
 } // namespace
 
-int run_worker_processes(const WorkerBatch &batch) {
+WorkerOutcome run_worker_processes(const WorkerBatch &batch) {
   struct Result {
     int status;
     Messages messages;
@@ -177,7 +182,9 @@ int run_worker_processes(const WorkerBatch &batch) {
         return;
       Messages messages = Messages::unpack(worker.received.substr(end + 1, length));
       worker.received.erase(0, end + 1 + length);
-      if (input < 0)
+      if (input == kRetired)
+        worker.retired = true;
+      else if (input < 0)
         failed_start = std::move(messages);
       else
         results[input] = Result{status, std::move(messages)};
@@ -237,7 +244,7 @@ int run_worker_processes(const WorkerBatch &batch) {
         shared.holding(slot) = kNone;
         shared.written(held) = 1;
       }
-      if (shared.next() < batch.count)
+      if (shared.next() < batch.count && !worker.retired)
         worker = start_worker(batch, shared, slot, workers);
     }
     while (handed_on < batch.count && results[handed_on]) {
@@ -246,17 +253,21 @@ int run_worker_processes(const WorkerBatch &batch) {
       ++handed_on;
     }
   }
+  WorkerOutcome outcome;
+  for (const Worker &worker : workers)
+    outcome.worked += !worker.retired;
   if (failed_start) {
     stop_all();
     failed_start->replay();
-    return 1;
+    outcome.status = 1;
+    return outcome;
   }
   for (Worker &worker : workers)
     if (worker.pid > 0) {
       ::waitpid(worker.pid, nullptr, 0);
       ::close(worker.fd);
     }
-  return 0;
+  return outcome;
 }
 
 } // namespace cli

@@ -10,6 +10,8 @@
 // of an earlier input's waits until that one is written, so that the later
 // files are left, as when meshed in turn. A worker that dies fails the input
 // it held (the message names the signal) and a new worker takes its place.
+// A worker may also retire at its start, before taking an input (one device
+// that the processes would only share by time slices): it is not replaced.
 #pragma once
 
 #include "messages.hpp"
@@ -21,15 +23,22 @@
 
 namespace cli {
 
+// What a worker does after its start.
+enum class WorkerStart {
+  mesh,   // take inputs
+  retire, // take none, and leave the inputs to the other workers
+  failed, // the run fails (the start said why)
+};
+
 struct WorkerBatch {
   std::size_t count = 0; // inputs 0 .. count-1
   unsigned workers = 2;
   // For each input, an earlier input with the same output names (the
   // nearest), or npos.
   std::vector<std::size_t> follows;
-  // In each worker before its first input: false (after saying why) fails
-  // the run.
-  std::function<bool()> start;
+  // In each worker (slot 0 .. workers-1) before its first input. Slot 0
+  // must not retire: some worker has to mesh the inputs.
+  std::function<WorkerStart(unsigned slot)> start;
   // In a worker: meshes input i and returns its exit status; says and warns
   // into the captured messages.
   std::function<int(std::size_t)> mesh;
@@ -39,8 +48,13 @@ struct WorkerBatch {
   std::function<std::string(std::size_t)> name;
 };
 
-// Runs the batch; returns 0, or 1 when a worker's start failed (its
-// messages printed, the other workers stopped).
-int run_worker_processes(const WorkerBatch &batch);
+struct WorkerOutcome {
+  int status = 0;      // 1 when a worker's start failed (its messages
+                       // printed, the other workers stopped)
+  unsigned worked = 0; // the worker slots that did not retire
+};
+
+// Runs the batch.
+WorkerOutcome run_worker_processes(const WorkerBatch &batch);
 
 } // namespace cli

@@ -13,7 +13,7 @@ in BUILD/bench/batch-*/:
 
 Timed, as wall time from start to exit of everything the batch needs:
   clmesh --batch   build/clmesh -Q SWITCHES --batch LIST: one run, its worker
-                   processes (--jobs, by default one a CPU) each
+                   processes (--jobs, by default one a CPU, one on a GPU) each
                    setting the device, context and kernels up once
   --jobs 1         the same with one worker
   Triangle x N     the native binary (build-triangle.sh), one process per
@@ -215,7 +215,7 @@ def main():
                  "Wall time from start to exit of everything the batch needs, reading and "
                  "writing the files included, after one untimed run of clmesh and of "
                  "Triangle on the first input.  clmesh: one run of build/clmesh -Q SWITCHES "
-                 "--batch LIST with its default workers (one process a CPU), and "
+                 "--batch LIST with its default workers (one process a CPU, one on a GPU), and "
                  "with --jobs 1.  Triangle x N: the native binary (-O3 -march=native, "
                  "build-triangle.sh) run once per file, one after the other.  Python loop: "
                  "triangle.triangulate (the PyPI wheel) on each file's arrays in one Python "

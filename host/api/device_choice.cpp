@@ -3,6 +3,7 @@
 #include "api/device_choice.hpp"
 
 #include "clmesh/device.hpp"
+#include "runtime/opencl_context.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -65,6 +66,18 @@ DeviceSpecs device_specs(const std::string &spec) {
   if (in_thread.empty() || multi_threaded.empty())
     return {spec, spec}; // OpenCL started before the request
   return {in_thread, multi_threaded};
+}
+
+bool device_taken_in_turns(const std::string &spec) {
+  switch (device_paths_from_environment()) {
+  case DevicePaths::gpu:
+    return true;
+  case DevicePaths::cpu:
+    return false;
+  case DevicePaths::by_type:
+    break;
+  }
+  return !find_device(spec).is_cpu;
 }
 
 } // namespace clmesh

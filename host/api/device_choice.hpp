@@ -43,4 +43,11 @@ struct DeviceSpecs {
 };
 DeviceSpecs device_specs(const std::string &spec);
 
+// Whether processes would only take turns on the device `spec` chooses: any
+// device but a CPU (a GPU runs one process's kernels at a time, switching
+// between them), or any device with CLMESH_DEVICE_PATHS=gpu. A batch on such
+// a device is meshed by one worker process (cli). Throws DeviceError as
+// find_device().
+bool device_taken_in_turns(const std::string &spec);
+
 } // namespace clmesh

@@ -139,6 +139,7 @@ std::vector<FoundDevice> find_devices() {
       const std::string extensions = devices[d].getInfo<CL_DEVICE_EXTENSIONS>();
       description.has_fp64 = extensions.find("cl_khr_fp64") != std::string::npos ||
                              devices[d].getInfo<CL_DEVICE_DOUBLE_FP_CONFIG>() != 0;
+      description.is_cpu = (devices[d].getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0;
       found.push_back({devices[d], description});
     }
   }
@@ -262,7 +263,7 @@ DevicePaths device_paths_from_environment() {
   // CLMESH_DEVICE_PATHS=gpu runs the GPU code paths on any device (no
   // prefetching kernels, no host-memory buffers, scans by blocks), =cpu the
   // CPU ones; unset, empty or "auto": the device's type decides. Read here
-  // only. The meshes never depend on it: the test suite runs its mesh tests
+  // only (device_taken_in_turns() also asks, for a batch's workers). The meshes never depend on it: the test suite runs its mesh tests
   // both ways on PoCL's CPU device (tests/CMakeLists.txt).
   const char *env = std::getenv("CLMESH_DEVICE_PATHS");
   const std::string value = env ? lower(env) : std::string();

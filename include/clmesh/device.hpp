@@ -14,6 +14,7 @@ struct DeviceDescription {
   std::string device_name;
   std::string version;
   bool has_fp64 = false;
+  bool is_cpu = false; // CL_DEVICE_TYPE_CPU
 };
 
 // Every OpenCL device visible through the ICD loader.

@@ -33,7 +33,8 @@ __all__ = [
 
 def devices():
     """The OpenCL devices: dicts with spec ("P:D", for device=), platform,
-    name, version and fp64 (clmesh needs double precision)."""
+    name, version, fp64 (clmesh needs double precision) and cpu (whether it
+    is a CPU device)."""
     return _clmesh.devices()
 
 

@@ -423,6 +423,7 @@ nb::list devices() {
     entry["name"] = d.device_name;
     entry["version"] = d.version;
     entry["fp64"] = d.has_fp64;
+    entry["cpu"] = d.is_cpu;
     list.append(entry);
   }
   return list;

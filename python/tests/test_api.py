@@ -25,6 +25,9 @@ def test_devices_and_device_argument():
     devices = clmesh.devices()
     usable = [d for d in devices if d["fp64"]]
     assert usable, "no OpenCL device with fp64"
+    assert all(isinstance(d["cpu"], bool) for d in devices)
+    # PoCL's devices, which the tests run on, are CPUs.
+    assert all(d["cpu"] for d in devices if d["platform"] == "Portable Computing Language")
     points = {"vertices": random_points(300, 21)}
     default = clmesh.triangulate(points)
     for device in (usable[0], usable[0]["spec"], 0):

@@ -235,6 +235,27 @@ printf '%s\n' "${all[@]}" > list.txt
 POCL_DEVICES=pthread run -en -q30 --jobs 1 --batch list.txt
 rm list.txt stdout.txt stderr.txt
 same_outputs "POCL_DEVICES=pthread" "$work/jobs.1" "$work/jobs.pthread"
+# On a device that processes take in turns (a GPU; CLMESH_DEVICE_PATHS=gpu
+# treats any device so) the default is one worker, the same files; --jobs
+# still gives its number, and a CPU gets one a CPU it may use.
+fresh jobs.turns
+printf '%s\n' "${all[@]}" > list.txt
+CLMESH_DEVICE_PATHS=gpu run -en -q30 --batch list.txt
+rm list.txt stdout.txt stderr.txt
+same_outputs "CLMESH_DEVICE_PATHS=gpu" "$work/jobs.1" "$work/jobs.turns"
+printf '%s\n' "${all[@]}" > list.txt
+# -V counts the workers that meshed.
+CLMESH_DEVICE_PATHS=gpu run -V -en -q30 --batch list.txt
+[[ "$(tail -n 1 stdout.txt)" == "clmesh: 7 inputs meshed by 1 worker process" ]] ||
+  fail "a GPU's default workers: $(tail -n 1 stdout.txt)"
+CLMESH_DEVICE_PATHS=gpu run -V -en -q30 --jobs 3 --batch list.txt
+[[ "$(tail -n 1 stdout.txt)" == "clmesh: 7 inputs meshed by 3 worker processes" ]] ||
+  fail "--jobs 3 on a GPU: $(tail -n 1 stdout.txt)"
+cpus=$(nproc)
+(( cpus > 7 )) && cpus=7
+CLMESH_DEVICE_PATHS=cpu run -V -en -q30 --batch list.txt
+[[ "$(tail -n 1 stdout.txt)" == "clmesh: 7 inputs meshed by $cpus worker process"* ]] ||
+  fail "a CPU's default workers ($cpus expected): $(tail -n 1 stdout.txt)"
 if "$bin" --list-devices | grep -q '^0 .*Portable Computing Language'; then
   run -V spiral.node
   grep -q "on basic-" stdout.txt || fail "a small input did not get PoCL's in-thread device: $(grep GPU-DT stdout.txt)"

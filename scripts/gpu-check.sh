@@ -11,6 +11,13 @@
 #   bash scripts/gpu-check.sh [BUILD_DIR] [OUT_DIR]
 # Needs a built BUILD_DIR (default build/); writes OUT_DIR/summary.txt and
 # the per-run logs (default: a temporary folder, printed at the end).
+# GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
+# "diagnosis meshes profile batch tests". batch times 200 small coastlines
+# (-pq30) and 200 point sets of 2000 points: the default workers (one on a
+# GPU) against --jobs 8, and the single-group kernels of small meshes at
+# work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
+# the native Triangle once per file when tools/build-triangle.sh's binary is
+# at BUILD_DIR/triangle-native.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
@@ -18,6 +25,8 @@ out="${2:-$(mktemp -d)}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 clmesh="$build/clmesh"
+parts=" ${GPU_CHECK_PARTS:-diagnosis meshes profile batch tests} "
+part() { [[ "$parts" == *" $1 "* ]]; }
 
 nvidia=$(ls /usr/local/nvidia/lib64/libnvidia-opencl.so.1 /usr/lib/x86_64-linux-gnu/libnvidia-opencl.so.1 \
   /usr/lib/libnvidia-opencl.so.1 2>/dev/null | head -1)
@@ -44,7 +53,7 @@ mesh() {
 
 # First, one input three ways on the GPU (docs/reference.md, "Checking a GPU"):
 # as built, unoptimised, and without the predicate check; -C checks each mesh.
-for way in built "CLMESH_BUILD_OPTIONS=-cl-opt-disable" "CLMESH_PREDICATE_CHECK=off"; do
+part diagnosis && for way in built "CLMESH_BUILD_OPTIONS=-cl-opt-disable" "CLMESH_PREDICATE_CHECK=off"; do
   status=0
   mkdir -p "$out/diagnosis" && cp "$root/datasets/A.poly" "$out/diagnosis/"
   # shellcheck disable=SC2046  # $way is one assignment or none
@@ -57,7 +66,7 @@ for way in built "CLMESH_BUILD_OPTIONS=-cl-opt-disable" "CLMESH_PREDICATE_CHECK=
 done
 
 same=0 differ=0 failed=0 runs=0
-for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do
+part meshes && for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do
   base="$(basename "${input%.*}")"
   case "$input" in *.poly) sets=("-pq30" "-pcq30" "-pq20") ;; *) sets=("" "-q30") ;; esac
   for switches in "${sets[@]}"; do
@@ -80,20 +89,62 @@ for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datase
     fi
   done
 done
-echo "meshes: $runs runs on '$gpu': $failed failed; against PoCL $same the same, $differ differ" |
+part meshes &&
+  echo "meshes: $runs runs on '$gpu': $failed failed; against PoCL $same the same, $differ differ" |
   tee -a "$out/summary.txt"
 
 # Where small inputs' time goes on the GPU: one worker, every kernel waited
 # for; the host's calls (blocking reads, buffers and kernels made) go to the summary.
-mkdir -p "$out/profile"
-cp "$root"/datasets/pslg/*.poly "$out/profile/"
-(cd "$out/profile" && CLMESH_PROFILE=1 CLMESH_DEVICE="$gpu" timeout 300 "$clmesh" -Q -pq30 \
-  --jobs 1 ./*.poly) > "$out/profile.txt" 2>&1
-echo "profile of $(ls "$out"/profile/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
-  tee -a "$out/summary.txt"
-grep "^host:" "$out/profile.txt" | tee -a "$out/summary.txt"
+if part profile; then
+  mkdir -p "$out/profile"
+  cp "$root"/datasets/pslg/*.poly "$out/profile/"
+  (cd "$out/profile" && CLMESH_PROFILE=1 CLMESH_DEVICE="$gpu" timeout 300 "$clmesh" -Q -pq30 \
+    --jobs 1 ./*.poly) > "$out/profile.txt" 2>&1
+  echo "profile of $(ls "$out"/profile/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
+    tee -a "$out/summary.txt"
+  grep "^host:" "$out/profile.txt" | tee -a "$out/summary.txt"
+fi
 
-if [[ -x "$build/tests/clmesh_tests" ]]; then
+# seconds COMMAND...: the wall time of COMMAND, in the current folder.
+seconds() {
+  local start end
+  start=$(date +%s.%N)
+  "$@" > /dev/null 2>&1
+  end=$(date +%s.%N)
+  awk "BEGIN { printf \"%.2f\", $end - $start }"
+}
+# Small inputs in a batch: workers and single-group sizes on the GPU.
+if part batch; then
+  for kind in pslgs points; do
+    dir="$out/batch-$kind"
+    mkdir -p "$dir"
+    for seed in $(seq 1 200); do
+      if [[ $kind == pslgs ]]; then
+        python3 "$root/scripts/gen_pslg.py" coast 500 "$dir/in$seed.poly" --seed "$seed"
+      else
+        python3 "$root/scripts/gen_points.py" uniform 2000 "$dir/in$seed.node" --seed "$seed" 2> /dev/null
+      fi
+    done
+    switches=-Q
+    [[ $kind == pslgs ]] && switches=-Qpq30
+    (cd "$dir" && ls in* > list.txt && CLMESH_DEVICE="$gpu" "$clmesh" $switches in1.* > /dev/null
+      line="batch of 200 $kind $switches on '$gpu':"
+      for jobs in "" "--jobs 8"; do
+        # shellcheck disable=SC2086  # $jobs is one option and its value, or none
+        line+=" ${jobs:-default workers} $(CLMESH_DEVICE="$gpu" seconds "$clmesh" $switches $jobs --batch list.txt) s;"
+      done
+      for group in 128 256; do
+        line+=" CLMESH_WORK_GROUP=$group $(CLMESH_DEVICE="$gpu" CLMESH_WORK_GROUP=$group seconds "$clmesh" $switches --batch list.txt) s;"
+      done
+      if [[ -x "$build/triangle-native" ]]; then
+        rm -f ./*.1.*
+        line+=" Triangle once per file $(seconds bash -c "for f in in*.*; do '$build/triangle-native' $switches \$f; done") s"
+      fi
+      echo "$line") | tee -a "$out/summary.txt"
+  done
+fi
+
+if part tests && [[ -x "$build/tests/clmesh_tests" ]]; then
   (cd "$build/tests" && CLMESH_DEVICE="$gpu" timeout 600 ./clmesh_tests --no-intro) \
     > "$out/tests.txt" 2>&1
   grep -E "^\[doctest\] (test cases|assertions)" "$out/tests.txt" | tee -a "$out/summary.txt"

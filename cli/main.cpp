@@ -13,6 +13,8 @@
 #include "messages.hpp"
 #include "worker_processes.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +22,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -47,6 +50,16 @@ struct Shard {
 };
 
 // What the command line asks for beyond the mesher's Options.
+// The CPUs this process may run on (a container's, a Slurm job's, not all
+// the machine's); at least 1.
+unsigned allowed_cpus() {
+  cpu_set_t allowed;
+  const int cpus = sched_getaffinity(0, sizeof allowed, &allowed) == 0
+                       ? CPU_COUNT(&allowed)
+                       : static_cast<int>(std::thread::hardware_concurrency());
+  return cpus < 1 ? 1u : static_cast<unsigned>(cpus);
+}
+
 struct CommandLine {
   clmesh::Options options;          // -p also comes from each input's .poly name
   std::vector<InputSource> sources; // as given
@@ -74,13 +87,8 @@ struct CommandLine {
       return jobs;
     if (!batch())
       return 1;
-    // The CPUs this process may run on (a container's, a Slurm job's), not
-    // all the machine's.
-    cpu_set_t allowed;
-    const int threads = sched_getaffinity(0, sizeof allowed, &allowed) == 0
-                            ? CPU_COUNT(&allowed)
-                            : static_cast<int>(std::thread::hardware_concurrency());
-    return threads < 1 ? 1 : threads < 8 ? static_cast<unsigned>(threads) : 8;
+    const unsigned cpus = allowed_cpus();
+    return cpus < 8 ? cpus : 8;
   }
 };
 
@@ -526,6 +534,36 @@ void print_devices() {
   }
 }
 
+// A mesh of at least this many triangles has its files written at once by
+// several threads: formatting the numbers takes most of the writing.
+constexpr std::size_t kThreadedWriteTriangles = 65536;
+
+// Runs the writes on up to `threads` threads (this one included), each taking
+// the next write no thread took; then throws the failure of the first write
+// that failed, in their order, if any.
+void run_writes(const std::vector<std::function<void()>> &writes, unsigned threads) {
+  std::vector<std::exception_ptr> failures(writes.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&]() {
+    for (std::size_t i = next++; i < writes.size(); i = next++) {
+      try {
+        writes[i]();
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (unsigned t = 1; t < threads && t < writes.size(); ++t)
+    helpers.emplace_back(work);
+  work();
+  for (std::thread &helper : helpers)
+    helper.join();
+  for (const std::exception_ptr &failure : failures)
+    if (failure)
+      std::rethrow_exception(failure);
+}
+
 // Every output goes through one batch: all files appear together, or none.
 void write_outputs(const CommandLine &command, const Job &job, const FileNames &names,
                    const clmesh::Input &input, const clmesh::Mesh &mesh, bool talk,
@@ -537,43 +575,64 @@ void write_outputs(const CommandLine &command, const Job &job, const FileNames &
   write.jettison_duplicates = options.jettison;
   write.boundary_markers = !options.no_boundary_markers;
   write.command_line = job.generated_by;
-  auto announce = [&](const std::string &path) {
+  // Each file's write, announced in this order; they run afterwards, at
+  // once on several threads for a large mesh (run_writes).
+  std::vector<std::function<void()>> writes;
+  std::vector<std::string> paths;
+  auto add = [&](const std::string &path, std::function<void(const std::string &)> writer) {
     if (talk)
       say("Writing %s.\n", path.c_str());
-    return path;
+    paths.push_back(path);
+    writes.push_back([path, writer = std::move(writer)]() { writer(path); });
   };
   const std::string &out = names.output;
   // Like Triangle, -I writes neither .node nor .poly over the input.
   if (!options.no_node_file && !options.no_iteration_number)
-    batch.write_node(announce(out + ".node"), view, write);
+    add(out + ".node", [&](const std::string &path) { batch.write_node(path, view, write); });
   if (!options.no_ele_file)
-    batch.write_ele(announce(out + ".ele"), view, write);
+    add(out + ".ele", [&](const std::string &path) { batch.write_ele(path, view, write); });
   // With -r, -c also writes the .poly (the mesh's boundary edges), as Triangle.
   const bool poly = options.pslg || (options.refine && options.convex_hull);
   if (poly && !options.no_iteration_number && !options.no_poly_file)
-    batch.write_poly(announce(out + ".poly"), view, input.holes, input.regions, write);
+    add(out + ".poly", [&](const std::string &path) {
+      batch.write_poly(path, view, input.holes, input.regions, write);
+    });
   if (options.edges)
-    batch.write_edge(announce(out + ".edge"), view, write);
+    add(out + ".edge", [&](const std::string &path) { batch.write_edge(path, view, write); });
   if (options.voronoi) {
-    batch.write_voronoi_node(announce(out + ".v.node"), view, write);
-    batch.write_voronoi_edge(announce(out + ".v.edge"), view, write);
+    add(out + ".v.node",
+        [&](const std::string &path) { batch.write_voronoi_node(path, view, write); });
+    add(out + ".v.edge",
+        [&](const std::string &path) { batch.write_voronoi_edge(path, view, write); });
   }
   if (options.neighbors)
-    batch.write_neigh(announce(out + ".neigh"), view, write);
+    add(out + ".neigh", [&](const std::string &path) { batch.write_neigh(path, view, write); });
   if (options.off_file)
-    batch.write_off(announce(out + ".off"), view, write);
+    add(out + ".off", [&](const std::string &path) { batch.write_off(path, view, write); });
   if (!command.vtk.empty())
-    batch.write_vtu(announce(command.vtk), view, write);
+    add(command.vtk, [&](const std::string &path) { batch.write_vtu(path, view, write); });
   if (!command.svg.empty())
-    batch.write_text(announce(command.svg),
-                     clmesh::mesh_svg(mesh.points, mesh.triangles,
-                                      options.pslg || options.refine ? &mesh.segments : nullptr));
+    add(command.svg, [&](const std::string &path) {
+      batch.write_text(path,
+                       clmesh::mesh_svg(mesh.points, mesh.triangles,
+                                        options.pslg || options.refine ? &mesh.segments : nullptr));
+    });
   if (!command.voronoi_image.empty()) {
     if (mesh.voronoi_image.empty())
       throw clmesh::InternalError("--voronoi-image: no digital Voronoi diagram was returned");
-    batch.write_text(announce(command.voronoi_image),
-                     clmesh::voronoi_pgm(mesh.voronoi_image, mesh.statistics.delaunay.grid));
+    add(command.voronoi_image, [&](const std::string &path) {
+      batch.write_text(path,
+                       clmesh::voronoi_pgm(mesh.voronoi_image, mesh.statistics.delaunay.grid));
+    });
   }
+  // Threads for a large mesh's files, when every file has a name of its own
+  // (a name given twice is written in turn: the later write wins).
+  std::vector<std::string> sorted = paths;
+  std::sort(sorted.begin(), sorted.end());
+  const bool distinct = std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+  const unsigned threads =
+      distinct && mesh.triangles.size() >= kThreadedWriteTriangles ? allowed_cpus() : 1;
+  run_writes(writes, threads);
 }
 
 // Triangle's statistics lines; `constrained`: -p or -r, whose meshes have

@@ -268,6 +268,7 @@ void check_target(const std::string &path) {
 
 std::string OutputBatch::temporary_for(const std::string &path) {
   check_target(path);
+  const std::lock_guard<std::mutex> lock(files_mutex_);
   // Written again: the earlier temporary is dropped, the new one replaces it.
   for (auto file = files_.begin(); file != files_.end(); ++file)
     if (file->second == path) {

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -176,7 +177,9 @@ std::vector<Segment> output_segments(const MeshView &mesh);
 // Output files are first written beside their final name (under a name no
 // file has) and renamed into place only when every file of the batch was
 // written, so a failure never leaves a partial file behind. Writing to a name
-// that a directory has is refused at once (InputError naming it).
+// that a directory has is refused at once (InputError naming it). The write_*
+// calls of different paths may run at once on several threads; commit() after
+// they have all returned.
 class OutputBatch {
 public:
   OutputBatch() = default;
@@ -218,6 +221,7 @@ public:
 
 private:
   std::string temporary_for(const std::string &path);
+  std::mutex files_mutex_;                                 // guards files_ while writes run at once
   std::vector<std::pair<std::string, std::string>> files_; // temporary, final
 };
 

@@ -243,5 +243,21 @@ smallest=$("$bin" -q30VNE q.node | sed -n 's/^  Smallest angle: *\([0-9.eE+-]*\)
 python3 -c "import sys; sys.exit(0 if float('${smallest:-0}') >= 30 else 1)" ||
   fail "-q30V: smallest angle '$smallest' in the quality statistics"
 
+# A large mesh's files are written by several threads at once: the same files
+# as one thread writes (taskset: one CPU allowed).
+if command -v taskset > /dev/null && (($(nproc) > 1)); then
+  mkdir -p "$work/threads" && cd "$work/threads"
+  python3 "$source_dir/scripts/gen_points.py" uniform 40000 big.node > /dev/null
+  for way in one several; do
+    prefix=()
+    [[ $way == one ]] && prefix=(taskset -c 0)
+    "${prefix[@]}" "$bin" -Qq30ven -o2 --vtk big.1.vtu big.node || fail "$way thread(s): failed"
+    md5sum big.1.* > "$way.sums"
+    rm -f big.1.*
+  done
+  grep -q "big.1.v.edge" several.sums || fail "threaded writes: no big.1.v.edge"
+  cmp -s one.sums several.sums || fail "threaded writes differ: $(diff one.sums several.sums | head -4)"
+fi
+
 finish outputs.sh
 echo "outputs.sh: all checks passed"

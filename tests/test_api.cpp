@@ -607,6 +607,28 @@ TEST_CASE("api: check_mesh accepts good meshes and finds broken ones") {
     std::swap(flipped.neighbors[1][1], flipped.neighbors[1][2]);
     CHECK_FALSE(clmesh::check_mesh(one, flipped, options).ok);
   }
+  SUBCASE("-D: an interior subsegment must be locally Delaunay too") {
+    // A box with a segment across it and a point just off each side of the
+    // segment: each point lies in the circumcircle beyond the segment, so the
+    // constrained triangulation keeps a subsegment that is not locally
+    // Delaunay, which a conforming (-D) mesh may not.
+    clmesh::Input box;
+    box.points = {{0, 0}, {4, 0}, {4, 3}, {0, 3}, {1, 1.5}, {3, 1.5}, {2, 1.4}, {2, 1.6}};
+    box.segments = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}, {4, 5, 0}};
+    const clmesh::Options constrained = clmesh::parse_switches("p");
+    clmesh::Mesh mesh = clmesh::triangulate(device(), box, constrained);
+    REQUIRE(clmesh::check_mesh(box, mesh, constrained).ok);
+    mesh.statistics.refined = true; // checked as a -pq and a -pqD mesh
+    const auto quality = clmesh::check_mesh(box, mesh, clmesh::parse_switches("pq20"));
+    INFO(problems(quality));
+    CHECK(quality.ok);
+    const auto conforming = clmesh::check_mesh(box, mesh, clmesh::parse_switches("pq20D"));
+    INFO(problems(conforming));
+    CHECK_FALSE(conforming.ok);
+    CHECK(problems(conforming).find("4-5 is not a segment and not locally Delaunay") !=
+          std::string::npos);
+    CHECK(problems(conforming).find("-D: every edge off the boundary") != std::string::npos);
+  }
   SUBCASE("a quality mesh") {
     const clmesh::Options options = clmesh::parse_switches("q30");
     const clmesh::Mesh mesh = clmesh::triangulate(device(), input, options);

@@ -26,9 +26,15 @@ CheckReport check_mesh(const Input &input, const Mesh &mesh, const Options &opti
     const std::vector<Segment> boundary = boundary_edges(mesh);
     const bool segments = options.pslg || options.refine;
     CheckReport report = {};
-    if (!segments || options.conforming_delaunay)
+    if (!segments || options.conforming_delaunay) {
       report = check_constrained(mesh.points, mesh.triangles, mesh.neighbors, mesh.duplicate_of,
                                  boundary, false);
+      // Here only the boundary edges are constraints: an edge that fails is
+      // an interior subsegment as readily as any other edge.
+      if (!report.ok && segments)
+        report.problems.push_back("(-D: every edge off the boundary must be locally Delaunay, "
+                                  "subsegments included)");
+    }
     // A PSLG's (or a refined mesh's) subsegments are mesh edges, the
     // boundary edges of its domain among them.
     if (report.ok && segments)

@@ -100,7 +100,7 @@ if part profile; then
   cp "$root"/datasets/pslg/*.poly "$out/profile/"
   (cd "$out/profile" && CLMESH_PROFILE=1 CLMESH_DEVICE="$gpu" timeout 300 "$clmesh" -Q -pq30 \
     --jobs 1 ./*.poly) > "$out/profile.txt" 2>&1
-  echo "profile of $(ls "$out"/profile/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
+  echo "profile of $(ls "$root"/datasets/pslg/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
     tee -a "$out/summary.txt"
   grep "^host:" "$out/profile.txt" | tee -a "$out/summary.txt"
 fi

@@ -49,7 +49,6 @@ struct Shard {
   long index = 1, count = 1;
 };
 
-// What the command line asks for beyond the mesher's Options.
 // The CPUs this process may run on (a container's, a Slurm job's, not all
 // the machine's); at least 1.
 unsigned allowed_cpus() {
@@ -60,6 +59,7 @@ unsigned allowed_cpus() {
   return cpus < 1 ? 1u : static_cast<unsigned>(cpus);
 }
 
+// What the command line asks for beyond the mesher's Options.
 struct CommandLine {
   clmesh::Options options;          // -p also comes from each input's .poly name
   std::vector<InputSource> sources; // as given

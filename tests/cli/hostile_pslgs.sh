@@ -1,9 +1,0 @@
-#!/usr/bin/env bash
-# Hostile PSLGs (tiny angles, crossings, near-collinear runs, duplicates,
-# extreme scales and offsets) meshed to quality end in a checked mesh or in
-# one 'clmesh: ' line with no file written; never a signal or a hang
-# (tests/cli/hostile_pslgs.py says how).
-# Usage: hostile_pslgs.sh CLMESH_BINARY SOURCE_DIR
-set -euo pipefail
-source "$(dirname "$0")/common.bash" "$@"
-python3 "$(dirname "$0")/hostile_pslgs.py" "$bin" "$work"

@@ -11,6 +11,7 @@
 #   bash scripts/gpu-check.sh [BUILD_DIR] [OUT_DIR]
 # Needs a built BUILD_DIR (default build/); writes OUT_DIR/summary.txt and
 # the per-run logs (default: a temporary folder, printed at the end).
+# The meshes part runs GPU_CHECK_JOBS (default 8) inputs at once.
 # GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
 # "diagnosis meshes profile batch tests". batch times 200 small coastlines
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
@@ -65,29 +66,48 @@ part diagnosis && for way in built "CLMESH_BUILD_OPTIONS=-cl-opt-disable" "CLMES
   rm -f "$out/diagnosis/A.1."*
 done
 
+# Every input of datasets/ on the GPU and on PoCL, GPU_CHECK_JOBS (default 8)
+# inputs at once, then the files compared.
 same=0 differ=0 failed=0 runs=0
-part meshes && for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do
-  base="$(basename "${input%.*}")"
-  case "$input" in *.poly) sets=("-pq30" "-pcq30" "-pq20") ;; *) sets=("" "-q30") ;; esac
-  for switches in "${sets[@]}"; do
-    runs=$((runs + 1))
-    name="$base${switches:-.plain}"
-    mesh "$gpu" "gpu/$name" "$input" "$switches"
-    if [[ "$(cat "$out/gpu/$name.status")" != 0 ]]; then
-      failed=$((failed + 1))
-      echo "FAILED on the GPU: $base $switches: $(head -c 300 "$out/gpu/$name.log")" >> "$out/summary.txt"
-      continue
-    fi
-    [[ -n "$cpu" ]] || continue
-    mesh "$cpu" "cpu/$name" "$input" "$switches"
-    if diff -q <(cat "$out/gpu/$name/$base".1.* | grep -v '^#') \
-         <(cat "$out/cpu/$name/$base".1.* 2> /dev/null | grep -v '^#') > /dev/null; then
-      same=$((same + 1))
-    else
-      differ=$((differ + 1))
-      echo "DIFFERS from PoCL: $base $switches" >> "$out/summary.txt"
-    fi
+names=() bases=() inputs=() switch_sets=()
+if part meshes; then
+  for input in "$root"/datasets/*.poly "$root"/datasets/pslg/*.poly "$root"/datasets/*.node; do
+    base="$(basename "${input%.*}")"
+    case "$input" in *.poly) sets=("-pq30" "-pcq30" "-pq20") ;; *) sets=("" "-q30") ;; esac
+    for switches in "${sets[@]}"; do
+      name="$base${switches:-.plain}"
+      names+=("$name") bases+=("$base") inputs+=("$(basename "$input")") switch_sets+=("$switches")
+      while (($(jobs -rp | wc -l) >= ${GPU_CHECK_JOBS:-8})); do
+        wait -n
+      done
+      (mesh "$gpu" "gpu/$name" "$input" "$switches"
+        if [[ -n "$cpu" && "$(cat "$out/gpu/$name.status")" == 0 ]]; then
+          mesh "$cpu" "cpu/$name" "$input" "$switches"
+        fi) &
+    done
   done
+  wait
+fi
+for i in "${!names[@]}"; do
+  name="${names[$i]}" base="${bases[$i]}" switches="${switch_sets[$i]}"
+  runs=$((runs + 1))
+  if [[ "$(cat "$out/gpu/$name.status")" != 0 ]]; then
+    failed=$((failed + 1))
+    echo "FAILED on the GPU: $base $switches: $(head -c 300 "$out/gpu/$name.log")" >> "$out/summary.txt"
+    continue
+  fi
+  [[ -n "$cpu" ]] || continue
+  # The outputs: every file of the run's folder but the input (name.1.* or,
+  # for an input name.1, name.2.*), comments left out.
+  outputs() { find "$1" -type f ! -name "$2" | sort | xargs cat | grep -v '^#'; }
+  if [[ -n "$(find "$out/gpu/$name" -type f ! -name "${inputs[$i]}")" ]] &&
+    diff -q <(outputs "$out/gpu/$name" "${inputs[$i]}") \
+      <(outputs "$out/cpu/$name" "${inputs[$i]}") > /dev/null; then
+    same=$((same + 1))
+  else
+    differ=$((differ + 1))
+    echo "DIFFERS from PoCL: $base $switches" >> "$out/summary.txt"
+  fi
 done
 part meshes &&
   echo "meshes: $runs runs on '$gpu': $failed failed; against PoCL $same the same, $differ differ" |

@@ -78,8 +78,8 @@ static inline int untangling_edge(__global const double2 *points, __global const
 // the claims of each flip's two slots are reset (reset: 1), then taken with
 // the atomic minimum of the turned slot (reset: 0), so that the flips that go
 // ahead are disjoint and the same whatever the schedule; the flips that own
-// both claims (flip_pair), each recording its partner slot in
-// flipped_with[k] (else -1); the outer neighbours relinked.
+// both claims (flip_edge, recording the pass's stamp and the pair as each
+// other's children); the outer neighbours relinked (relink_edge).
 __kernel void claim_untangling_flips(__global const double2 *points, __global const int *tri_vertex,
                                      __global const int *tri_neighbor, __global const int *turned,
                                      volatile __global int *claim, const int reset,
@@ -103,60 +103,40 @@ __kernel void claim_untangling_flips(__global const double2 *points, __global co
 
 // flips[0] counts the flips.
 __kernel void apply_untangling_flips(__global const double2 *points, __global int *tri_vertex,
-                                     __global int *tri_neighbor, __global const int *turned,
-                                     __global const int *claim, __global int *flipped_with,
-                                     volatile __global int *flips, const int count) {
+                                     __global int *tri_neighbor, __global int *modified_stamp,
+                                     __global int *children, __global const int *turned,
+                                     __global const int *claim, volatile __global int *flips,
+                                     const int stamp, const int count) {
   const int k = get_global_id(0);
   if (k >= count)
     return;
   const int t = turned[k];
-  flipped_with[k] = -1;
   // Owning its claim, t is no other flip's; its edge is read only then.
   if (claim[t] != t)
     return;
   const int i = untangling_edge(points, tri_vertex, tri_neighbor, t);
-  if (i < 0)
+  if (i < 0 || claim[link_triangle(tri_neighbor[3 * t + i])] != t)
     return;
-  const int u = link_triangle(tri_neighbor[3 * t + i]);
-  if (claim[u] != t)
-    return;
-  flip_pair(tri_vertex, tri_neighbor, t, i);
-  flipped_with[k] = u;
+  flip_edge(tri_vertex, tri_neighbor, modified_stamp, children, t, i, stamp);
   atomic_inc(flips);
 }
 
-// Links outer edge `edge` of triangle t, just flipped, and its neighbour x
-// across it. An x that still holds the edge where the old link says was not
-// flipped (or keeps the edge in place): it gets the link back. Otherwise x
-// was flipped: the edge is in x or its partner, the slot across x's edge 0.
-static inline void relink_untangled_edge(__global const int *tri_vertex, __global int *tri_neighbor,
-                                         int t, int edge) {
-  const int link = tri_neighbor[3 * t + edge];
-  const int x = link_triangle(link), j = link_edge(link);
-  // Edge `edge` of t runs from p to q; the neighbour holds q -> p.
-  const int p = tri_vertex[3 * t + next3(edge)], q = tri_vertex[3 * t + prev3(edge)];
-  if (tri_vertex[3 * x + next3(j)] == q && tri_vertex[3 * x + prev3(j)] == p) {
-    tri_neighbor[3 * x + j] = encode_link(t, edge);
-    return;
-  }
-  const int candidates[2] = {x, link_triangle(tri_neighbor[3 * x])};
-  for (int c = 0; c < 2; ++c)
-    for (int i = 0; i < 3; ++i)
-      if (tri_vertex[3 * candidates[c] + next3(i)] == q &&
-          tri_vertex[3 * candidates[c] + prev3(i)] == p)
-        tri_neighbor[3 * t + edge] = encode_link(candidates[c], i);
-}
-
+// The outer edges (1 and 2) of both triangles of each flip of the pass.
 __kernel void relink_untangled(__global const int *tri_vertex, __global int *tri_neighbor,
-                               __global const int *turned, __global const int *flipped_with,
-                               const int count) {
+                               __global const int *modified_stamp, __global const int *children,
+                               __global const int *turned, __global const int *claim,
+                               const int stamp, const int count) {
   const int k = get_global_id(0);
-  if (k >= count || flipped_with[k] < 0)
+  if (k >= count)
     return;
-  const int pair[2] = {turned[k], flipped_with[k]};
-  for (int s = 0; s < 2; ++s)
-    for (int edge = 1; edge < 3; ++edge)
-      relink_untangled_edge(tri_vertex, tri_neighbor, pair[s], edge);
+  const int t = turned[k];
+  if (claim[t] != t || modified_stamp[t] != stamp)
+    return; // no flip of its own this pass
+  const int u = children[CLM_CHILDREN * t + 1];
+  for (int edge = 1; edge < 3; ++edge) {
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, t, edge);
+    relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, u, edge);
+  }
 }
 
 // Flags in `bad` the middle corner of each listed triangle still turned:

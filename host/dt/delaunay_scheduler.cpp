@@ -513,7 +513,7 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
     // Phase 3: at the real coordinates, turned-over triangles are untangled
     // by flips where they can be; the sites of the others and of unmatched
     // triangles are left out of the next diagram.
-    const long untangled = shifting.untangle(built.real, built.real + built.ghosts, bad);
+    const long untangled = shifting.untangle(built.real, built.real + built.ghosts, bad, stamp_);
     stats_.untangling_flips += untangled;
     // The flips assume the tangle is local; where it was not, a link that no
     // longer pairs up leaves its sites out as well.

@@ -21,7 +21,8 @@ Shifting::Shifting(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       record_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
       flag_missing_(device.kernel(kFile, "flag_missing_points", kPhase)), counter_(device, 1) {}
 
-long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad) {
+long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad,
+                        int &stamp) {
   // Sized for the largest round; pages come as written, a few for a short list.
   if (turned_.size() < real)
     turned_ = DeviceArray<cl_int>(device_, real);
@@ -36,10 +37,11 @@ long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<c
   if (turned == 0)
     return flips;
   const auto count = static_cast<cl_int>(turned);
-  if (flipped_with_.size() < static_cast<std::size_t>(turned))
-    flipped_with_ = DeviceArray<cl_int>(device_, turned);
+  // relink_edge tells a flipped neighbour by its stamp: every slot gets one.
+  mesh_.fill_triangle_slots(device_, slots);
   const cl::Buffer &points = mesh_.points.buffer(), &vertices = mesh_.tri_vertex.buffer(),
-                   &neighbors = mesh_.tri_neighbor.buffer();
+                   &neighbors = mesh_.tri_neighbor.buffer(),
+                   &stamps = mesh_.modified_stamp.buffer(), &children = mesh_.children.buffer();
   // A flip can only make room for another (a claim lost, a neighbour's turn).
   for (int pass = 0; pass < kUntanglingPasses; ++pass) {
     for (const cl_int reset : {1, 0}) {
@@ -47,11 +49,13 @@ long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<c
                count);
       launch(device_, claim_flips_, turned, kPhase);
     }
+    const auto pass_stamp = static_cast<cl_int>(stamp++);
     counter_.fill(device_, 0, 1);
-    set_args(apply_flips_, points, vertices, neighbors, turned_.buffer(), claim_.buffer(),
-             flipped_with_.buffer(), counter_.buffer(), count);
+    set_args(apply_flips_, points, vertices, neighbors, stamps, children, turned_.buffer(),
+             claim_.buffer(), counter_.buffer(), pass_stamp, count);
     launch(device_, apply_flips_, turned, kPhase);
-    set_args(relink_, vertices, neighbors, turned_.buffer(), flipped_with_.buffer(), count);
+    set_args(relink_, vertices, neighbors, stamps, children, turned_.buffer(), claim_.buffer(),
+             pass_stamp, count);
     launch(device_, relink_, turned, kPhase);
     const long flipped = counter_.read(device_, 0);
     flips += flipped;

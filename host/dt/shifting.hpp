@@ -20,10 +20,11 @@ public:
   // (ghosts follow up to `slots`): turned ones (not strictly counter-
   // clockwise) are untangled by flips where their middle site lies inside
   // the triangle across their longest edge or beyond a hull edge there
-  // (cl/shifting.cl), pass after pass while flips go ahead; the middle sites
-  // of those still turned are flagged in `bad`. Returns how many flips there
-  // were.
-  long untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad);
+  // (cl/shifting.cl), pass after pass while flips go ahead, each pass with
+  // a stamp of its own from `stamp` (the flips' children; the slots get
+  // their stamps first); the middle sites of those still turned are flagged
+  // in `bad`. Returns how many flips there were.
+  long untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad, int &stamp);
 
   // Leaves the sites flagged in `bad` out of the next diagram (site_state)
   // and clears `bad`; returns how many were left out.
@@ -47,9 +48,8 @@ private:
   cl::Kernel list_turned_, claim_flips_, apply_flips_, relink_, flag_turned_, leave_out_,
       count_lowest_, record_triangles_, flag_missing_;
   DeviceArray<cl_int> counter_;
-  // untangle's: the turned triangles, the claims of slots, each turned
-  // triangle's partner in a flip.
-  DeviceArray<cl_int> turned_, claim_, flipped_with_;
+  // untangle's: the turned triangles and the claims of slots.
+  DeviceArray<cl_int> turned_, claim_;
 };
 
 } // namespace clmesh

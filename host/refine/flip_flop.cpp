@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -10,9 +11,12 @@ namespace clmesh {
 
 namespace {
 const char *kFile = "flip_flop.cl";
-// A pass deletes a redundant point or flips; far more passes than any mesh
-// needs means a bug, reported instead of a hang.
-constexpr long kMaxPasses = 100000;
+// A pass deletes a redundant point or flips. A run may need a pass per
+// triangle of a fan: a far vertex joined to a dense run of points split on a
+// segment, where each Delaunay flip unsettles the next triangle of the fan
+// (domains with parts a hair wide, refined toward the memory limit). Far
+// more passes than that means a bug, reported instead of a hang.
+long max_passes(std::size_t triangles) { return 100000 + 16 * static_cast<long>(triangles); }
 } // namespace
 
 std::vector<std::size_t> FlipFlop::scratch_lists(const DeviceMesh &mesh) {
@@ -83,9 +87,10 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
   finished_in_group_ = false;
+  pass_limit_ = max_passes(mesh_.triangle_count);
   for (long pass = 0; n > 0;) {
-    if (pass >= kMaxPasses)
-      throw InternalError("flip-flop did not converge in " + std::to_string(kMaxPasses) +
+    if (pass >= pass_limit_)
+      throw InternalError("flip-flop did not converge in " + std::to_string(pass_limit_) +
                           " passes");
     if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
       n = passes_in_group(n, pass, stamp, new_points, m, rewritten, counts);
@@ -203,7 +208,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
   rewritten.reserve(device_, 2 * n); // each entry passes on two at most
   bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
        static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),
-       static_cast<cl_int>(group_pass_limit_), static_cast<cl_int>(kMaxPasses - pass),
+       static_cast<cl_int>(group_pass_limit_),
+       static_cast<cl_int>(std::min<long>(pass_limit_ - pass, INT32_MAX)),
        static_cast<cl_int>(tracked_known_ ? tracked_n_ : -1), encroachment_.appended().buffer(),
        static_cast<cl_int>(kTrackedInGroup), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -87,10 +87,10 @@ void FlipFlop::run(const DeviceArray<cl_int> &changed, std::size_t n,
   redundant_left_ = true; // marks of the boundary routine: tracked in the first pass
   run_entries_ = std::max(n, tracked_n_);
   finished_in_group_ = false;
-  pass_limit_ = max_passes(mesh_.triangle_count);
+  const long pass_limit = max_passes(mesh_.triangle_count);
   for (long pass = 0; n > 0;) {
-    if (pass >= pass_limit_)
-      throw InternalError("flip-flop did not converge in " + std::to_string(pass_limit_) +
+    if (pass >= pass_limit)
+      throw InternalError("flip-flop did not converge in " + std::to_string(pass_limit) +
                           " passes");
     if (n <= group_pass_limit_ && tracked_n_ <= kTrackedInGroup) {
       n = passes_in_group(n, pass, stamp, new_points, m, rewritten, counts);
@@ -209,7 +209,8 @@ std::size_t FlipFlop::passes_in_group(std::size_t n, long &pass, int &stamp,
   bind(passes_in_group_, orthogonal_test_, static_cast<cl_int>(pass == 0),
        static_cast<cl_int>(next_active_.size()), static_cast<cl_int>(mesh_.list_capacity),
        static_cast<cl_int>(group_pass_limit_),
-       static_cast<cl_int>(std::min<long>(pass_limit_ - pass, INT32_MAX)),
+       static_cast<cl_int>(std::min<long>(max_passes(mesh_.triangle_count) - pass,
+                                          std::numeric_limits<cl_int>::max())),
        static_cast<cl_int>(tracked_known_ ? tracked_n_ : -1), encroachment_.appended().buffer(),
        static_cast<cl_int>(kTrackedInGroup), static_cast<cl_int>(redundant_left_),
        rewritten.items.buffer(), static_cast<cl_int>(rewritten.size),

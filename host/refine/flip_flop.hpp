@@ -137,7 +137,6 @@ private:
   DeviceArray<cl_int> redundant_mark_, redundant_anchor_, star_size_, star_offset_, tracked_;
   std::size_t marks_filled_ = 0; // redundant_mark_ is set (0) below this point
   std::size_t run_entries_ = 0;  // the most entries of a list in the last run
-  long pass_limit_ = 0;          // the most passes a run may take (max_passes)
   DeviceArray<cl_int> marked_count_, exact_count_;
   // The deletion log's length as log_deleted_points counts it, and as the
   // host last set or advanced it (SIZE_MAX: never set).

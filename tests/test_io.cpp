@@ -1,6 +1,7 @@
 // Tests of Triangle's file formats (clmesh/io.hpp): reading, writing, batches.
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
+#include "io/directed_edges.hpp"
 
 #include <doctest/doctest.h>
 
@@ -1526,4 +1527,41 @@ TEST_CASE("voronoi_pgm writes a binary grey map") {
   CHECK(voronoi_pgm(std::vector<int32_t>(4, 7), 2).substr(11) ==
         std::string(4, voronoi_pgm({7}, 1).back()));
   CHECK_THROWS_AS(voronoi_pgm(sites, 3), Error);
+}
+
+TEST_CASE("DirectedEdges::reverses finds each edge's other side as triangle_of does") {
+  // Random triangles over a few vertices: edges taken once, twice or more,
+  // in one direction or both, some vertices with no edge at all.
+  std::mt19937 random(7);
+  for (const int vertices : {3, 10, 60}) {
+    std::uniform_int_distribution<int32_t> corner(0, vertices - 1);
+    std::vector<Triangle> triangles;
+    while (triangles.size() < 200) {
+      const Triangle t{corner(random), corner(random), corner(random)};
+      if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+        triangles.push_back(t);
+    }
+    const DirectedEdges directed(triangles, static_cast<std::size_t>(vertices) + 5);
+    const std::vector<DirectedEdges::Edge> &edges = directed.edges();
+    const std::vector<int64_t> reverse = directed.reverses();
+    REQUIRE(reverse.size() == edges.size());
+    std::size_t paired = 0;
+    for (std::size_t a = 0; a < directed.vertices(); ++a)
+      for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
+        const int32_t b = edges[e].head;
+        const int64_t other = directed.triangle_of(b, static_cast<int32_t>(a));
+        if (other < 0) {
+          CHECK(reverse[e] == -1);
+          continue;
+        }
+        ++paired;
+        REQUIRE(reverse[e] >= 0);
+        const auto r = static_cast<std::size_t>(reverse[e]);
+        CHECK(r >= directed.first(static_cast<std::size_t>(b)));
+        CHECK(r < directed.first(static_cast<std::size_t>(b) + 1));
+        CHECK(edges[r].head == static_cast<int32_t>(a));
+        CHECK(edges[r].triangle == static_cast<uint32_t>(other));
+      }
+    CHECK(paired > 0);
+  }
 }

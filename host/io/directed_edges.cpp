@@ -40,4 +40,31 @@ int64_t DirectedEdges::triangle_of(int32_t a, int32_t b) const {
   return at != to && at->head == b ? static_cast<int64_t>(at->triangle) : -1;
 }
 
+std::vector<int64_t> DirectedEdges::reverses() const {
+  std::vector<int64_t> reverse(edges_.size(), -1);
+  const auto by_head = [](const Edge &e, int32_t head) { return e.head < head; };
+  // Each pair of vertices a < b once, from a's first edge a -> b: its reverse
+  // is b's first edge b -> a, and every edge b -> a has that first a -> b as
+  // its reverse.
+  for (std::size_t a = 0; a < vertices(); ++a)
+    for (std::size_t e = first_[a]; e < first_[a + 1]; ++e) {
+      const int32_t b = edges_[e].head;
+      if (b < static_cast<int32_t>(a))
+        continue; // found from b's edges
+      if (e > first_[a] && edges_[e - 1].head == b) {
+        reverse[e] = reverse[e - 1]; // a repeated edge a -> b
+        continue;
+      }
+      const auto end = edges_.begin() + static_cast<std::ptrdiff_t>(first_[b + 1]);
+      auto at = std::lower_bound(edges_.begin() + static_cast<std::ptrdiff_t>(first_[b]), end,
+                                 static_cast<int32_t>(a), by_head);
+      if (at == end || at->head != static_cast<int32_t>(a))
+        continue;
+      reverse[e] = at - edges_.begin();
+      for (; at != end && at->head == static_cast<int32_t>(a); ++at)
+        reverse[static_cast<std::size_t>(at - edges_.begin())] = static_cast<int64_t>(e);
+    }
+  return reverse;
+}
+
 } // namespace clmesh

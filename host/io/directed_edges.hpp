@@ -31,6 +31,10 @@ public:
   bool has(int32_t a, int32_t b) const;
   // The first triangle with the edge a -> b, or -1.
   int64_t triangle_of(int32_t a, int32_t b) const;
+  // For every edge a -> b (its index in edges()), the index of the first
+  // edge b -> a, or -1: the edge's other side. One search per pair of
+  // vertices, in place of one per edge (has, triangle_of).
+  std::vector<int64_t> reverses() const;
 
 private:
   std::vector<std::size_t> first_; // vertices + 1 offsets

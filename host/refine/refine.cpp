@@ -793,11 +793,12 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
       s.marker = 1;
   // The edges in the order of (from, to): the boundary's, then the inner ones.
   const std::vector<DirectedEdges::Edge> &edges = directed.edges();
+  const std::vector<int64_t> reverse = directed.reverses();
   for (const bool inner : {false, true})
     for (std::size_t a = 0; a < vertices; ++a)
       for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
         const auto from = static_cast<int32_t>(a), to = edges[e].head;
-        if (directed.has(to, from) != inner || (inner && from > to))
+        if ((reverse[e] >= 0) != inner || (inner && from > to))
           continue;
         constraints.push_back({from, to, inner ? kInnerEdge : 1});
       }

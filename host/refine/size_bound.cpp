@@ -53,34 +53,43 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
   // Each cell's triangles: those whose box meets it, in order, in rows
   // (own_start, own): counted, then placed.
   const std::size_t cells = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
-  auto for_each_cell = [&](const Triangle &t, auto &&visit) {
+  // Each triangle's box in cells (first and last row and column; at most
+  // 2048 of each), from one pass over its corners.
+  struct CellBox {
+    uint16_t row0, row1, column0, column1;
+  };
+  std::vector<CellBox> boxes(field.triangles.size());
+  for (std::size_t k = 0; k < field.triangles.size(); ++k) {
     double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
-    for (int32_t v : t) {
+    for (int32_t v : field.triangles[k]) {
       x0 = std::min(x0, field.points[v].x);
       y0 = std::min(y0, field.points[v].y);
       x1 = std::max(x1, field.points[v].x);
       y1 = std::max(y1, field.points[v].y);
     }
-    for (int r = row(y0); r <= row(y1); ++r)
-      for (int c = column(x0); c <= column(x1); ++c)
-        visit(static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) +
-              static_cast<std::size_t>(c));
+    boxes[k] = {static_cast<uint16_t>(row(y0)), static_cast<uint16_t>(row(y1)),
+                static_cast<uint16_t>(column(x0)), static_cast<uint16_t>(column(x1))};
+  }
+  auto for_each_cell = [&](const CellBox &box, auto &&visit) {
+    for (std::size_t r = box.row0; r <= box.row1; ++r)
+      for (std::size_t c = box.column0; c <= box.column1; ++c)
+        visit(r * static_cast<std::size_t>(columns) + c);
   };
   std::vector<cl_int> own_start(cells + 1, 0);
-  for (const Triangle &t : field.triangles)
-    for_each_cell(t, [&](std::size_t cell) { ++own_start[cell + 1]; });
+  for (const CellBox &box : boxes)
+    for_each_cell(box, [&](std::size_t cell) { ++own_start[cell + 1]; });
   for (std::size_t c = 0; c < cells; ++c)
     own_start[c + 1] += own_start[c];
   std::vector<cl_int> own(static_cast<std::size_t>(own_start[cells])), cursor(own_start);
-  std::vector<cl_int> corners;
-  corners.reserve(3 * field.triangles.size());
-  for (std::size_t k = 0; k < field.triangles.size(); ++k) {
-    for (int32_t v : field.triangles[k])
-      corners.push_back(v);
-    for_each_cell(field.triangles[k], [&](std::size_t cell) {
+  for (std::size_t k = 0; k < boxes.size(); ++k)
+    for_each_cell(boxes[k], [&](std::size_t cell) {
       own[static_cast<std::size_t>(cursor[cell]++)] = static_cast<cl_int>(k);
     });
-  }
+  std::vector<CellBox>().swap(boxes);
+  std::vector<cl_int> corners;
+  corners.reserve(3 * field.triangles.size());
+  for (const Triangle &t : field.triangles)
+    corners.insert(corners.end(), t.begin(), t.end());
   std::vector<cl_int>().swap(cursor);
   // An empty cell takes the triangles of the nearest cell that has some
   // (breadth first over the grid, in cell order).

@@ -7,6 +7,7 @@
 // clmesh::triangulate(). Several inputs (files, --batch lists, --shard) are
 // meshed one after the other on one device, each as if meshed alone.
 #include "api/device_choice.hpp"
+#include "api/triangulate_validated.hpp"
 #include "clmesh/clmesh.hpp"
 #include "clmesh/version.hpp"
 #include "device_pool.hpp"
@@ -794,7 +795,8 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
         clmesh::describe(device).c_str());
 
   phase = Clock::now();
-  const clmesh::Mesh mesh = clmesh::triangulate(device, input, options);
+  const clmesh::Mesh mesh =
+      clmesh::triangulate_validated(device, input, options); // validated above
   const clmesh::RefineStats &refinement = mesh.statistics.refinement;
   warn_refinement(job, refinement);
   if (talk && mesh.statistics.constrained)

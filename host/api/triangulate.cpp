@@ -5,6 +5,7 @@
 
 #include "api/shared_device.hpp"
 #include "api/triangle_error.hpp"
+#include "api/triangulate_validated.hpp"
 #include "cdt/constrained.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
@@ -86,6 +87,10 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options);
 Mesh triangulate(Device &device, const Input &input, const Options &options) {
   validate(options);
   validate(input);
+  return triangulate_validated(device, input, options);
+}
+
+Mesh triangulate_validated(Device &device, const Input &input, const Options &options) {
   try {
     return mesh_of(device, input, options);
   } catch (const InputError &error) {

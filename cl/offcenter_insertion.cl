@@ -680,6 +680,28 @@ __kernel void gather_bad_triangles(__global const int *is_bad, __global const in
     gather_bad_entry(is_bad, offset, list, use_list, tri_mark, election, origin, carried_mark, gid);
 }
 
+// Before the triangles move (zorder_compaction.cl): flags[t] = 1 for each
+// slot t that a search after the move must assess again, the others being
+// left as good. A triangle was good at its last assessment unless the last
+// search found it bad (bad[0 .. bad_count)) or left it out as stuck (its
+// notes, set in the first `noted` slots), and it is as then unless it was
+// rewritten since (changed[0 .. changed_count), negative entries none). A
+// search over every slot would find no other bad triangle. flags: 0 before.
+__kernel void flag_unsettled(__global const int *bad, const int bad_count,
+                             __global const int *changed, const int changed_count,
+                             __global const int *notes, const int noted, __global int *flags,
+                             const int n) {
+  const int gid = get_global_id(0);
+  if (gid >= n)
+    return;
+  if (gid < bad_count)
+    flags[bad[gid]] = 1;
+  if (gid < changed_count && changed[gid] >= 0)
+    flags[changed[gid]] = 1;
+  if (gid < noted && (notes[gid] & CLM_NOTE_STUCK))
+    flags[gid] = 1;
+}
+
 // Prefetching for a kernel that reads the marks of two rings of triangles
 // around each triangle of `list` (prefetch.h): the triangle's mark (and its
 // tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and

@@ -148,18 +148,22 @@ __kernel void sort_cells(__global const int *cell_start, __global const int *cel
 }
 
 // Triangle order[k] moves to slot k, rotated to start at its smallest vertex
-// (new_slot: (slot << 2) | rotation of every old slot), with its region.
+// (new_slot: (slot << 2) | rotation of every old slot), with its region and,
+// when flagged, its flag (slot_flag, one per slot).
 __kernel void move_triangles(__global const int *order, __global const int *new_slot,
                              __global const int *tri_vertex, __global const int *tri_neighbor,
                              __global const int *tri_region, const int regional,
+                             __global const int *slot_flag, const int flagged,
                              __global int *moved_vertex, __global int *moved_neighbor,
-                             __global int *moved_region, const int n) {
+                             __global int *moved_region, __global int *moved_flag, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
   const int t = order[k];
   if (regional)
     moved_region[k] = tri_region[t];
+  if (flagged)
+    moved_flag[k] = slot_flag[t];
   const int r = link_edge(new_slot[t]);
   for (int i = 0; i < 3; ++i) { // new index i, old index (i + r) % 3
     const int link = tri_neighbor[3 * t + (i + r) % 3];

@@ -253,6 +253,34 @@ TEST_CASE("quality pslg: a search that keeps unchanged bad triangles' verdicts m
     }
 }
 
+TEST_CASE("quality pslg: the search after a later move examines what may be bad, and meshes "
+          "the same") {
+  // When the triangles move into Z-order again, those the last search found
+  // bad or left stuck and those rewritten since carry a flag; the search
+  // after the move assesses only those. A search of every slot must find the
+  // same bad triangles in the same order: the very same mesh, with segments
+  // and shells, -D, -Y, -YY and regional bounds.
+  clmesh::Tuning sweep;
+  sweep.search_flagged_after_move = false;
+  for (const char *name : {"water", "simplified-us-border", "kidney"})
+    for (const char *switches : {"pq30", "pcq30", "pq30D", "pq30Y", "pq30YY", "pAq30a"}) {
+      INFO(std::string(name) << " -" << switches);
+      const clmesh::Input pslg = load("pslg", name);
+      clmesh::Options options = clmesh::parse_switches(switches);
+      const clmesh::Mesh flagged = clmesh::triangulate(device(), pslg, options);
+      CHECK(flagged.statistics.refinement.compactions >= 2); // a later move
+      options.tuning = sweep;
+      const clmesh::Mesh swept = clmesh::triangulate(device(), pslg, options);
+      CHECK(flagged.triangles == swept.triangles);
+      REQUIRE(flagged.points.size() == swept.points.size());
+      for (std::size_t i = 0; i < flagged.points.size(); ++i)
+        CHECK(
+            (flagged.points[i].x == swept.points[i].x && flagged.points[i].y == swept.points[i].y));
+      CHECK(flagged.statistics.refinement.remaining_bad ==
+            swept.statistics.refinement.remaining_bad);
+    }
+}
+
 TEST_CASE("quality pslg: tiny input angles, cracks and hanging edges finish") {
   for (const char *name : {"img1", "butterfly", "clusters", "simplified-us-border", "island",
                            "kidney", "square_with_crack", "ditch", "overlapping_constraints"})

@@ -419,6 +419,11 @@ TEST_CASE("refine: the same mesh whatever the work-group size, grid or construct
     tuning.carry_verdicts = false;
     check_same(first, refine(points, options));
     tuning.carry_verdicts = true;
+    // Nor on whether the search after a later move into Z-order examines the
+    // flagged triangles alone or every slot.
+    tuning.search_flagged_after_move = false;
+    check_same(first, refine(points, options));
+    tuning.search_flagged_after_move = true;
     // Nor on whether the kernels prefetch (on PoCL's CPU devices: from the
     // start, or never).
     for (const std::size_t from : {std::size_t{0}, std::size_t{1} << 40}) {

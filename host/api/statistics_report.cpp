@@ -181,6 +181,7 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
     json += count("delaunay_flips", r.delaunay_flips);
     json += count("non_delaunay_flips", r.non_delaunay_flips);
     json += count("growths", r.growths);
+    json += count("compactions", r.compactions);
     json += count("remaining_bad_triangles", r.remaining_bad);
     json += "    \"area_bound_points\": " + json_number(r.area_bound_points) + ",\n";
     json += "    \"stop_reason\": " + json_string(stop_reason_name(r.stop_reason)) + "\n";

@@ -32,6 +32,7 @@ OffcenterInsertion::OffcenterInsertion(
       protected_segments_(protected_segments), inward_(inward),
       flag_hull_(device.kernel(kFile, "flag_hull_vertices", kPhase)),
       count_unfixable_(device.kernel(kFile, "count_unfixable_triangles", kPhase)),
+      flag_unsettled_(device.kernel(kFile, "flag_unsettled", kPhase)),
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
       elect_(device.kernel(kFile, "elect_candidates", kPhase)),
@@ -170,6 +171,17 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
            bad_mark_.buffer(), items);
   launch(device_, gather_bad_, entries, kPhase);
   return bad_;
+}
+
+void OffcenterInsertion::flag_unsettled(const DeviceList<cl_int> &changed,
+                                        const DeviceArray<cl_int> &flags) {
+  const std::size_t noted = std::min(filled_slots_, mesh_.triangle_count);
+  const std::size_t n = std::max({bad_, changed.size, noted});
+  set_args(flag_unsettled_, bad_list_.buffer(), static_cast<cl_int>(bad_),
+           changed.size > 0 ? changed.items.buffer() : bad_list_.buffer(),
+           static_cast<cl_int>(changed.size), notes_.buffer(), static_cast<cl_int>(noted),
+           flags.buffer(), static_cast<cl_int>(n));
+  launch(device_, flag_unsettled_, n, kPhase);
 }
 
 cl_uint OffcenterInsertion::search_args(cl::Kernel &kernel, bool use_list, cl_int carried) {

@@ -96,6 +96,16 @@ public:
   static std::vector<std::size_t> scratch_lists(const DeviceMesh &mesh);
   // Triangles the last search examined: the most entries a list took.
   std::size_t entries_used() const { return searched_entries_; }
+  // Whether a search ran: the first one examines every slot.
+  bool searched() const { return searched_; }
+  // Sets flags[t] (0 before) for every slot t a search over every slot might
+  // find bad now: those the last search found bad or left stuck and those in
+  // `changed` (rewritten since). The others are good.
+  void flag_unsettled(const DeviceList<cl_int> &changed, const DeviceArray<cl_int> &flags);
+  // The next search examines only the list it is given, as later searches
+  // do: its caller lists every triangle that may be bad (flag_unsettled's,
+  // in new steps for the mesh the triangles moved in).
+  void skip_sweep() { searched_ = true; }
 
   // Once, on the Delaunay triangulation: flags the hull vertices, and among
   // them the input points at hull angles below the minimum angle. Bad
@@ -154,8 +164,9 @@ private:
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
-  cl::Kernel flag_hull_, count_unfixable_, find_bad_, gather_bad_, elect_, gather_elected_, locate_,
-      mark_, ties_, filter_, clear_, append_, step_one_in_group_, place_in_group_;
+  cl::Kernel flag_hull_, count_unfixable_, flag_unsettled_, find_bad_, gather_bad_, elect_,
+      gather_elected_, locate_, mark_, ties_, filter_, clear_, append_, step_one_in_group_,
+      place_in_group_;
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false; // the first search examines every slot
   bool elected_ = false;  // the last search elected too (step_one_in_group)

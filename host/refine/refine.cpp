@@ -608,8 +608,8 @@ private:
 
   // Triangles move into spatial order at the start, then whenever their
   // slots grew by half while much work remains: at least one triangle in 16
-  // bad at the last search. With less work left, the move and the search
-  // over every slot that follows it cost more than the order saves.
+  // bad at the last search. With less work left, the move costs more than
+  // the order saves.
   bool compaction_pays() {
     return mesh().triangle_count >= compacted_slots_ + compacted_slots_ / 2 &&
            16 * last_bad_ >= mesh().triangle_count;
@@ -619,15 +619,36 @@ private:
   // in Z-order. Every slot number changes: the lists of triangles are void,
   // and the steps start again with new arrays. Their pages go back to the
   // system for the move, and the long lists of the first iterations do not
-  // hold pages while the mesh grows.
+  // hold pages while the mesh grows. After the first search, the triangles
+  // that may be bad are flagged and move with their flags: the next search
+  // examines those alone (in slot order, as a search of every slot lists
+  // them), the others are good.
   void compact() {
+    DeviceArray<cl_int> unsettled;
+    const bool searched = options_.delaunay.tuning.search_flagged_after_move && steps_ &&
+                          steps_->offcenter.searched();
+    if (searched) {
+      unsettled = DeviceArray<cl_int>(device_, mesh().triangle_count);
+      unsettled.fill(device_, 0, mesh().triangle_count);
+      steps_->offcenter.flag_unsettled(changed_, unsettled);
+    }
     steps_.reset();
-    ZOrderCompaction(device_, mesh(), scheduler_.scan()).compact(low_, side_, first_steiner_);
-    make_steps();
     changed_ = DeviceList<cl_int>{};
+    ZOrderCompaction(device_, mesh(), scheduler_.scan())
+        .compact(low_, side_, first_steiner_, searched ? &unsettled : nullptr);
+    make_steps();
+    if (searched) {
+      const std::size_t slots = mesh().triangle_count;
+      DeviceArray<cl_int> offsets(device_, slots);
+      changed_.items = DeviceArray<cl_int>(device_, slots);
+      changed_.size = static_cast<std::size_t>(scheduler_.scan().compact_indices(
+          unsettled, offsets, changed_.items, slots, FlipFlop::kPhase));
+      steps_->offcenter.skip_sweep();
+    }
     sizes_stale_ = true;
     deleted_since_collection_ = false;
     compacted_slots_ = mesh().triangle_count;
+    ++stats_.compactions;
     scheduler_.timer().charge(FlipFlop::kPhase); // timed with step 3
   }
 

@@ -43,12 +43,13 @@ std::size_t ZOrderCompaction::z_order(const ZGrid &grid, const DeviceArray<cl_in
   return placed;
 }
 
-void ZOrderCompaction::compact(Point low, double side, std::size_t first) {
-  compact_triangles(low, side);
+void ZOrderCompaction::compact(Point low, double side, std::size_t first,
+                               DeviceArray<cl_int> *slot_flags) {
+  compact_triangles(low, side, slot_flags);
   compact_steiner_points(low, side, first);
 }
 
-void ZOrderCompaction::compact_triangles(Point low, double side) {
+void ZOrderCompaction::compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags) {
   const std::size_t slots = mesh_.triangle_count;
   const ZGrid grid = z_grid(low, side, slots, 8);
   // The marks (none are set between iterations) hold the cells, the stamps
@@ -70,11 +71,17 @@ void ZOrderCompaction::compact_triangles(Point low, double side) {
                                        DeviceMesh::kHugePages);
     DeviceArray<cl_int> moved_region(device_, mesh_.has_regions ? mesh_.triangle_capacity : 1,
                                      DeviceMesh::kHugePages);
+    DeviceArray<cl_int> moved_flags(device_, slot_flags ? live : 1);
+    const DeviceArray<cl_int> &flags = slot_flags ? *slot_flags : moved_flags;
     set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
              mesh_.tri_neighbor.buffer(), mesh_.tri_region.buffer(),
-             static_cast<cl_int>(mesh_.has_regions), mesh_.children.buffer(),
-             moved_neighbor.buffer(), moved_region.buffer(), static_cast<cl_int>(live));
+             static_cast<cl_int>(mesh_.has_regions), flags.buffer(),
+             static_cast<cl_int>(slot_flags != nullptr), mesh_.children.buffer(),
+             moved_neighbor.buffer(), moved_region.buffer(), moved_flags.buffer(),
+             static_cast<cl_int>(live));
     launch(device_, move_triangles_, live, kPhase);
+    if (slot_flags)
+      *slot_flags = std::move(moved_flags);
     std::swap(mesh_.tri_vertex, mesh_.children);
     std::swap(mesh_.tri_neighbor, moved_neighbor);
     if (mesh_.has_regions) // the slots past the live ones get theirs when filled

@@ -20,8 +20,10 @@ public:
   // over the square of side `side` from `low` (the points' bounding box),
   // then the live Steiner points (slots `first` ..) likewise, and empties
   // both free lists. Every triangle and Steiner slot number changes: lists
-  // of them kept elsewhere are void.
-  void compact(Point low, double side, std::size_t first);
+  // of them kept elsewhere are void. With slot_flags (one per triangle slot),
+  // each triangle's flag moves with it: the array then holds one per new slot.
+  void compact(Point low, double side, std::size_t first,
+               DeviceArray<cl_int> *slot_flags = nullptr);
 
 private:
   // A Z-order grid over the bounding box with about `per_cell` of `items`
@@ -40,7 +42,7 @@ private:
   std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
                       const DeviceArray<cl_ulong> &key, bool rotated, std::size_t items,
                       const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
-  void compact_triangles(Point low, double side);
+  void compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags);
   void compact_steiner_points(Point low, double side, std::size_t first);
 
   Device &device_;

@@ -81,6 +81,7 @@ struct RefineStats {
   long delaunay_flips = 0;          // step 3's flips of non-locally-Delaunay edges
   long non_delaunay_flips = 0;      // step 3's flops and 3-1 flips deleting points
   long growths = 0;                 // times the mesh's arrays grew (thesis §3.6.1)
+  long compactions = 0;             // moves of the triangles into Z-order (thesis §3.6.1)
   bool out_of_memory = false;       // stopped: the device cannot hold more points
   // Bad triangles left: small input angles, flat slivers of rounding, -Y, -S reached.
   long remaining_bad = 0;

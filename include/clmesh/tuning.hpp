@@ -75,6 +75,10 @@ struct Tuning {
   // change; false assesses every listed triangle again. The mesh never
   // depends on it.
   bool carry_verdicts = true;
+  // When the triangles move into Z-order again (not the first time), those
+  // that may be bad carry a flag, and the search after the move examines
+  // those alone; false: every slot. The mesh never depends on it.
+  bool search_flagged_after_move = true;
 
   // Selects a refinement algorithm with its own values of the refinement
   // fields: GPU-QM-V (filter 2 rings, dependent pairs 1 ring further, near 16,

@@ -27,12 +27,16 @@ std::size_t DomainBoundary::room_needed(const DeviceArray<cl_int> &removed) {
   set_args_from(count_, mesh_.bind_triangulation(count_, 0), removed.buffer(),
                 boundary_edges_.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_, slots, kPhase);
-  return static_cast<std::size_t>(scan_.exclusive_scan(boundary_edges_, offset_, slots, kPhase));
+  counted_ =
+      static_cast<std::size_t>(scan_.exclusive_scan(boundary_edges_, offset_, slots, kPhase));
+  return counted_;
 }
 
 std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
   const std::size_t slots = mesh_.triangle_count;
-  const std::size_t ghosts = room_needed(removed);
+  // The counts of room_needed, when it counted these slots (growing the
+  // arrays for the ghosts moves no triangle).
+  const std::size_t ghosts = offset_.size() == slots ? counted_ : room_needed(removed);
   if (slots + ghosts > mesh_.triangle_capacity)
     throw InternalError("no room for the ghosts of the domain's boundary");
   const auto first_ghost = static_cast<cl_int>(slots);

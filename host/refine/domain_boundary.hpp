@@ -20,7 +20,8 @@ public:
   // edge (room_needed). Returns the number of boundary edges.
   std::size_t close(const DeviceArray<cl_int> &removed);
 
-  // The triangle slots closing the domain takes beyond the ones in use.
+  // The triangle slots closing the domain takes beyond the ones in use; the
+  // counts are kept for close(), which must follow with the same `removed`.
   std::size_t room_needed(const DeviceArray<cl_int> &removed);
 
   // The boundary edges the last close() found, each with the domain on its
@@ -33,8 +34,9 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel count_, make_ghosts_, link_kept_, retire_, point_at_;
-  DeviceArray<cl_int> boundary_edges_, offset_;
-  std::size_t first_ghost_ = 0, ghosts_ = 0; // the ghosts of the last close()
+  DeviceArray<cl_int> boundary_edges_, offset_; // per slot, from room_needed
+  std::size_t counted_ = 0;                     // their total
+  std::size_t first_ghost_ = 0, ghosts_ = 0;    // the ghosts of the last close()
 };
 
 } // namespace clmesh

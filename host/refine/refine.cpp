@@ -284,6 +284,7 @@ public:
           std::make_unique<SizeBound>(device_, mesh(), options_.size_field, triangle_areas_.get(),
                                       options_.unsuitable, options_.attributes);
       triangle_areas_.reset(); // on the device now
+      scheduler_.timer().charge(SizeBound::kPhase); // the background grids' set-up
     }
     make_steps();
     steps_->offcenter.flag_hull_vertices();

@@ -283,7 +283,7 @@ public:
       size_bound_ =
           std::make_unique<SizeBound>(device_, mesh(), options_.size_field, triangle_areas_.get(),
                                       options_.unsuitable, options_.attributes);
-      triangle_areas_.reset(); // on the device now
+      triangle_areas_.reset();                      // on the device now
       scheduler_.timer().charge(SizeBound::kPhase); // the background grids' set-up
     }
     make_steps();
@@ -342,7 +342,8 @@ public:
       return;
     }
     collect_statistics();
-    steps_.reset(); // the steps' lists go before the mesh comes to the host
+    steps_.reset();      // the steps' lists go before the mesh comes to the host, and
+    size_bound_.reset(); // the size bounds (the statistics have counted with them)
     const std::size_t n = points_.size();
     result_.added_points = SteinerRenumbering(device_, mesh(), scheduler_.scan()).number(n);
     const std::size_t survivors = result_.added_points.size();
@@ -510,7 +511,8 @@ private:
   // and the Steiner points, and the segments as chains of subsegments.
   void finish_pslg() {
     collect_statistics();
-    steps_.reset(); // the steps' lists go before the mesh comes to the host
+    steps_.reset();      // the steps' lists go before the mesh comes to the host, and
+    size_bound_.reset(); // the size bounds (the statistics have counted with them)
     std::vector<int32_t> on_segment;
     std::vector<Point> steiner =
         SteinerRenumbering(device_, mesh(), scheduler_.scan()).number(first_steiner_, &on_segment);

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <functional>
-#include <future>
 
 namespace clmesh {
 
@@ -28,30 +26,8 @@ SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
     backgrounds_.emplace_back(device_, *areas, true);
 }
 
-namespace {
-
-// Per background triangle k and edge i (opposite corner i): the first
-// triangle with that edge reversed, or -1.
-std::vector<cl_int> triangles_across(const SizeField &field) {
-  const DirectedEdges directed(field.triangles, field.points.size());
-  std::vector<cl_int> neighbor(3 * field.triangles.size());
-  for (std::size_t k = 0; k < field.triangles.size(); ++k)
-    for (int i = 0; i < 3; ++i)
-      neighbor[3 * k + static_cast<std::size_t>(i)] = static_cast<cl_int>(
-          directed.triangle_of(field.triangles[k][(i + 2) % 3], field.triangles[k][(i + 1) % 3]));
-  return neighbor;
-}
-
-} // namespace
-
 SizeBound::Background::Background(Device &device, const SizeField &field, bool per_triangle)
     : per_triangle(per_triangle) {
-  // With per-triangle values, the triangles across each edge are found on
-  // another thread while this one builds the grid (about as long, for a
-  // mesh of a million triangles, with the device idle).
-  std::future<std::vector<cl_int>> neighbors;
-  if (per_triangle)
-    neighbors = std::async(std::launch::async, triangles_across, std::cref(field));
   std::vector<cl_double2> points;
   double low_x = HUGE_VAL, low_y = HUGE_VAL, high_x = -HUGE_VAL, high_y = -HUGE_VAL;
   for (const Point &p : field.points) {
@@ -154,7 +130,12 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
   triangles.upload(device, corners);
   std::vector<cl_int>().swap(corners);
   if (per_triangle) { // a walk from the given triangle a slot descends from
-    const std::vector<cl_int> neighbor = neighbors.get();
+    const DirectedEdges directed(field.triangles, field.points.size());
+    std::vector<cl_int> neighbor(3 * field.triangles.size());
+    for (std::size_t k = 0; k < field.triangles.size(); ++k)
+      for (int i = 0; i < 3; ++i)
+        neighbor[3 * k + static_cast<std::size_t>(i)] = static_cast<cl_int>(
+            directed.triangle_of(field.triangles[k][(i + 2) % 3], field.triangles[k][(i + 1) % 3]));
     across = DeviceArray<cl_int>(device, neighbor.size());
     across.upload(device, neighbor);
   } else {

@@ -392,11 +392,63 @@ CLM_COLD int clm_incircle_translated(double ax, double ay, double bx, double by,
   return clm_expansion_sign(detn, det);
 }
 
-/* The exact sign after the filter failed: the translated stage when it applies, else the
- * determinant of the original coordinates. */
+/* Does x have at most 26 significant bits (Dekker's split leaves no low half)?  The product
+ * of two such doubles is exact. */
+CLM_FN int clm_fits_half(double x) {
+  double hi, lo;
+  clm_split(x, &hi, &lo);
+  return lo == 0.0;
+}
+
+/* a + b when it is exact; *inexact set otherwise. */
+CLM_FN double clm_exact_sum(double a, double b, int *inexact) {
+  double s, e;
+  clm_two_sum(a, b, &s, &e);
+  *inexact |= e != 0.0;
+  return s;
+}
+
+/* The cheapest exact stage, for lattice-like points (integer or dyadic coordinates of few
+ * bits, where cocircular points are the rule): the determinant of the differences to d,
+ *   lift(a-d) M(b-d, c-d) + lift(b-d) M(c-d, a-d) + lift(c-d) M(a-d, b-d),
+ * evaluated in doubles with every operation checked exact: the differences and sums by
+ * two_sum's error, the products of differences by their factors' 26 bits (clm_fits_half), the
+ * three lifted products by two_product's error.  When all are exact the double is the
+ * determinant, zero included; else CLM_UNCERTAIN (the expansions decide). */
+CLM_COLD int clm_incircle_in_doubles(double ax, double ay, double bx, double by, double cx,
+                                     double cy, double dx, double dy) {
+  int inexact = 0;
+  double adx = clm_exact_sum(ax, -dx, &inexact), ady = clm_exact_sum(ay, -dy, &inexact);
+  double bdx = clm_exact_sum(bx, -dx, &inexact), bdy = clm_exact_sum(by, -dy, &inexact);
+  double cdx = clm_exact_sum(cx, -dx, &inexact), cdy = clm_exact_sum(cy, -dy, &inexact);
+  if (inexact || !clm_fits_half(adx) || !clm_fits_half(ady) || !clm_fits_half(bdx) ||
+      !clm_fits_half(bdy) || !clm_fits_half(cdx) || !clm_fits_half(cdy))
+    return CLM_UNCERTAIN;
+  double bc = clm_exact_sum(bdx * cdy, -(bdy * cdx), &inexact);
+  double ca = clm_exact_sum(cdx * ady, -(cdy * adx), &inexact);
+  double ab = clm_exact_sum(adx * bdy, -(ady * bdx), &inexact);
+  double alift = clm_exact_sum(adx * adx, ady * ady, &inexact);
+  double blift = clm_exact_sum(bdx * bdx, bdy * bdy, &inexact);
+  double clift = clm_exact_sum(cdx * cdx, cdy * cdy, &inexact);
+  double ta, tb, tc, e;
+  clm_two_product(alift, bc, &ta, &e);
+  inexact |= e != 0.0;
+  clm_two_product(blift, ca, &tb, &e);
+  inexact |= e != 0.0;
+  clm_two_product(clift, ab, &tc, &e);
+  inexact |= e != 0.0;
+  double det = clm_exact_sum(clm_exact_sum(ta, tb, &inexact), tc, &inexact);
+  return inexact ? CLM_UNCERTAIN : clm_signd(det);
+}
+
+/* The exact sign after the filter failed: the stage in doubles or the translated stage when
+ * one applies, else the determinant of the original coordinates. */
 CLM_FN int clm_incircle_after_filter(double ax, double ay, double bx, double by, double cx,
                                      double cy, double dx, double dy) {
-  int s = clm_incircle_translated(ax, ay, bx, by, cx, cy, dx, dy);
+  int s = clm_incircle_in_doubles(ax, ay, bx, by, cx, cy, dx, dy);
+  if (s != CLM_UNCERTAIN)
+    return s;
+  s = clm_incircle_translated(ax, ay, bx, by, cx, cy, dx, dy);
   if (s != CLM_UNCERTAIN)
     return s;
   return clm_incircle_exact(ax, ay, bx, by, cx, cy, dx, dy);

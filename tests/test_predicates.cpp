@@ -505,6 +505,52 @@ TEST_CASE("predicates: filters never certify a wrong sign") {
   CHECK(incircle_certain > 0);
 }
 
+TEST_CASE("predicates: the in-circle stage in doubles answers only with the exact sign") {
+  // Lattice points (small integers, dyadic fractions, far from the origin,
+  // tiny and huge scales), cocircular or nearly so, and points a few ulps off
+  // the lattice: whenever the stage answers, its sign (zero included) is the
+  // exact determinant's.
+  std::mt19937_64 rng(11);
+  long answered = 0, zeros = 0, wrong = 0;
+  for (const double scale : {1.0, 0.0078125, 1024.0, 0x1p-150, 0x1p140}) {
+    for (const double origin : {0.0, 3.0, 1e6, -12345.0}) {
+      std::uniform_int_distribution<int> coordinate(-40, 40);
+      for (int k = 0; k < 20000; ++k) {
+        auto lattice = [&] {
+          return Pt{origin + scale * coordinate(rng), origin + scale * coordinate(rng)};
+        };
+        Pt p[4] = {lattice(), lattice(), lattice(), lattice()};
+        if (k % 3 == 1) { // a square's corners: cocircular
+          const double x = origin + scale * coordinate(rng), y = origin + scale * coordinate(rng);
+          const double side = scale * (1 + (coordinate(rng) & 7));
+          p[0] = {x, y}, p[1] = {x + side, y}, p[2] = {x + side, y + side}, p[3] = {x, y + side};
+        }
+        if (k % 5 == 2) // one point a few ulps off
+          p[k % 4].x = std::nextafter(std::nextafter(p[k % 4].x, 1e300), 1e300);
+        const int stage =
+            clm_incircle_in_doubles(p[0].x, p[0].y, p[1].x, p[1].y, p[2].x, p[2].y, p[3].x, p[3].y);
+        if (stage == CLM_UNCERTAIN)
+          continue;
+        ++answered;
+        zeros += stage == 0;
+        const int exact =
+            clm_incircle_exact(p[0].x, p[0].y, p[1].x, p[1].y, p[2].x, p[2].y, p[3].x, p[3].y);
+        if (stage != exact) {
+          ++wrong;
+          INFO(text(p[0]) << " " << text(p[1]) << " " << text(p[2]) << " " << text(p[3]));
+          CHECK(stage == exact);
+        }
+      }
+    }
+  }
+  CHECK(wrong == 0);
+  CHECK(answered > 100000); // lattices are its case
+  CHECK(zeros > 10000);
+  // Rounded differences, or factors of more than 26 bits: the expansions decide.
+  CHECK(clm_incircle_in_doubles(0.1, 0.2, 0.3, 0.5, 0.7, 0.11, 0.13, 0.17) == CLM_UNCERTAIN);
+  CHECK(clm_incircle_in_doubles(0, 0, 1 + 0x1p-40, 0, 1, 1, 0, 1) == CLM_UNCERTAIN);
+}
+
 TEST_CASE("predicates: expansion arithmetic keeps exact values") {
   // (2^60 + 1) * (2^60 - 1) = 2^120 - 1 needs three doubles: check sign of the difference
   // with 2^120 through the exact minor, and a sum that cancels to zero.

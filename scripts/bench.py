@@ -101,6 +101,9 @@ by three tools:
   segments  n points on a jittered grid (default 1000000), n/10 of the cells
             holding a short segment (two points) instead of one point: n/10
             non-crossing segments, well apart; -pcqANGLE (the convex hull).
+  square    the unit square, -pqANGLEa(1/n) (default n 1000000): a lattice-like
+            mesh, whose in-circle tests are mostly exact cocircular ties; no
+            CGAL run (cgal_bench bounds angles only).
   (--kinds picks them; --sizes N,... runs each kind at each N instead of its
   default, --quick at 10000.)
 
@@ -129,7 +132,7 @@ Usage: python3 scripts/bench.py [--quick] [--sizes 100000,1000000]
        python3 scripts/bench.py --cdt [--quick] [--sizes ...] [--variants short,long]
        python3 scripts/bench.py --quality [--quick] [--sizes 100000] [--angles 20,30]
            [--dists ...] [--algorithms qmv,qm]
-       python3 scripts/bench.py --pslg [--quick] [--sizes ...] [--kinds coast,segments]
+       python3 scripts/bench.py --pslg [--quick] [--sizes ...] [--kinds coast,segments,square]
            [--angles 30]
 
 All modes take --build-dir DIR (default build/: DIR/clmesh, DIR/cgal_bench,
@@ -804,8 +807,8 @@ def main(argv=None):
                     help="quality meshes of large generated PSLGs: clmesh -pqANGLE / -pcqANGLE "
                          "vs Triangle (same switches) vs CGAL refine_Delaunay_mesh_2 (time, "
                          "vertices, triangles below the angle, peak memory)")
-    ap.add_argument("--kinds", default="coast,segments",
-                    help="with --pslg: comma-separated subset of coast,segments")
+    ap.add_argument("--kinds", default="coast,segments,square",
+                    help="with --pslg: comma-separated subset of coast,segments,square")
     ap.add_argument("--algorithms", default="qmv,qm",
                     help="with --quality: comma-separated clmesh refinement variants to run, "
                          "subset of qmv,qm (default both)")
@@ -993,13 +996,20 @@ def main_quality(a, ap):
                   device, warnings, failures, "quality", "Quality meshes")
 
 
-# --pslg inputs: (kind, Triangle switches without q, default size, the convex hull is meshed).
-PSLG_KINDS = (("coast", "p", 100000, False), ("segments", "pc", 1000000, True))
+# --pslg inputs: (kind, Triangle switches without q, default size, the convex hull is meshed,
+# the triangles' area is bounded by 1/n).
+PSLG_KINDS = (("coast", "p", 100000, False, False), ("segments", "pc", 1000000, True, False),
+              ("square", "p", 1000000, False, True))
+
+
+def area_switch(n):
+    """-a's 1/n as Triangle reads a number: digits and a point, no exponent."""
+    return "a" + f"{1.0 / n:.12f}".rstrip("0")
 
 
 def main_pslg(a, ap):
     kinds = [k for k in a.kinds.replace(" ", "").split(",") if k]
-    known = [k for k, _, _, _ in PSLG_KINDS]
+    known = [k for k, _, _, _, _ in PSLG_KINDS]
     for k in kinds:
         if k not in known:
             ap.error(f"unknown --pslg input {k!r} (choose from {', '.join(known)})")
@@ -1009,7 +1019,7 @@ def main_pslg(a, ap):
 
     rows, failures, warnings = [], [], []
     device = None
-    for kind, switches, default_n, hull in PSLG_KINDS:
+    for kind, switches, default_n, hull, area_bound in PSLG_KINDS:
         if kind not in kinds:
             continue
         for n in setup.sizes if a.sizes_given else [default_n]:
@@ -1021,28 +1031,33 @@ def main_pslg(a, ap):
                 continue
             for angle in angles:
                 check = mesh_quality(angle, a.timeout)
-                sw = f"-{switches}q{angle}"
+                tail = f"q{angle}" + (area_switch(n) if area_bound else "")
+                sw = f"-{switches}{tail}"
                 tools = [("clmesh", run_clmesh, (clmesh, poly, a.timeout, (sw,), check),
                           (clmesh, poly, a.timeout, (sw, "-C"))),
                          ("Triangle", run_pslg_triangle, (triangle, poly, a.timeout,
-                                                          switches + f"q{angle}", check)),
-                         ("CGAL", run_cgal, (cgal, poly, a.timeout, "pslgmesh",
-                                             (angle,) + (("hull",) if hull else ())))]
+                                                          switches + tail, check))]
+                # cgal_bench's pslgmesh bounds angles only.
+                if not area_bound:
+                    tools.append(("CGAL", run_cgal, (cgal, poly, a.timeout, "pslgmesh",
+                                                     (angle,) + (("hull",) if hull else ()))))
                 results = run_tools(a, f"pslg {kind} n={n} m={m} {sw}", tools, failures)
-                cl, tr, cg = results["clmesh"], results["Triangle"], results["CGAL"]
+                cl, tr, cg = results["clmesh"], results["Triangle"], results.get("CGAL")
                 if cl and cl.get("device"):
                     device = cl["device"]
                 if cl and (cl.get("refinement") or {}).get("stop_reason", "done") != "done":
                     warnings.append(f"pslg {kind} n={n} {sw}: clmesh's refinement stopped: "
                                     f"{cl['refinement']['stop_reason']}")
+                def cell(k, fmt):  # "-": a tool not run on this input
+                    return fmt(results[k]) if k in results else "-"
+                tools3 = ("clmesh", "Triangle", "CGAL")
                 rows.append([kind, str(n), str(m), sw]
-                            + [fmt_s(results[k]) for k in ("clmesh", "Triangle", "CGAL")]
-                            + [fmt_ratio(cl, tr), fmt_ratio(cl, cg)]
-                            + [fmt_count(results[k], "vertices")
-                               for k in ("clmesh", "Triangle", "CGAL")]
+                            + [cell(k, fmt_s) for k in tools3]
+                            + [fmt_ratio(cl, tr), cell("CGAL", lambda c: fmt_ratio(cl, c))]
+                            + [cell(k, lambda r: fmt_count(r, "vertices")) for k in tools3]
                             + [fmt_vertex_ratio(cl, tr)]
-                            + [fmt_bad(results[k]) for k in ("clmesh", "Triangle", "CGAL")]
-                            + [fmt_mb(results[k]) for k in ("clmesh", "Triangle", "CGAL")])
+                            + [cell(k, fmt_bad) for k in tools3]
+                            + [cell(k, fmt_mb) for k in tools3])
 
     header = (["input", "n", "m", "switches", "clmesh s", "Triangle s", "CGAL s",
                "clmesh/Triangle", "clmesh/CGAL", "vertices clmesh", "vertices Triangle",
@@ -1055,7 +1070,10 @@ def main_pslg(a, ap):
                    "vertices) around small closed islands of 50 vertices, every island a hole "
                    "(one hole seed each), meshed with -pqANGLE; 'segments' is n points on a "
                    "jittered grid, n/10 cells holding a short segment instead of a point "
-                   "(non-crossing, well apart), meshed with -pcqANGLE (the convex hull).",
+                   "(non-crossing, well apart), meshed with -pcqANGLE (the convex hull); "
+                   "'square' is the unit square meshed with -pqANGLEa(1/n), a lattice-like "
+                   "mesh whose in-circle tests are mostly exact cocircular ties (no CGAL run: "
+                   "cgal_bench bounds angles only).",
                    "clmesh: build/clmesh SWITCHES -Q --stats-json, time = seconds.compute; an "
                    "untimed run with -C (exact check of the output mesh) comes first, a failed "
                    "check fails the row.  Triangle: the same switches.  CGAL: build/cgal_bench "

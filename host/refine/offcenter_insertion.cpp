@@ -175,7 +175,10 @@ std::size_t OffcenterInsertion::find_bad_triangles(PrefixScan &scan,
 
 void OffcenterInsertion::flag_unsettled(const DeviceList<cl_int> &changed,
                                         const DeviceArray<cl_int> &flags) {
-  const std::size_t noted = std::min(filled_slots_, mesh_.triangle_count);
+  // A location sets a stuck bit and counts it in stuck_count_: with none
+  // counted, no note holds one and the notes need no reading.
+  const bool any_stuck = stuck_count_.read(device_, 0) > 0;
+  const std::size_t noted = any_stuck ? std::min(filled_slots_, mesh_.triangle_count) : 0;
   const std::size_t n = std::max({bad_, changed.size, noted});
   set_args(flag_unsettled_, bad_list_.buffer(), static_cast<cl_int>(bad_),
            changed.size > 0 ? changed.items.buffer() : bad_list_.buffer(),

@@ -360,6 +360,36 @@ CLM_COLD int clm_incircle_exact(double ax, double ay, double bx, double by, doub
   return clm_expansion_sign(bn, acc_b);
 }
 
+/* a + b when it is exact; *inexact set otherwise. */
+CLM_FN double clm_exact_sum(double a, double b, int *inexact) {
+  double s, e;
+  clm_two_sum(a, b, &s, &e);
+  *inexact |= e != 0.0;
+  return s;
+}
+
+/* a * b when it is exact; *inexact set otherwise. */
+CLM_FN double clm_exact_product(double a, double b, int *inexact) {
+  double p, e;
+  clm_two_product(a, b, &p, &e);
+  *inexact |= e != 0.0;
+  return p;
+}
+
+/* The differences of a, b and c to d; 0 when one of them was rounded. */
+CLM_FN int clm_exact_differences(double ax, double ay, double bx, double by, double cx, double cy,
+                                 double dx, double dy, double *adx, double *ady, double *bdx,
+                                 double *bdy, double *cdx, double *cdy) {
+  int inexact = 0;
+  *adx = clm_exact_sum(ax, -dx, &inexact);
+  *ady = clm_exact_sum(ay, -dy, &inexact);
+  *bdx = clm_exact_sum(bx, -dx, &inexact);
+  *bdy = clm_exact_sum(by, -dy, &inexact);
+  *cdx = clm_exact_sum(cx, -dx, &inexact);
+  *cdy = clm_exact_sum(cy, -dy, &inexact);
+  return !inexact;
+}
+
 /* The adaptive middle stage (Shewchuk's stage B): when the differences to d are exact (their
  * rounding error is zero, as on integer or dyadic lattices, where cocircular points are the
  * rule), the 3x3 determinant of the differences,
@@ -368,16 +398,9 @@ CLM_COLD int clm_incircle_exact(double ax, double ay, double bx, double by, doub
  * CLM_UNCERTAIN when a difference was rounded. */
 CLM_COLD int clm_incircle_translated(double ax, double ay, double bx, double by, double cx,
                                      double cy, double dx, double dy) {
-  double adx, ady, bdx, bdy, cdx, cdy, tail[6];
-  clm_two_sum(ax, -dx, &adx, &tail[0]);
-  clm_two_sum(ay, -dy, &ady, &tail[1]);
-  clm_two_sum(bx, -dx, &bdx, &tail[2]);
-  clm_two_sum(by, -dy, &bdy, &tail[3]);
-  clm_two_sum(cx, -dx, &cdx, &tail[4]);
-  clm_two_sum(cy, -dy, &cdy, &tail[5]);
-  for (int i = 0; i < 6; i++)
-    if (tail[i] != 0.0)
-      return CLM_UNCERTAIN;
+  double adx, ady, bdx, bdy, cdx, cdy;
+  if (!clm_exact_differences(ax, ay, bx, by, cx, cy, dx, dy, &adx, &ady, &bdx, &bdy, &cdx, &cdy))
+    return CLM_UNCERTAIN;
   double bc[CLM_LEN_MINOR], ca[CLM_LEN_MINOR], ab[CLM_LEN_MINOR];
   double ta[CLM_LEN_TRANSLATED_TERM], tb[CLM_LEN_TRANSLATED_TERM], tc[CLM_LEN_TRANSLATED_TERM];
   double partial[2 * CLM_LEN_TRANSLATED_TERM], det[CLM_LEN_TRANSLATED];
@@ -400,14 +423,6 @@ CLM_FN int clm_fits_half(double x) {
   return lo == 0.0;
 }
 
-/* a + b when it is exact; *inexact set otherwise. */
-CLM_FN double clm_exact_sum(double a, double b, int *inexact) {
-  double s, e;
-  clm_two_sum(a, b, &s, &e);
-  *inexact |= e != 0.0;
-  return s;
-}
-
 /* The cheapest exact stage, for lattice-like points (integer or dyadic coordinates of few
  * bits, where cocircular points are the rule): the determinant of the differences to d,
  *   lift(a-d) M(b-d, c-d) + lift(b-d) M(c-d, a-d) + lift(c-d) M(a-d, b-d),
@@ -418,11 +433,10 @@ CLM_FN double clm_exact_sum(double a, double b, int *inexact) {
 CLM_COLD int clm_incircle_in_doubles(double ax, double ay, double bx, double by, double cx,
                                      double cy, double dx, double dy) {
   int inexact = 0;
-  double adx = clm_exact_sum(ax, -dx, &inexact), ady = clm_exact_sum(ay, -dy, &inexact);
-  double bdx = clm_exact_sum(bx, -dx, &inexact), bdy = clm_exact_sum(by, -dy, &inexact);
-  double cdx = clm_exact_sum(cx, -dx, &inexact), cdy = clm_exact_sum(cy, -dy, &inexact);
-  if (inexact || !clm_fits_half(adx) || !clm_fits_half(ady) || !clm_fits_half(bdx) ||
-      !clm_fits_half(bdy) || !clm_fits_half(cdx) || !clm_fits_half(cdy))
+  double adx, ady, bdx, bdy, cdx, cdy;
+  if (!clm_exact_differences(ax, ay, bx, by, cx, cy, dx, dy, &adx, &ady, &bdx, &bdy, &cdx, &cdy) ||
+      !clm_fits_half(adx) || !clm_fits_half(ady) || !clm_fits_half(bdx) || !clm_fits_half(bdy) ||
+      !clm_fits_half(cdx) || !clm_fits_half(cdy))
     return CLM_UNCERTAIN;
   double bc = clm_exact_sum(bdx * cdy, -(bdy * cdx), &inexact);
   double ca = clm_exact_sum(cdx * ady, -(cdy * adx), &inexact);
@@ -430,13 +444,9 @@ CLM_COLD int clm_incircle_in_doubles(double ax, double ay, double bx, double by,
   double alift = clm_exact_sum(adx * adx, ady * ady, &inexact);
   double blift = clm_exact_sum(bdx * bdx, bdy * bdy, &inexact);
   double clift = clm_exact_sum(cdx * cdx, cdy * cdy, &inexact);
-  double ta, tb, tc, e;
-  clm_two_product(alift, bc, &ta, &e);
-  inexact |= e != 0.0;
-  clm_two_product(blift, ca, &tb, &e);
-  inexact |= e != 0.0;
-  clm_two_product(clift, ab, &tc, &e);
-  inexact |= e != 0.0;
+  double ta = clm_exact_product(alift, bc, &inexact);
+  double tb = clm_exact_product(blift, ca, &inexact);
+  double tc = clm_exact_product(clift, ab, &inexact);
   double det = clm_exact_sum(clm_exact_sum(ta, tb, &inexact), tc, &inexact);
   return inexact ? CLM_UNCERTAIN : clm_signd(det);
 }

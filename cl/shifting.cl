@@ -154,16 +154,22 @@ __kernel void flag_turned_sites(__global const double2 *points, __global const i
   bad[tri.v[middle_corner(points, tri.v[0], tri.v[1], tri.v[2])]] = 1;
 }
 
-// Leaves the flagged sites out of the next diagram, counting them; clears
-// the flags.
-__kernel void leave_out_flagged_sites(__global int *bad, __global int *site_state,
-                                      volatile __global int *count, const int n) {
+// Leaves the flagged sites out of the next diagram, each with every other
+// point of its pixel (`diagram` and `pixel_of`: the diagram of this round):
+// one of those would take the pixel over and turn the same triangle over
+// again, round after round. Counts the flagged sites; `bad` is cleared after.
+__kernel void leave_out_flagged_pixels(__global const int *bad, __global int *site_state,
+                                       __global const int *diagram, __global const int *pixel_of,
+                                       volatile __global int *count, const int n) {
   const int p = get_global_id(0);
-  if (p >= n || !bad[p])
+  if (p >= n || site_state[p] != CLM_SITE)
     return;
-  bad[p] = 0;
+  const int site = diagram[pixel_of[p]]; // p's pixel has a site: p or another of its points
+  if (!bad[site])
+    return;
   site_state[p] = CLM_LEFT_OUT;
-  atomic_inc(count);
+  if (site == p)
+    atomic_inc(count);
 }
 
 static inline bool lexicographically_below(double2 p, double2 q) {

@@ -512,14 +512,15 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
       break;
     // Phase 3: at the real coordinates, turned-over triangles are untangled
     // by flips where they can be; the sites of the others and of unmatched
-    // triangles are left out of the next diagram.
+    // triangles are left out of the next diagram, with their pixels' points.
     const long untangled = shifting.untangle(built.real, built.real + built.ghosts, bad, stamp_);
     stats_.untangling_flips += untangled;
     // The flips assume the tangle is local; where it was not, a link that no
     // longer pairs up leaves its sites out as well.
     if (untangled > 0)
       construction.check_links(built.real + built.ghosts, bad);
-    const long left_out = shifting.leave_out_flagged(bad, site_state);
+    const long left_out =
+        shifting.leave_out_flagged(bad, site_state, banding.diagram(), banding.pixel_of());
     stats_.dropped_sites += left_out;
     timer_->charge(Shifting::kPhase);
     settled = left_out == 0;

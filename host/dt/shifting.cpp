@@ -15,7 +15,7 @@ Shifting::Shifting(Device &device, DeviceMesh &mesh, PrefixScan &scan)
       apply_flips_(device.kernel(kFile, "apply_untangling_flips", kPhase)),
       relink_(device.kernel(kFile, "relink_untangled", kPhase)),
       flag_turned_(device.kernel(kFile, "flag_turned_sites", kPhase)),
-      leave_out_(device.kernel(kFile, "leave_out_flagged_sites", kPhase)),
+      leave_out_(device.kernel(kFile, "leave_out_flagged_pixels", kPhase)),
 
       count_lowest_(device.kernel(kFile, "count_lowest_boundary_vertices", kPhase)),
       record_triangles_(device.kernel(kFile, "record_vertex_triangles", kPhase)),
@@ -68,12 +68,17 @@ long Shifting::untangle(std::size_t real, std::size_t slots, const DeviceArray<c
 }
 
 long Shifting::leave_out_flagged(const DeviceArray<cl_int> &bad,
-                                 const DeviceArray<cl_int> &site_state) {
+                                 const DeviceArray<cl_int> &site_state,
+                                 const DeviceArray<cl_int> &diagram,
+                                 const DeviceArray<cl_int> &pixel_of) {
   counter_.fill(device_, 0, 1);
-  set_args(leave_out_, bad.buffer(), site_state.buffer(), counter_.buffer(),
-           static_cast<cl_int>(mesh_.point_count));
+  set_args(leave_out_, bad.buffer(), site_state.buffer(), diagram.buffer(), pixel_of.buffer(),
+           counter_.buffer(), static_cast<cl_int>(mesh_.point_count));
   launch(device_, leave_out_, mesh_.point_count, kPhase);
-  return counter_.read(device_, 0);
+  const long flagged = counter_.read(device_, 0);
+  if (flagged > 0)
+    bad.fill(device_, 0, mesh_.point_count);
+  return flagged;
 }
 
 bool Shifting::boundary_winds_once() {

@@ -26,9 +26,11 @@ public:
   // in `bad`. Returns how many flips there were.
   long untangle(std::size_t real, std::size_t slots, const DeviceArray<cl_int> &bad, int &stamp);
 
-  // Leaves the sites flagged in `bad` out of the next diagram (site_state)
-  // and clears `bad`; returns how many were left out.
-  long leave_out_flagged(const DeviceArray<cl_int> &bad, const DeviceArray<cl_int> &site_state);
+  // Leaves the sites flagged in `bad` out of the next diagram (site_state),
+  // with the other points of their pixels (`diagram` and `pixel_of`: this
+  // round's), and clears `bad`; returns how many sites were flagged.
+  long leave_out_flagged(const DeviceArray<cl_int> &bad, const DeviceArray<cl_int> &site_state,
+                         const DeviceArray<cl_int> &diagram, const DeviceArray<cl_int> &pixel_of);
 
   // After the ghost flips: whether the outer cycle of the mesh's slots is
   // convex and winds around once.

@@ -88,6 +88,54 @@ TEST_CASE("batch: each input's mesh is that of its own triangulate() call") {
   check_same_mesh(refined[1].mesh, refined[0].mesh);
 }
 
+TEST_CASE("batch: small point sets are packed, each mesh that of its own triangulate() call") {
+  // Degenerate sets among them: cocircular lattices, duplicates, a thin ring,
+  // collinear runs inside a hull, three points. A collinear set (no triangle)
+  // and one larger than a pack takes are meshed alone, between packs.
+  std::vector<clmesh::Point> duplicates = fixtures::uniform(700, 11);
+  const std::vector<clmesh::Point> copy = duplicates;
+  duplicates.insert(duplicates.end(), copy.begin(), copy.end());
+  std::vector<clmesh::Point> collinear_run = fixtures::lattice(3, 1, {-1, -1});
+  for (int i = 0; i < 50; ++i)
+    collinear_run.push_back({-0.5 + i / 50.0, 0.25});
+  std::vector<clmesh::Point> line;
+  for (int i = 0; i < 20; ++i)
+    line.push_back({i * 0.5, i * 0.25});
+  const std::vector<clmesh::Input> inputs = {points_input(fixtures::uniform(2000, 1)),
+                                             points_input(fixtures::lattice(25)),
+                                             points_input(duplicates),
+                                             points_input(fixtures::ring(3000, 1e-3, 2)),
+                                             points_input({{0, 0}, {1, 0}, {0, 1}}),
+                                             points_input(line),
+                                             points_input(collinear_run),
+                                             points_input(fixtures::lattice(17, 0.125, {3, 5})),
+                                             points_input(fixtures::gaussian(1500, 4)),
+                                             points_input(fixtures::uniform(70000, 3))};
+  // A pack of one input is meshed alone.
+  const std::vector<bool> packed = {true, true, true, true, true, false, true, true, true, false};
+  for (const std::string switches : {"z", "ven"}) {
+    CAPTURE(switches);
+    clmesh::Options options = clmesh::parse_switches(switches);
+    options.tuning.packing = clmesh::Packing::always; // on PoCL's CPU device too
+    const std::vector<clmesh::BatchResult> results =
+        clmesh::triangulate_many(device(), inputs, options);
+    REQUIRE(results.size() == inputs.size());
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      CAPTURE(i);
+      REQUIRE(results[i].ok());
+      const clmesh::Mesh alone = clmesh::triangulate(device(), inputs[i], switches);
+      check_same_mesh(results[i].mesh, alone);
+      CHECK(same_edges(results[i].mesh.edges, alone.edges));
+      CHECK(results[i].mesh.voronoi_points.size() == alone.voronoi_points.size());
+      CHECK(test_support::starts_with(results[i].mesh.voronoi_points, alone.voronoi_points));
+      CHECK((results[i].mesh.statistics.delaunay.construction == "packed") == packed[i]);
+      CHECK(results[i].mesh.statistics.delaunay.triangles ==
+            static_cast<long>(alone.triangles.size()));
+      CHECK(results[i].mesh.statistics.delaunay.duplicates == alone.statistics.delaunay.duplicates);
+    }
+  }
+}
+
 TEST_CASE("batch: a bad input gets its error, the others their meshes") {
   clmesh::Input two_points = points_input({{0, 0}, {1, 0}});
   two_points.source = "two.node";

@@ -82,6 +82,34 @@ void take_origin_attributes(Mesh &mesh, const Input &input, const std::vector<in
 // Meshes a validated input with validated options.
 Mesh mesh_of(Device &device, const Input &input, const Options &options);
 
+// Whether the options ask for refinement (Steiner points).
+bool refines(const Options &options) {
+  return options.quality || options.max_area || options.regional_areas ||
+         options.conforming_delaunay || options.size_field || options.unsuitable;
+}
+
+DelaunayOptions delaunay_options_of(const Options &options) {
+  DelaunayOptions delaunay_options;
+  delaunay_options.tuning = options.tuning;
+  delaunay_options.want_voronoi_image = options.voronoi_image;
+  return delaunay_options;
+}
+
+// What the options add to a mesh: output markers, edges, the Voronoi
+// diagram, second-order nodes.
+void complete(Device &device, Mesh &mesh, const Options &options) {
+  const MeshView view = view_of(mesh);
+  mesh.point_markers = output_vertex_markers(view);
+  if (options.edges)
+    mesh.edges = mesh.statistics.constrained
+                     ? mesh_edges(mesh.triangles, mesh.neighbors, mesh.segments)
+                     : mesh_edges(mesh.triangles, mesh.neighbors);
+  if (options.voronoi)
+    add_voronoi_diagram(device, mesh);
+  if (options.second_order)
+    add_second_order_nodes(mesh);
+}
+
 } // namespace
 
 Mesh triangulate(Device &device, const Input &input, const Options &options) {
@@ -106,12 +134,32 @@ Mesh triangulate_validated(Device &device, const Input &input, const Options &op
   }
 }
 
+bool options_pack(const Options &options) {
+  return !options.pslg && !options.refine && !refines(options) && !options.voronoi_image;
+}
+
+bool input_packs(const Input &input) { return packable(input.points, kPackedLargest); }
+
+std::vector<Mesh> triangulate_packed(Device &device, const std::vector<const Input *> &inputs,
+                                     const Options &options) {
+  std::vector<const std::vector<Point> *> sets;
+  for (const Input *input : inputs)
+    sets.push_back(&input->points);
+  std::vector<DelaunayResult> triangulations =
+      delaunay_packed(device, sets, delaunay_options_of(options));
+  std::vector<Mesh> meshes(inputs.size());
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    take_points(meshes[k], *inputs[k], {});
+    take_triangulation(meshes[k], std::move(triangulations[k]));
+    complete(device, meshes[k], options);
+  }
+  return meshes;
+}
+
 namespace {
 
 Mesh mesh_of(Device &device, const Input &input, const Options &options) {
-  DelaunayOptions delaunay_options;
-  delaunay_options.tuning = options.tuning;
-  delaunay_options.want_voronoi_image = options.voronoi_image;
+  const DelaunayOptions delaunay_options = delaunay_options_of(options);
   Mesh mesh;
   RefineOptions refine;
   refine.delaunay = delaunay_options;
@@ -129,8 +177,7 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
   constrained.keep_convex_hull = options.convex_hull;
   constrained.ignore_holes = options.ignore_holes;
   constrained.regional_attributes = options.regional_attributes;
-  const bool refined = options.quality || options.max_area || options.regional_areas ||
-                       options.conforming_delaunay || options.size_field || options.unsuitable;
+  const bool refined = refines(options);
   // A PSLG's mesh: its points, triangles, segments, -A attributes and the
   // statistics of GPU-CDT.
   auto take_pslg = [&](const std::vector<Point> &added, DelaunayResult triangulation,
@@ -194,16 +241,7 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     take_points(mesh, input, {});
     take_triangulation(mesh, std::move(triangulation));
   }
-  const MeshView view = view_of(mesh);
-  mesh.point_markers = output_vertex_markers(view);
-  if (options.edges)
-    mesh.edges = mesh.statistics.constrained
-                     ? mesh_edges(mesh.triangles, mesh.neighbors, mesh.segments)
-                     : mesh_edges(mesh.triangles, mesh.neighbors);
-  if (options.voronoi)
-    add_voronoi_diagram(device, mesh);
-  if (options.second_order)
-    add_second_order_nodes(mesh);
+  complete(device, mesh, options);
   return mesh;
 }
 

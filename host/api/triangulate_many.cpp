@@ -1,10 +1,15 @@
 // clmesh — many inputs, one device: triangulate() on each, every input's
-// error kept in its own result instead of ending the batch.
+// error kept in its own result instead of ending the batch. Small point sets
+// meshed with plain Delaunay options go in packs, many meshes to one device
+// mesh and one run of the phases (triangulate_packed): the same meshes,
+// far fewer launches.
 #include "api/device_choice.hpp"
 #include "api/shared_device.hpp"
+#include "api/triangulate_validated.hpp"
 #include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
 #include "clmesh/triangulate.hpp"
+#include "runtime/opencl_context.hpp"
 
 #include <memory>
 #include <mutex>
@@ -27,25 +32,159 @@ BatchResult attempt(Device &device, const InputOf &input_of, const Options &opti
   return result;
 }
 
+BatchResult failure() {
+  BatchResult result;
+  result.error = std::current_exception();
+  try {
+    throw;
+  } catch (const std::exception &error) {
+    result.message = error.what();
+  }
+  return result;
+}
+
+using Done = std::function<void(std::size_t, BatchResult &&)>;
+// Runs work(device) on the device for a pack whose first input is given.
+using OnDevice = std::function<void(const Input &first, const std::function<void(Device &)> &work)>;
+
+// The inputs of a pack, gathered in input order until it is full or an
+// input that does not pack comes; flush() meshes them and hands each
+// result to done(), in input order.
+class Pack {
+public:
+  Pack(const Options &options, const Done &done, const OnDevice &on_device)
+      : options_(options),
+        packs_(options_pack(options) && options.tuning.packing != Packing::never), done_(done),
+        on_device_(on_device) {}
+
+  // Takes input i (a copy) when it packs, after flushing a full pack;
+  // false: it does not pack. Throws the input's validation error.
+  bool take(std::size_t i, const Input &input) {
+    if (!packs_ || input.points.size() > kPackedLargest)
+      return false;
+    validate(input);
+    if (!input_packs(input))
+      return false;
+    if (points_ + input.points.size() > kMostPoints || inputs_.size() >= kMostInputs)
+      flush();
+    points_ += input.points.size();
+    indices_.push_back(i);
+    inputs_.push_back(input);
+    return true;
+  }
+
+  void flush() {
+    if (inputs_.empty())
+      return;
+    std::vector<BatchResult> results(inputs_.size());
+    try {
+      on_device_(inputs_.front(), [&](Device &device) { mesh(device, results); });
+    } catch (const std::exception &) { // the device could not be had: every input's error
+      for (BatchResult &result : results)
+        result = failure();
+    }
+    for (std::size_t k = 0; k < inputs_.size(); ++k)
+      done_(indices_[k], std::move(results[k]));
+    inputs_.clear();
+    indices_.clear();
+    points_ = 0;
+  }
+
+private:
+  // A pack stops at this many points or inputs: its arrays stay small, the
+  // first results come soon.
+  static constexpr std::size_t kMostPoints = std::size_t{1} << 20, kMostInputs = 4096;
+
+  bool packs_on(const Device &device) const {
+    switch (options_.tuning.packing) {
+    case Packing::always:
+      return true;
+    case Packing::never:
+      return false;
+    case Packing::automatic:
+      break;
+    }
+    return !device.cpu_paths();
+  }
+
+  void mesh(Device &device, std::vector<BatchResult> &results) {
+    if (inputs_.size() > 1 && packs_on(device))
+      try {
+        std::vector<const Input *> pointers;
+        for (const Input &input : inputs_)
+          pointers.push_back(&input);
+        std::vector<Mesh> meshes = triangulate_packed(device, pointers, options_);
+        for (std::size_t k = 0; k < meshes.size(); ++k)
+          results[k].mesh = std::move(meshes[k]);
+        return;
+      } catch (const std::exception &) {
+        // Each alone then, with an error of its own where it fails.
+      }
+    for (std::size_t k = 0; k < inputs_.size(); ++k)
+      results[k] = attempt(
+          device, [&]() -> const Input & { return inputs_[k]; }, options_);
+  }
+
+  const Options &options_;
+  const bool packs_;
+  const Done &done_;
+  const OnDevice &on_device_;
+  std::vector<Input> inputs_;
+  std::vector<std::size_t> indices_;
+  std::size_t points_ = 0;
+};
+
 } // namespace
 
 void triangulate_many(Device &device, std::size_t count,
                       const std::function<Input(std::size_t)> &input, const Options &options,
-                      const std::function<void(std::size_t, BatchResult &&)> &done) {
+                      const Done &done) {
   validate(options); // the same for every input: an error here is the batch's
-  for (std::size_t i = 0; i < count; ++i)
-    done(i, attempt(
-                device, [&] { return input(i); }, options));
+  const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
+    work(device);
+  };
+  Pack pack(options, done, on_device);
+  for (std::size_t i = 0; i < count; ++i) {
+    BatchResult result;
+    try {
+      const Input given = input(i);
+      if (pack.take(i, given))
+        continue;
+      pack.flush();
+      result = attempt(
+          device, [&]() -> const Input & { return given; }, options);
+    } catch (const std::exception &) { // from input(i) or the validation
+      result = failure();              // before the pack's own errors come and go
+      pack.flush();
+    }
+    done(i, std::move(result));
+  }
+  pack.flush();
 }
 
 std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Input> &inputs,
                                           const Options &options) {
   validate(options);
-  std::vector<BatchResult> results;
-  results.reserve(inputs.size());
-  for (const Input &input : inputs)
-    results.push_back(attempt(
-        device, [&]() -> const Input & { return input; }, options));
+  std::vector<BatchResult> results(inputs.size());
+  const Done done = [&](std::size_t i, BatchResult &&result) { results[i] = std::move(result); };
+  const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
+    work(device);
+  };
+  Pack pack(options, done, on_device);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    try {
+      if (pack.take(i, inputs[i]))
+        continue;
+    } catch (const std::exception &) { // the validation's
+      results[i] = failure();
+      pack.flush();
+      continue;
+    }
+    pack.flush();
+    results[i] = attempt(
+        device, [&]() -> const Input & { return inputs[i]; }, options);
+  }
+  pack.flush();
   return results;
 }
 
@@ -60,21 +199,32 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
   validate(options);
   offer_pocl_drivers(options.device); // before OpenCL starts (device_choice.hpp)
   find_device(options.device);        // no such device: the batch's error
+  // A pack runs on the device its first input would take, held meanwhile.
+  const OnDevice on_device = [&](const Input &first, const std::function<void(Device &)> &work) {
+    const std::shared_ptr<SharedDevice> shared = shared_device_for(first, options);
+    const std::lock_guard<std::mutex> held(shared->busy);
+    work(*shared->device);
+  };
+  Pack pack(options, done, on_device);
   for (std::size_t i = 0; i < count; ++i) {
     BatchResult result;
     std::unique_lock<std::mutex> held; // input i's device (the process keeps it)
     try {
       const Input given = input(i);
+      if (pack.take(i, given))
+        continue;
+      pack.flush();
       const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
       held = std::unique_lock<std::mutex>(shared->busy);
       result = attempt(
           *shared->device, [&]() -> const Input & { return given; }, options);
-    } catch (const std::exception &error) { // from input(i) or the device's opening
-      result.error = std::current_exception();
-      result.message = error.what();
+    } catch (const std::exception &) { // from input(i), its validation or the device's opening
+      result = failure();              // before the pack's own errors come and go
+      pack.flush();
     }
     done(i, std::move(result)); // the device still held
   }
+  pack.flush();
 }
 
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs,

@@ -1,4 +1,5 @@
-// clmesh — triangulate() for an input and options validated already.
+// clmesh — triangulate() for an input and options validated already, and
+// for several small point sets at once (triangulate_many's packs).
 //
 // The command line validates each input as soon as it is read, before it
 // leases a device for it; validating a mesh of a million triangles again
@@ -10,10 +11,29 @@
 #include "clmesh/mesh.hpp"
 #include "clmesh/options.hpp"
 
+#include <cstddef>
+#include <vector>
+
 namespace clmesh {
 
 // triangulate(device, input, options) without its validate(options) and
 // validate(input): the caller has run both.
 Mesh triangulate_validated(Device &device, const Input &input, const Options &options);
+
+// Point sets of at most this many points pack (the options allowing).
+constexpr std::size_t kPackedLargest = 65536;
+
+// Whether the options give a plain Delaunay triangulation, which packs:
+// no -p, -r, -q, -a, -D, size field or Voronoi image.
+bool options_pack(const Options &options);
+// Whether triangulate_packed takes the input (validated, with options that
+// pack): at most kPackedLargest points, not all collinear.
+bool input_packs(const Input &input);
+
+// The meshes of several inputs (each input_packs, the options pack), each
+// the one triangulate_validated gives it alone, from one device mesh and
+// one run of the phases (delaunay_packed).
+std::vector<Mesh> triangulate_packed(Device &device, const std::vector<const Input *> &inputs,
+                                     const Options &options);
 
 } // namespace clmesh

@@ -38,4 +38,20 @@ struct DelaunayResult {
 DelaunayResult delaunay(Device &device, const std::vector<Point> &points,
                         const DelaunayOptions &options = {});
 
+// Whether delaunay_packed takes the point set (its coordinates checked
+// already, clmesh::validate): three points or more, at most `largest`, not
+// all collinear.
+bool packable(const std::vector<Point> &points, std::size_t largest);
+
+// Several point sets (each packable) triangulated together: one device mesh
+// holds them all, each set's triangles apart from the others', so that every
+// phase's launches serve them all (batches of small meshes). Each result
+// holds what delaunay() gives for its set alone, the same triangles in the
+// same order; its statistics count its own points, duplicates and
+// triangles, and the pack's seconds, flips and rounds (construction
+// "packed").
+std::vector<DelaunayResult> delaunay_packed(Device &device,
+                                            const std::vector<const std::vector<Point> *> &sets,
+                                            const DelaunayOptions &options = {});
+
 } // namespace clmesh

@@ -329,6 +329,10 @@ bool uses_voronoi(const Tuning &tuning, std::size_t n) {
 
 } // namespace
 
+bool packable(const std::vector<Point> &points, std::size_t largest) {
+  return points.size() >= 3 && points.size() <= largest && !all_collinear(points);
+}
+
 std::pair<Point, double> bounding_square(const std::vector<Point> &points) {
   const auto [low_x, high_x] = std::minmax_element(
       points.begin(), points.end(), [](const Point &a, const Point &b) { return a.x < b.x; });
@@ -355,9 +359,14 @@ void PhaseTimer::charge(const std::string &name) {
 
 DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &points,
                                      const DelaunayOptions &options, DelaunayStats &stats,
-                                     std::size_t extra_points)
+                                     std::size_t extra_points, std::vector<std::size_t> part_starts)
     : device_(device), points_(points), options_(options), extra_points_(extra_points),
-      stats_(stats) {
+      stats_(stats), part_starts_(std::move(part_starts)) {
+  if (part_starts_.empty())
+    part_starts_ = {0, points.size()};
+  if (part_starts_.front() != 0 || part_starts_.back() != points.size() ||
+      !std::is_sorted(part_starts_.begin(), part_starts_.end()))
+    throw InternalError("packed triangulation: the parts do not cover the points in order");
   if (points.size() < 3)
     throw InputError("input", 0, "fewer than three points");
   if (points.size() > (std::size_t{1} << 28))
@@ -375,13 +384,25 @@ DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &p
   for (const char *file :
        {"scan.cl", "missing_point_insertion.cl", "flipping.cl", "mesh_output.cl", "fill.cl"})
     device.program(file, "setup");
-  if (uses_voronoi(options.tuning, points.size()) || options.want_voronoi_image)
+  if ((!packed() && uses_voronoi(options.tuning, points.size())) || options.want_voronoi_image)
     for (const char *file : {"voronoi_banding.cl", "triangulation_construction.cl", "shifting.cl"})
       device.program(file, "setup");
   start_ = Clock::now();
 }
 
 DelaunayScheduler::~DelaunayScheduler() = default;
+
+template <class Visit> void DelaunayScheduler::for_each_part(const Visit &visit) const {
+  if (!packed()) {
+    visit(std::size_t{0}, points_);
+    return;
+  }
+  for (std::size_t k = 0; k + 1 < part_starts_.size(); ++k) {
+    const auto first = points_.begin() + static_cast<std::ptrdiff_t>(part_starts_[k]),
+               last = points_.begin() + static_cast<std::ptrdiff_t>(part_starts_[k + 1]);
+    visit(part_starts_[k], std::vector<Point>(first, last));
+  }
+}
 
 bool DelaunayScheduler::triangulate() {
   const std::vector<Point> &points = points_;
@@ -396,9 +417,15 @@ bool DelaunayScheduler::triangulate() {
   Device &device = device_;
   DeviceMesh &mesh = *mesh_;
 
-  // Device points follow a Hilbert curve, so that neighbouring work-items
-  // touch neighbouring memory; the output goes back to the input numbering.
-  original_id_ = spatial_order(points);
+  // Device points follow a Hilbert curve (each part's its own, in the part's
+  // range), so that neighbouring work-items touch neighbouring memory; the
+  // output goes back to the input numbering.
+  original_id_.clear();
+  original_id_.reserve(n);
+  for_each_part([&](std::size_t first, const std::vector<Point> &part) {
+    for (const int32_t i : spatial_order(part))
+      original_id_.push_back(static_cast<int32_t>(first) + i);
+  });
   const std::vector<int32_t> &original_id = original_id_;
   device_id_.assign(n, 0);
   std::vector<cl_double2> coordinates(n);
@@ -416,7 +443,7 @@ bool DelaunayScheduler::triangulate() {
 
   // Phases 1-3 build the first triangulation and list the missing points;
   // when their result cannot be used, the hull is fanned instead.
-  const bool from_voronoi = uses_voronoi(options_.tuning, n);
+  const bool from_voronoi = !packed() && uses_voronoi(options_.tuning, n);
   if (!from_voronoi && options_.want_voronoi_image) {
     const auto [low, span] = bounding_square(points);
     stats_.grid = texture_side(low, span);
@@ -426,24 +453,39 @@ bool DelaunayScheduler::triangulate() {
     timer_->charge(VoronoiBanding::kPhase);
   }
   if (!from_voronoi || !construct_from_voronoi(insertion)) {
-    // The hull only now: the Voronoi construction does without it.
-    const std::vector<int32_t> hull = convex_hull(points);
-    std::vector<int32_t> device_hull(hull.size());
-    for (std::size_t i = 0; i < hull.size(); ++i)
-      device_hull[i] = device_id_[hull[i]];
-    const HullFan fan = hull_fan(device_hull);
+    // The hull only now: the Voronoi construction does without it. Each
+    // part's hull is fanned in slots of its own, and its points start their
+    // walks in its first fan triangle: the parts never meet.
+    HullFan fans;
+    std::vector<cl_int> start_triangle(n, 0);
+    std::vector<char> in_mesh(n, 0);
+    for_each_part([&](std::size_t first, const std::vector<Point> &part) {
+      const std::vector<int32_t> hull = convex_hull(part);
+      std::vector<int32_t> device_hull(hull.size());
+      for (std::size_t i = 0; i < hull.size(); ++i) {
+        device_hull[i] = device_id_[first + hull[i]];
+        in_mesh[device_hull[i]] = 1;
+      }
+      const HullFan fan = hull_fan(device_hull);
+      const auto slot = static_cast<cl_int>(fans.vertices.size() / 3);
+      fans.vertices.insert(fans.vertices.end(), fan.vertices.begin(), fan.vertices.end());
+      for (const cl_int link : fan.neighbors)
+        fans.neighbors.push_back(link + (slot << 2));
+      // The part's device points are its input range (spatial_order above).
+      std::fill(start_triangle.begin() + static_cast<std::ptrdiff_t>(first),
+                start_triangle.begin() + static_cast<std::ptrdiff_t>(first + part.size()), slot);
+    });
     timer_->charge("upload");
-    mesh.tri_vertex.upload(device, fan.vertices);
-    mesh.tri_neighbor.upload(device, fan.neighbors);
-    mesh.triangle_count = fan.vertices.size() / 3;
+    mesh.tri_vertex.upload(device, fans.vertices);
+    mesh.tri_neighbor.upload(device, fans.neighbors);
+    mesh.triangle_count = fans.vertices.size() / 3;
     mesh.clear_triangle_slots();
     mesh.fill_triangle_slots(device, mesh.triangle_count);
-    mesh.location.fill(device, 0, mesh.point_count);
-    std::vector<char> in_mesh(n, 0);
-    for (const int32_t v : device_hull)
-      in_mesh[v] = 1;
+    if (packed())
+      mesh.location.upload(device, start_triangle);
+    else
+      mesh.location.fill(device, 0, mesh.point_count);
     std::vector<cl_int> missing;
-    missing.reserve(n - hull.size());
     for (std::size_t i = 0; i < n; ++i)
       if (!in_mesh[i])
         missing.push_back(static_cast<cl_int>(i));

@@ -42,9 +42,13 @@ class DelaunayScheduler {
 public:
   // Checks the points and builds the programs; the compute clock starts here.
   // extra_points: room for points added after the triangulation (insert_points).
+  // part_starts (packed meshes, delaunay_packed): the points are several
+  // point sets, part k from part_starts[k] to part_starts[k + 1] (the last
+  // entry: points.size()), none of them collinear; each is triangulated
+  // apart, in the same arrays and launches (empty: one set).
   DelaunayScheduler(Device &device, const std::vector<Point> &points,
                     const DelaunayOptions &options, DelaunayStats &stats,
-                    std::size_t extra_points = 0);
+                    std::size_t extra_points = 0, std::vector<std::size_t> part_starts = {});
   ~DelaunayScheduler();
 
   // Phases 1-5; false when all points are collinear (no triangle).
@@ -114,12 +118,19 @@ private:
   bool construct_from_voronoi(MissingPointInsertion &insertion);
   // Phase 5, built on first use after the mesh was made or grew.
   Flipping &flipping();
+  // Several point sets in one mesh: the hull fan builds the first
+  // triangulation, one fan a set.
+  bool packed() const { return part_starts_.size() > 2; }
+  // visit(first, points) for each set: its first input index and a copy of
+  // its points (the whole input once when not packed).
+  template <class Visit> void for_each_part(const Visit &visit) const;
 
   Device &device_;
   const std::vector<Point> &points_;
   DelaunayOptions options_;
   std::size_t extra_points_;
   DelaunayStats &stats_;
+  std::vector<std::size_t> part_starts_;
   Clock::time_point start_;
   std::unique_ptr<PhaseTimer> timer_;
   std::unique_ptr<DeviceMesh> mesh_;

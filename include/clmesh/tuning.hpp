@@ -22,6 +22,15 @@ enum class RefineAlgorithm { qm, qmv };
 // clustered points) cost more than inserting every point.
 enum class Construction { automatic, voronoi, fan };
 
+// Whether triangulate_many packs small point sets (plain Delaunay options,
+// at most 65536 points each): many meshes in one device mesh, meshed by one
+// run of the phases, each mesh the same as alone. `automatic` packs on
+// devices that take the GPU paths, where every launch costs a round trip
+// that a small mesh cannot fill; a CPU meshes small sets faster one by one,
+// each in its caches (from a pack of a million points it would fetch every
+// array from memory).
+enum class Packing { automatic, always, never };
+
 struct Tuning {
   // --- Delaunay triangulation (GPU-DT, thesis §4.1.2); the mesh never depends on these.
   // Side of the digital Voronoi texture of Phase 1; unset: chosen from the points.
@@ -32,6 +41,8 @@ struct Tuning {
   // hull itself when its result cannot be used.
   Construction construction = Construction::automatic;
   static constexpr std::size_t kFanBelow = 1024;
+  // Batches of small point sets (see Packing).
+  Packing packing = Packing::automatic;
   // On PoCL's CPU devices, kernels prefetch (cl/prefetch.h) for meshes of
   // at least this many points (their capacity, Steiner points included):
   // a smaller mesh stays in the caches, where the prefetches only cost.

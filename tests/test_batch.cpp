@@ -101,6 +101,12 @@ TEST_CASE("batch: small point sets are packed, each mesh that of its own triangu
   std::vector<clmesh::Point> line;
   for (int i = 0; i < 20; ++i)
     line.push_back({i * 0.5, i * 0.25});
+  // Sets far apart in scale share a pack: nothing of one reaches another.
+  std::vector<clmesh::Point> huge = fixtures::uniform(900, 5), tiny = fixtures::disk(900, 6);
+  for (clmesh::Point &p : huge)
+    p = {p.x * 1e30 - 3e29, p.y * 1e30};
+  for (clmesh::Point &p : tiny)
+    p = {p.x * 1e-30, p.y * 1e-30 + 1e-31};
   const std::vector<clmesh::Input> inputs = {points_input(fixtures::uniform(2000, 1)),
                                              points_input(fixtures::lattice(25)),
                                              points_input(duplicates),
@@ -110,9 +116,12 @@ TEST_CASE("batch: small point sets are packed, each mesh that of its own triangu
                                              points_input(collinear_run),
                                              points_input(fixtures::lattice(17, 0.125, {3, 5})),
                                              points_input(fixtures::gaussian(1500, 4)),
+                                             points_input(huge),
+                                             points_input(tiny),
                                              points_input(fixtures::uniform(70000, 3))};
   // A pack of one input is meshed alone.
-  const std::vector<bool> packed = {true, true, true, true, true, false, true, true, true, false};
+  const std::vector<bool> packed = {true, true, true, true, true, false,
+                                    true, true, true, true, true, false};
   for (const std::string switches : {"z", "ven"}) {
     CAPTURE(switches);
     clmesh::Options options = clmesh::parse_switches(switches);

@@ -766,42 +766,57 @@ clmesh::Input read(const clmesh::Options &options, const FileNames &names, bool 
   return input;
 }
 
-// Meshes one input and writes its outputs; returns the exit status (1: the
-// -C check failed) or throws.
-int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devices) {
+// An input read and validated, before its meshing.
+struct Prepared {
+  Clock::time_point start;
+  FileNames names;
+  clmesh::Input input;
+  clmesh::RunSeconds seconds;
+};
+
+// Reads and validates the input of `job`, naming the files it opens unless
+// quiet; throws its error.
+Prepared prepare_input(const Job &job) {
   const clmesh::Options &options = job.options;
   const Clock::time_point start = Clock::now();
   const bool talk = !options.quiet;
-  const bool constrained = options.pslg || options.refine; // the mesh has subsegments
   clmesh::validate(options);
-  const FileNames names = file_names(options, job.input);
+  Prepared prepared{start, file_names(options, job.input), {}, {}};
   if (options.jettison && options.no_node_file && talk)
     say("Warning:  -j and -N switches are somewhat incompatible.\n"
         "  If any vertices are jettisoned, you will need the output\n"
         "  .node file to reconstruct the new node indices.\n");
+  const Clock::time_point phase = Clock::now();
+  prepared.input = read(options, prepared.names, talk);
+  clmesh::validate(prepared.input);
+  prepared.seconds.read = seconds_since(phase);
+  return prepared;
+}
 
-  clmesh::RunSeconds seconds;
-  Clock::time_point phase = Clock::now();
-  const clmesh::Input input = read(options, names, talk);
-  clmesh::validate(input);
-  seconds.read = seconds_since(phase);
-
-  const cli::DevicePool::Lease lease = devices.lease(clmesh::input_size(input, options));
-  clmesh::Device &device = lease.device;
-  if (talk)
+void say_meshing(const clmesh::Options &options, const clmesh::Device &device) {
+  if (!options.quiet)
     say(options.refine ? "Refining the mesh on %s.\n"
         : options.pslg ? "Constructing constrained Delaunay triangulation by GPU-CDT on %s.\n"
                        : "Constructing Delaunay triangulation by GPU-DT on %s.\n",
         clmesh::describe(device).c_str());
+}
 
-  phase = Clock::now();
-  const clmesh::Mesh mesh =
-      clmesh::triangulate_validated(device, input, options); // validated above
+// What follows the meshing of a prepared input: its messages, its outputs,
+// the -C check; returns the exit status (1: the check failed) or throws.
+// compute_wall: the seconds its meshing took; opened_seconds: those of
+// opening its device.
+int finish_input(const CommandLine &command, const Job &job, Prepared &prepared,
+                 const clmesh::Mesh &mesh, double compute_wall, double opened_seconds) {
+  const clmesh::Options &options = job.options;
+  const clmesh::Input &input = prepared.input;
+  const FileNames &names = prepared.names;
+  clmesh::RunSeconds &seconds = prepared.seconds;
+  const bool talk = !options.quiet;
+  const bool constrained = options.pslg || options.refine; // the mesh has subsegments
   const clmesh::RefineStats &refinement = mesh.statistics.refinement;
   warn_refinement(job, refinement);
   if (talk && mesh.statistics.constrained)
     warn_seeds_on_segments(job, mesh.statistics.constraints);
-  const double compute_wall = seconds_since(phase);
   const double device_compute = mesh.statistics.delaunay.compute_seconds;
   seconds.compute = device_compute > 0 ? device_compute : compute_wall;
   if (talk) {
@@ -822,7 +837,7 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
                         "triangles.\n");
   }
 
-  phase = Clock::now();
+  Clock::time_point phase = Clock::now();
   clmesh::OutputBatch batch;
   write_outputs(command, job, names, input, mesh, talk, batch);
   seconds.write = seconds_since(phase);
@@ -835,7 +850,7 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
 
   if (talk) {
     say("\nOutput milliseconds:  %.0f\n", seconds.write * 1000);
-    say("Total running milliseconds:  %.0f\n", seconds_since(start) * 1000);
+    say("Total running milliseconds:  %.0f\n", seconds_since(prepared.start) * 1000);
     print_statistics(input, mesh, options);
     if (options.verbose > 0) {
       if (!options.no_effect_switches.empty()) {
@@ -847,7 +862,7 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
             letters.c_str());
       }
       say("  Seconds:  read %.6f  device setup %.6f  compute %.6f  write %.6f\n", seconds.read,
-          lease.opened_seconds, seconds.compute, seconds.write);
+          opened_seconds, seconds.compute, seconds.write);
       say("%s", clmesh::format_statistics(mesh).c_str());
       say("%s", clmesh::format_quality(clmesh::quality_statistics(mesh)).c_str());
     }
@@ -868,6 +883,26 @@ int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devi
     say(constrained ? "  The mesh is consistent and constrained Delaunay.\n"
                     : "  The mesh is consistent and Delaunay.\n");
   return 0;
+}
+
+// Meshes a prepared input alone and writes its outputs; returns the exit
+// status (1: the -C check failed) or throws.
+int mesh_prepared(const CommandLine &command, const Job &job, Prepared &prepared,
+                  cli::DevicePool &devices) {
+  const cli::DevicePool::Lease lease =
+      devices.lease(clmesh::input_size(prepared.input, job.options));
+  say_meshing(job.options, lease.device);
+  const Clock::time_point phase = Clock::now();
+  const clmesh::Mesh mesh =
+      clmesh::triangulate_validated(lease.device, prepared.input, job.options); // validated
+  return finish_input(command, job, prepared, mesh, seconds_since(phase), lease.opened_seconds);
+}
+
+// Meshes one input and writes its outputs; returns the exit status (1: the
+// -C check failed) or throws.
+int mesh_input(const CommandLine &command, const Job &job, cli::DevicePool &devices) {
+  Prepared prepared = prepare_input(job);
+  return mesh_prepared(command, job, prepared, devices);
 }
 
 Job job_for(const CommandLine &command, const std::string &input) {

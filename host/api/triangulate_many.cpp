@@ -65,7 +65,7 @@ public:
     validate(input);
     if (!input_packs(input))
       return false;
-    if (points_ + input.points.size() > kMostPoints || inputs_.size() >= kMostInputs)
+    if (points_ + input.points.size() > kPackMostPoints || inputs_.size() >= kPackMostInputs)
       flush();
     points_ += input.points.size();
     indices_.push_back(i);
@@ -91,10 +91,6 @@ public:
   }
 
 private:
-  // A pack stops at this many points or inputs: its arrays stay small, the
-  // first results come soon.
-  static constexpr std::size_t kMostPoints = std::size_t{1} << 20, kMostInputs = 4096;
-
   bool packs_on(const Device &device) const {
     switch (options_.tuning.packing) {
     case Packing::always:

@@ -20,8 +20,11 @@ namespace clmesh {
 // validate(input): the caller has run both.
 Mesh triangulate_validated(Device &device, const Input &input, const Options &options);
 
-// Point sets of at most this many points pack (the options allowing).
+// Point sets of at most this many points pack (the options allowing); a
+// pack holds at most kPackMostPoints points and kPackMostInputs inputs, so
+// that its arrays stay small and its first results come soon.
 constexpr std::size_t kPackedLargest = 65536;
+constexpr std::size_t kPackMostPoints = std::size_t{1} << 20, kPackMostInputs = 4096;
 
 // Whether the options give a plain Delaunay triangulation, which packs:
 // no -p, -r, -q, -a, -D, size field or Voronoi image.

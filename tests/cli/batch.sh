@@ -140,6 +140,36 @@ run -zen spiral.node --batch list.txt A.poly --batch empty.txt
 rm list.txt empty.txt
 same_outputs "files and --batch" "$work/list.alone" "$work/list.mixed"
 
+# --pack: the small point sets go in packs (fewer kernel launches), each
+# input with the files and messages (but for the timings) of a run of it
+# alone; a PSLG, a collinear set and a bad input end a pack and are meshed
+# (or fail) alone.
+fresh pack.alone
+printf '4 2 0 0\n1 0 0\n2 1 1\n3 2 2\n4 3 3\n' > line.node
+printf '4 2 0 0\n1 0 0\n2 1 0\n3 oops 1\n4 1 1\n' > word.node
+packed=(spiral.node dots.node word.node ell.node diamond_02_00009.node line.node
+  spiral.node A.poly dots.node ell.node)
+for input in "${packed[@]}"; do
+  "$bin" -zenv -C "$input" >> out.txt 2>> err.txt || true
+done
+cp line.node word.node "$work/log/"
+fresh pack.together
+cp "$work/log/line.node" "$work/log/word.node" .
+status=0
+CLMESH_PROFILE=1 "$bin" -zenv -C --pack "${packed[@]}" > out.txt 2> err.txt || status=$?
+[[ "$status" -eq 1 ]] || fail "--pack: exit status $status, wanted 1 (word.node)"
+same_outputs "--pack" "$work/pack.alone" "$work/pack.together"
+without_times() { grep -v milliseconds "$1" || true; }
+[[ "$(without_times out.txt)" == "$(without_times "$work/pack.alone/out.txt")" ]] ||
+  fail "--pack: other messages: $(diff <(without_times out.txt) <(without_times "$work/pack.alone/out.txt") | head -5)"
+grep -q '^clmesh: word.node:4: .*oops' err.txt || fail "--pack: no word.node line: $(cat err.txt)"
+launches() { awk '/ launches / { n += $4 } END { print n + 0 }' err.txt; }
+packed_launches=$(launches)
+CLMESH_PROFILE=1 "$bin" -zenv -C --jobs 1 "${packed[@]}" > out.txt 2> err.txt || true
+[[ "$packed_launches" -gt 0 && "$packed_launches" -lt "$(launches)" ]] ||
+  fail "--pack: $packed_launches launches, $(launches) without packs"
+expect "--pack with --jobs 4" 2 "meshes in this process" -- -z --pack --jobs 4 spiral.node dots.node
+
 # --shard K/N takes positions K, K+N, ... of the list: the shards are
 # disjoint and together write exactly the unsharded outputs.
 all=(spiral.node A.poly dots.node face.poly diamond_02_00009.node box.poly ell.node)

@@ -15,7 +15,7 @@
 # GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
 # "diagnosis meshes profile batch tests". batch times 200 small coastlines
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
-# GPU) against --jobs 8, and the single-group kernels of small meshes at
+# GPU) against --jobs 8 (and --pack for the point sets), and the single-group kernels of small meshes at
 # work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
 # the native Triangle once per file when tools/build-triangle.sh's binary is
 # at BUILD_DIR/triangle-native.
@@ -149,7 +149,9 @@ if part batch; then
     [[ $kind == pslgs ]] && switches=-Qpq30
     (cd "$dir" && ls in* > list.txt && CLMESH_DEVICE="$gpu" "$clmesh" $switches in1.* > /dev/null
       line="batch of 200 $kind $switches on '$gpu':"
-      for jobs in "" "--jobs 8"; do
+      packs=""
+      [[ $kind == points ]] && packs="--pack"
+      for jobs in "" "--jobs 8" $packs; do
         # shellcheck disable=SC2086  # $jobs is one option and its value, or none
         line+=" ${jobs:-default workers} $(CLMESH_DEVICE="$gpu" seconds "$clmesh" $switches $jobs --batch list.txt) s;"
       done

@@ -16,6 +16,8 @@ Timed, as wall time from start to exit of everything the batch needs:
                    processes (--jobs, by default one a CPU, one on a GPU) each
                    setting the device, context and kernels up once
   --jobs 1         the same with one worker
+  --pack           the point sets in packs, in one process (clmesh --pack; meant
+                   for GPUs: a CPU meshes small sets faster one by one)
   Triangle x N     the native binary (build-triangle.sh), one process per
                    file, started one after the other
   Python loop      in one Python process: triangle.triangulate(dict, SWITCHES)
@@ -146,8 +148,8 @@ def main():
     clmesh = os.path.abspath(a.clmesh or os.path.join(a.build_dir, "clmesh"))
     triangle = os.path.abspath(a.triangle or os.path.join(a.build_dir, "triangle-native"))
     bench = os.path.join(a.build_dir, "bench")
-    columns = ["batch", "files", "switches", "clmesh --batch s", "--jobs 1 s", "Triangle x N s",
-               "ratio", "Python loop s", "ratio to loop"]
+    columns = ["batch", "files", "switches", "clmesh --batch s", "--jobs 1 s", "--pack s",
+               "Triangle x N s", "ratio", "Python loop s", "ratio to loop"]
     print("  ".join(f"{c:>16}" for c in columns))
     table = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     kinds = a.kinds.split(",")
@@ -174,6 +176,11 @@ def main():
         one_worker = wall([clmesh, "-Q" + switches, "--jobs", "1", "--batch", "list.txt"],
                           cwd=directory)
         clean(directory)
+        packed = None
+        if kind == "points":
+            packed = wall([clmesh, "-Q" + switches, "--pack", "--batch", "list.txt"],
+                          cwd=directory)
+            clean(directory)
         start = time.perf_counter()
         for p in paths:
             subprocess.run([triangle, "-Q" + switches, os.path.basename(p)], check=True,
@@ -182,7 +189,8 @@ def main():
         clean(directory)
         loop = python_loop(python, switches, paths)
         row = [kind, str(a.count), "-" + switches if switches else "(none)", f"{ours:.2f}",
-               f"{one_worker:.2f}", f"{theirs:.2f}", f"{ours / theirs:.2f}",
+               f"{one_worker:.2f}", f"{packed:.2f}" if packed else "-", f"{theirs:.2f}",
+               f"{ours / theirs:.2f}",
                f"{loop:.2f}" if loop else "n/a", f"{ours / loop:.2f}" if loop else ""]
         print("  ".join(f"{c:>16}" for c in row))
         table.append("| " + " | ".join(row) + " |")
@@ -216,7 +224,8 @@ def main():
                  "writing the files included, after one untimed run of clmesh and of "
                  "Triangle on the first input.  clmesh: one run of build/clmesh -Q SWITCHES "
                  "--batch LIST with its default workers (one process a CPU, one on a GPU), and "
-                 "with --jobs 1.  Triangle x N: the native binary (-O3 -march=native, "
+                 "with --jobs 1, and the point sets with --pack (packs of small meshes in "
+                 "one process, for GPUs).  Triangle x N: the native binary (-O3 -march=native, "
                  "build-triangle.sh) run once per file, one after the other.  Python loop: "
                  "triangle.triangulate (the PyPI wheel) on each file's arrays in one Python "
                  "process, reading included, no writing.  Ratios: clmesh --batch over the "

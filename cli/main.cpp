@@ -988,8 +988,9 @@ int mesh_one(const CommandLine &command, const std::string &input, cli::DevicePo
 
 // --pack: the inputs of a batch, meshed in this process in input order,
 // small point sets (plain Delaunay options) gathered into packs meshed by
-// one run of the kernels (clmesh::triangulate_packed); each input's messages
-// and files are those it gets alone. Returns how many failed.
+// one run of the kernels (clmesh::triangulate_packed) on the device each of
+// them would take; each input's messages and files are those it gets alone,
+// handed to `done` in input order.
 class PackedBatch {
 public:
   PackedBatch(const CommandLine &command, cli::DevicePool &devices,
@@ -1036,7 +1037,7 @@ public:
     std::vector<clmesh::Mesh> meshes;
     double compute_wall = 0, opened_seconds = 0;
     try {
-      const cli::DevicePool::Lease lease = devices_.lease(points_of(pack));
+      const cli::DevicePool::Lease lease = devices_.lease(largest(pack));
       opened_seconds = lease.opened_seconds;
       std::vector<const clmesh::Input *> inputs;
       for (Entry &entry : pack) {
@@ -1074,11 +1075,13 @@ private:
     cli::Messages messages;
   };
 
-  static std::size_t points_of(const std::vector<Entry> &pack) {
-    std::size_t points = 0;
+  // The size of the pack's largest input: the device for it is the one for
+  // every input of the pack (small sets all take the same).
+  std::size_t largest(const std::vector<Entry> &pack) const {
+    std::size_t size = 0;
     for (const Entry &entry : pack)
-      points += entry.prepared->input.points.size();
-    return points;
+      size = std::max(size, clmesh::input_size(entry.prepared->input, entry.job.options));
+    return size;
   }
 
   int alone(Entry &entry) {

@@ -1027,13 +1027,13 @@ public:
     std::vector<Entry> pack;
     pack.swap(pending_);
     points_ = 0;
+    if (pack.empty())
+      return;
     if (pack.size() == 1) {
       const int status = alone(pack[0]);
       done_(status, pack[0].messages);
       return;
     }
-    if (pack.empty())
-      return;
     std::vector<clmesh::Mesh> meshes;
     double compute_wall = 0, opened_seconds = 0;
     try {

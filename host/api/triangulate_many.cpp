@@ -19,19 +19,7 @@ namespace clmesh {
 
 namespace {
 
-// The mesh of the input `input_of()` gives, or the error that stopped it.
-template <class InputOf>
-BatchResult attempt(Device &device, const InputOf &input_of, const Options &options) {
-  BatchResult result;
-  try {
-    result.mesh = triangulate(device, input_of(), options);
-  } catch (const std::exception &error) {
-    result.error = std::current_exception();
-    result.message = error.what();
-  }
-  return result;
-}
-
+// The result of the error being handled (a std::exception).
 BatchResult failure() {
   BatchResult result;
   result.error = std::current_exception();
@@ -39,6 +27,18 @@ BatchResult failure() {
     throw;
   } catch (const std::exception &error) {
     result.message = error.what();
+  }
+  return result;
+}
+
+// The mesh of the input `input_of()` gives, or the error that stopped it.
+template <class InputOf>
+BatchResult attempt(Device &device, const InputOf &input_of, const Options &options) {
+  BatchResult result;
+  try {
+    result.mesh = triangulate(device, input_of(), options);
+  } catch (const std::exception &) {
+    result = failure();
   }
   return result;
 }
@@ -130,57 +130,63 @@ private:
   std::size_t points_ = 0;
 };
 
+// Inputs 0 .. count - 1 in order: input_of(i) gives input i (an Input or a
+// reference to one); those that pack go to `pack`, the others to
+// alone(input, held), which may hold its device in `held` until done()
+// returns; an error of input_of(i), of the validation or of alone()'s device
+// becomes the input's.
+template <class InputOf, class Alone>
+void mesh_in_order(std::size_t count, const InputOf &input_of, Pack &pack, const Done &done,
+                   const Alone &alone) {
+  for (std::size_t i = 0; i < count; ++i) {
+    BatchResult result;
+    std::unique_lock<std::mutex> held;
+    try {
+      decltype(auto) given = input_of(i);
+      if (pack.take(i, given))
+        continue;
+      pack.flush();
+      result = alone(given, held);
+    } catch (const std::exception &) {
+      result = failure(); // before the pack's own errors come and go
+      pack.flush();
+    }
+    done(i, std::move(result)); // the device still held
+  }
+  pack.flush();
+}
+
+// mesh_in_order() with every input on `device`.
+template <class InputOf>
+void mesh_on(Device &device, std::size_t count, const InputOf &input_of, const Options &options,
+             const Done &done) {
+  const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
+    work(device);
+  };
+  Pack pack(options, done, on_device);
+  mesh_in_order(count, input_of, pack, done,
+                [&](const Input &given, std::unique_lock<std::mutex> &) {
+                  return attempt(
+                      device, [&]() -> const Input & { return given; }, options);
+                });
+}
+
 } // namespace
 
 void triangulate_many(Device &device, std::size_t count,
                       const std::function<Input(std::size_t)> &input, const Options &options,
                       const Done &done) {
   validate(options); // the same for every input: an error here is the batch's
-  const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
-    work(device);
-  };
-  Pack pack(options, done, on_device);
-  for (std::size_t i = 0; i < count; ++i) {
-    BatchResult result;
-    try {
-      const Input given = input(i);
-      if (pack.take(i, given))
-        continue;
-      pack.flush();
-      result = attempt(
-          device, [&]() -> const Input & { return given; }, options);
-    } catch (const std::exception &) { // from input(i) or the validation
-      result = failure();              // before the pack's own errors come and go
-      pack.flush();
-    }
-    done(i, std::move(result));
-  }
-  pack.flush();
+  mesh_on(device, count, input, options, done);
 }
 
 std::vector<BatchResult> triangulate_many(Device &device, const std::vector<Input> &inputs,
                                           const Options &options) {
   validate(options);
   std::vector<BatchResult> results(inputs.size());
-  const Done done = [&](std::size_t i, BatchResult &&result) { results[i] = std::move(result); };
-  const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
-    work(device);
-  };
-  Pack pack(options, done, on_device);
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    try {
-      if (pack.take(i, inputs[i]))
-        continue;
-    } catch (const std::exception &) { // the validation's
-      results[i] = failure();
-      pack.flush();
-      continue;
-    }
-    pack.flush();
-    results[i] = attempt(
-        device, [&]() -> const Input & { return inputs[i]; }, options);
-  }
-  pack.flush();
+  mesh_on(
+      device, inputs.size(), [&](std::size_t i) -> const Input & { return inputs[i]; }, options,
+      [&](std::size_t i, BatchResult &&result) { results[i] = std::move(result); });
   return results;
 }
 
@@ -202,25 +208,14 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
     work(*shared->device);
   };
   Pack pack(options, done, on_device);
-  for (std::size_t i = 0; i < count; ++i) {
-    BatchResult result;
-    std::unique_lock<std::mutex> held; // input i's device (the process keeps it)
-    try {
-      const Input given = input(i);
-      if (pack.take(i, given))
-        continue;
-      pack.flush();
-      const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
-      held = std::unique_lock<std::mutex>(shared->busy);
-      result = attempt(
-          *shared->device, [&]() -> const Input & { return given; }, options);
-    } catch (const std::exception &) { // from input(i), its validation or the device's opening
-      result = failure();              // before the pack's own errors come and go
-      pack.flush();
-    }
-    done(i, std::move(result)); // the device still held
-  }
-  pack.flush();
+  // Input i's device is held until done() returns (the process keeps it).
+  mesh_in_order(count, input, pack, done,
+                [&](const Input &given, std::unique_lock<std::mutex> &held) {
+                  const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
+                  held = std::unique_lock<std::mutex>(shared->busy);
+                  return attempt(
+                      *shared->device, [&]() -> const Input & { return given; }, options);
+                });
 }
 
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs,

@@ -481,10 +481,7 @@ bool DelaunayScheduler::triangulate() {
     mesh.triangle_count = fans.vertices.size() / 3;
     mesh.clear_triangle_slots();
     mesh.fill_triangle_slots(device, mesh.triangle_count);
-    if (packed())
-      mesh.location.upload(device, start_triangle);
-    else
-      mesh.location.fill(device, 0, mesh.point_count);
+    mesh.location.upload(device, start_triangle);
     std::vector<cl_int> missing;
     for (std::size_t i = 0; i < n; ++i)
       if (!in_mesh[i])

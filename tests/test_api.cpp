@@ -476,13 +476,27 @@ TEST_CASE("api: triangulate a PSLG whose segments cross") {
     CHECK(clmesh::triangulate(device(), marked, "p").point_markers ==
           std::vector<int>{5, 3, 3, 3, 0});
   }
-  SUBCASE("point attributes are carried, the crossing gets zeros") {
+  SUBCASE("point attributes are carried, the crossing's interpolated along the first diagonal") {
     clmesh::Input input = square_with_diagonals();
     input.attribute_count = 2;
     input.point_attributes = {1, 10, 2, 20, 3, 30, 4, 40};
     const clmesh::Mesh mesh = clmesh::triangulate(device(), input, "p");
     CHECK(mesh.attribute_count == 2);
-    CHECK(mesh.point_attributes == std::vector<double>{1, 10, 2, 20, 3, 30, 4, 40, 0, 0});
+    // Half way from point 0 to point 2 (segment 4, listed before 1-3, which would give 3, 30).
+    CHECK(mesh.point_attributes == std::vector<double>{1, 10, 2, 20, 3, 30, 4, 40, 2, 20});
+  }
+  SUBCASE("a repeated segment gives its non-zero marker to the one it repeats") {
+    clmesh::Input input = square_with_diagonals();
+    input.segments.push_back({2, 0, 6}); // the first diagonal again, reversed, marker 6
+    input.segments.push_back({0, 2, 9}); // and once more: the first non-zero marker counts
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), input, "pe");
+    CHECK(mesh.statistics.constraints.dropped_segments == 2);
+    CHECK(mesh.point_markers == std::vector<int>{6, 1, 6, 1, 6});
+    for (const Segment &s : mesh.segments) {
+      const bool first_diagonal = (s.a == 4 || s.b == 4) && (s.a % 2 == 0 || s.b % 2 == 0) &&
+                                  s.a != 1 && s.b != 1 && s.a != 3 && s.b != 3;
+      CHECK(s.marker == (first_diagonal ? 6 : 0));
+    }
   }
   SUBCASE("-A: each triangle gets its region's attribute") {
     clmesh::Input input = square_with_diagonals();
@@ -503,10 +517,58 @@ TEST_CASE("api: triangulate a PSLG whose segments cross") {
       seen.insert(mesh.triangle_attributes[t]);
     }
     CHECK(seen.size() == 4);
-    // Without -A, none.
+    // Without -A, none; nor with -A and no regions (as in Triangle).
     const clmesh::Mesh plain = clmesh::triangulate(device(), input, "p");
     CHECK(plain.triangle_attribute_count == 0);
     CHECK(plain.triangle_attributes.empty());
+    const clmesh::Mesh no_regions = clmesh::triangulate(device(), square_with_diagonals(), "pA");
+    CHECK(no_regions.triangle_attribute_count == 0);
+    CHECK(no_regions.triangle_attributes.empty());
+  }
+}
+
+TEST_CASE("api: the points a refinement adds get the attributes interpolated from the input's") {
+  // Attributes linear in x and y come out exact (to rounding) at every added
+  // point: crossings, Steiner points inside and on segments, of every kind of
+  // refinement; the input's points keep theirs.
+  const auto linear = [](const Point &p) {
+    return std::array<double, 2>{2 * p.x - 3 * p.y + 1, 0.25 * p.x + 7};
+  };
+  clmesh::Input input;
+  input.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {2, 2},   {8, 8}, {2, 8},
+                  {8, 2}, {5, 1},  {1, 5},   {3, 6},  {7, 4.5}, {6, 9}};
+  input.segments = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}, {4, 5, 0}, {6, 7, 0}, {8, 9, 0}};
+  input.attribute_count = 2;
+  for (const Point &p : input.points)
+    for (const double value : linear(p))
+      input.point_attributes.push_back(value);
+  auto check_linear = [&](const clmesh::Mesh &mesh) {
+    REQUIRE(mesh.point_attributes.size() == 2 * mesh.points.size());
+    CHECK(std::equal(input.point_attributes.begin(), input.point_attributes.end(),
+                     mesh.point_attributes.begin()));
+    double worst = 0;
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      for (std::size_t k = 0; k < 2; ++k)
+        worst =
+            std::max(worst, std::abs(mesh.point_attributes[2 * i + k] - linear(mesh.points[i])[k]));
+    CHECK(worst < 1e-12);
+  };
+  for (const char *switches : {"p", "pq30", "pq30a0.5", "pcq25", "pDq", "pYq30", "q30a0.3"}) {
+    INFO("switches " << switches);
+    const clmesh::Mesh mesh = clmesh::triangulate(device(), input, switches);
+    CHECK(mesh.points.size() > input.points.size()); // two crossings at least
+    check_linear(mesh);
+  }
+  SUBCASE("-r: from the mesh refined") {
+    clmesh::Input coarse = input;
+    const clmesh::Mesh first = clmesh::triangulate(device(), input, "p");
+    coarse.points = first.points;
+    coarse.point_attributes = first.point_attributes;
+    coarse.triangles = first.triangles;
+    coarse.segments.clear();
+    const clmesh::Mesh refined = clmesh::triangulate(device(), coarse, "rq30a0.2");
+    CHECK(refined.points.size() > 2 * coarse.points.size());
+    check_linear(refined);
   }
 }
 

@@ -10,6 +10,7 @@
 #include "clmesh/errors.hpp"
 #include "clmesh/io.hpp"
 #include "dt/delaunay.hpp"
+#include "output/added_attributes.hpp"
 #include "output/second_order.hpp"
 #include "output/voronoi_diagram.hpp"
 #include "refine/refine.hpp"
@@ -24,7 +25,8 @@ namespace clmesh {
 namespace {
 
 // The points the run added (crossings, Steiner points) follow the input's,
-// with zero attributes and markers, as in Triangle.
+// with markers 0 (as in Triangle) and attributes 0 until
+// interpolate_added_attributes sets them.
 void take_points(Mesh &mesh, const Input &input, const std::vector<Point> &added) {
   mesh.points.reserve(input.points.size() + added.size());
   mesh.points = input.points;
@@ -50,10 +52,12 @@ void take_triangulation(Mesh &mesh, DelaunayResult &&result) {
   mesh.duplicate_of.resize(mesh.points.size(), -1);
 }
 
-// -A: each triangle's regional attribute, one column (not with -r, as in
-// Triangle: the given triangles' attributes are inherited instead).
-void take_attributes(Mesh &mesh, const Options &options, std::vector<double> attributes) {
-  if (!options.regional_attributes || options.refine)
+// -A: each triangle's regional attribute, one column, when the input lists
+// regions (not with -r, as in Triangle: the given triangles' attributes are
+// inherited instead).
+void take_attributes(Mesh &mesh, const Input &input, const Options &options,
+                     std::vector<double> attributes) {
+  if (!options.regional_attributes || options.refine || input.regions.empty())
     return;
   if (attributes.size() != mesh.triangles.size())
     throw InternalError("-A: " + std::to_string(attributes.size()) + " regional attributes for " +
@@ -93,6 +97,58 @@ DelaunayOptions delaunay_options_of(const Options &options) {
   delaunay_options.tuning = options.tuning;
   delaunay_options.want_voronoi_image = options.voronoi_image;
   return delaunay_options;
+}
+
+// The attributes of the added points that lie where segments cross
+// (crossed[i]: the input segment added point i was made on), along it; the
+// others' stay as they are.
+void interpolate_crossings(Mesh &mesh, const Input &input, const std::vector<Segment> &crossed) {
+  const std::size_t n = input.points.size();
+  std::vector<double> along;
+  for (std::size_t i = 0; i < crossed.size(); ++i) {
+    const Segment &s = crossed[i];
+    along.clear();
+    append_along(input.point_attributes, input.attribute_count, s,
+                 parameter_along(input.points[s.a], input.points[s.b], mesh.points[n + i]), along);
+    std::copy(along.begin(), along.end(),
+              mesh.point_attributes.begin() + static_cast<std::ptrdiff_t>((n + i) * along.size()));
+  }
+}
+
+// The attributes of the Steiner points of a refinement (and of its segment
+// crossings), from the triangulation it started from: output/added_attributes.hpp.
+void interpolate_added_attributes(Device &device, Mesh &mesh, const Input &input,
+                                  const Options &options) {
+  const std::size_t n = input.points.size(), k = static_cast<std::size_t>(input.attribute_count);
+  AttributeField field;
+  field.points = input.points;
+  field.attributes = input.point_attributes;
+  if (options.refine) {
+    field.triangles = input.triangles;
+  } else if (options.pslg) {
+    // The constrained Delaunay triangulation of the whole hull, its crossings
+    // with their attributes along their segments.
+    ConstrainedOptions hull;
+    hull.delaunay = delaunay_options_of(options);
+    hull.keep_convex_hull = true;
+    hull.ignore_holes = true;
+    ConstrainedResult cdt =
+        constrained_delaunay(device, Pslg{input.points, input.segments, {}, {}}, hull);
+    for (std::size_t i = 0; i < cdt.added_points.size(); ++i)
+      append_along(input.point_attributes, input.attribute_count, cdt.crossed_segments[i],
+                   parameter_along(input.points[cdt.crossed_segments[i].a],
+                                   input.points[cdt.crossed_segments[i].b], cdt.added_points[i]),
+                   field.attributes);
+    field.points.insert(field.points.end(), cdt.added_points.begin(), cdt.added_points.end());
+    field.triangles = std::move(cdt.mesh.triangles);
+  } else {
+    field.triangles = delaunay(device, input.points, delaunay_options_of(options)).triangles;
+  }
+  const std::vector<Point> added(mesh.points.begin() + static_cast<std::ptrdiff_t>(n),
+                                 mesh.points.end());
+  const std::vector<double> values = interpolate_attributes(field, input.attribute_count, added);
+  std::copy(values.begin(), values.end(),
+            mesh.point_attributes.begin() + static_cast<std::ptrdiff_t>(n * k));
 }
 
 // What the options add to a mesh: output markers, edges, the Voronoi
@@ -186,7 +242,7 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     take_points(mesh, input, added);
     take_triangulation(mesh, std::move(triangulation));
     mesh.segments = std::move(segments);
-    take_attributes(mesh, options, std::move(attributes));
+    take_attributes(mesh, input, options, std::move(attributes));
     mesh.statistics.constrained = true;
     mesh.statistics.constraints = stats;
   };
@@ -229,6 +285,8 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     ConstrainedResult result = constrained_delaunay(device, pslg(), constrained);
     take_pslg(result.added_points, std::move(result.mesh), std::move(result.segments),
               std::move(result.triangle_attributes), result.stats);
+    if (input.attribute_count > 0)
+      interpolate_crossings(mesh, input, result.crossed_segments);
   } else if (refined) {
     RefineResult result = refine_delaunay(device, input.points, refine);
     take_points(mesh, input, result.added_points);
@@ -241,6 +299,8 @@ Mesh mesh_of(Device &device, const Input &input, const Options &options) {
     take_points(mesh, input, {});
     take_triangulation(mesh, std::move(triangulation));
   }
+  if (refined && input.attribute_count > 0 && mesh.points.size() > input.points.size())
+    interpolate_added_attributes(device, mesh, input, options);
   complete(device, mesh, options);
   return mesh;
 }

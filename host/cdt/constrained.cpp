@@ -11,9 +11,9 @@
 
 namespace clmesh {
 
-// Drops zero-length and repeated segments (first occurrence kept, its marker too).
-std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
-                                       ConstrainedStats &stats) {
+// Drops zero-length and repeated segments (first occurrence kept, with the
+// first non-zero marker of its repeats).
+std::vector<Segment> distinct_segments(std::vector<Segment> segments, ConstrainedStats &stats) {
   const std::vector<char> first = first_occurrences(segments);
   std::vector<Segment> kept;
   for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -30,7 +30,8 @@ std::size_t crossing_room(const Pslg &pslg) { return 1024 + pslg.segments.size()
 
 std::vector<Segment> insert_constraints(Device &device, DelaunayScheduler &scheduler,
                                         const Pslg &pslg, ConstrainedStats &stats,
-                                        std::vector<Point> &added_points) {
+                                        std::vector<Point> &added_points,
+                                        std::vector<Segment> *crossed) {
   // Constraints in device numbering, duplicate endpoints resolved.
   std::vector<Segment> segments = pslg.segments;
   for (Segment &s : segments) {
@@ -48,6 +49,11 @@ std::vector<Segment> insert_constraints(Device &device, DelaunayScheduler &sched
       return scheduler.insert_points(added, near);
     });
     added_points = insertion.added_points();
+    if (crossed) {
+      crossed->clear();
+      for (const int32_t origin : insertion.added_origins())
+        crossed->push_back(segments[static_cast<std::size_t>(origin)]);
+    }
     constraints = insertion.segments();
     touched = insertion.take_touched();
     scheduler.timer().charge(ConstraintInsertion::kPhase);
@@ -100,8 +106,9 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
     result.segments = distinct_segments(pslg.segments, stats);
     return result;
   }
+  std::vector<Segment> crossed;
   const std::vector<Segment> constraints =
-      insert_constraints(device, scheduler, pslg, stats, result.added_points);
+      insert_constraints(device, scheduler, pslg, stats, result.added_points, &crossed);
 
   ExteriorRemoval removal(device, scheduler.mesh());
   const bool eat = remove_exterior(scheduler, removal, pslg, options, stats);
@@ -124,6 +131,7 @@ ConstrainedResult constrained_delaunay(Device &device, const Pslg &pslg,
 
   // The segments as they stand, in input numbering; with -c the hull too.
   result.segments = input_numbering(constraints, scheduler, result.mesh.duplicate_of);
+  result.crossed_segments = input_numbering(crossed, scheduler, result.mesh.duplicate_of);
   if (options.keep_convex_hull)
     add_hull_edges(result.mesh, result.segments);
   return result;

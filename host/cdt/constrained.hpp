@@ -36,8 +36,11 @@ struct ConstrainedResult {
   // edges that are not segments (marker 1).
   std::vector<Segment> segments;
   // Vertices added where segments cross, numbered after the input points
-  // (the mesh's point n + i is added_points[i]).
+  // (the mesh's point n + i is added_points[i]), and for each the input
+  // segment it lies on (input numbering; the first listed of those crossing
+  // there, as Triangle interpolates the point's attributes along it).
   std::vector<Point> added_points;
+  std::vector<Segment> crossed_segments;
   // Regional attribute of each triangle (empty unless regional_attributes).
   std::vector<double> triangle_attributes;
   ConstrainedStats stats;
@@ -57,17 +60,19 @@ class ExteriorRemoval;
 // First room for the vertices added where segments cross (more is made as needed).
 std::size_t crossing_room(const Pslg &pslg);
 
-// Drops zero-length and repeated segments (first occurrence kept, its marker too).
-std::vector<Segment> distinct_segments(const std::vector<Segment> &segments,
-                                       ConstrainedStats &stats);
+// Drops zero-length and repeated segments (first occurrence kept, with the
+// first non-zero marker of its repeats).
+std::vector<Segment> distinct_segments(std::vector<Segment> segments, ConstrainedStats &stats);
 
 // GPU-CDT steps 2 and 3 on the scheduler's Delaunay triangulation: the
 // constraints inserted, then flipped to constrained Delaunay. Returns them as
 // they stand in the mesh (device numbering); added_points: the vertices added
-// where segments cross.
+// where segments cross; crossed (when given): per added point, a segment
+// through it (device numbering), the first listed of those crossing there.
 std::vector<Segment> insert_constraints(Device &device, DelaunayScheduler &scheduler,
                                         const Pslg &pslg, ConstrainedStats &stats,
-                                        std::vector<Point> &added_points);
+                                        std::vector<Point> &added_points,
+                                        std::vector<Segment> *crossed = nullptr);
 
 // GPU-CDT step 4: the exterior (unless -c) and the holes (unless -O) flagged
 // in removal.removed(). Returns whether anything was looked for.

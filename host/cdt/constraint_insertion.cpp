@@ -95,15 +95,23 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
       boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity),
       touched_(device, mesh.triangle_capacity), run_counters_(device, kRunCounters) {}
 
-std::vector<char> first_occurrences(const std::vector<Segment> &segments) {
+std::vector<char> first_occurrences(std::vector<Segment> &segments) {
   // Sorting (edge, position) pairs: one flat array, far cheaper than a std::set of edges.
+  // Each edge's repeats then follow its first occurrence in input order.
   std::vector<std::pair<std::pair<int32_t, int32_t>, std::size_t>> keyed(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i)
     keyed[i] = {std::minmax(segments[i].a, segments[i].b), i};
   std::sort(keyed.begin(), keyed.end());
   std::vector<char> first(segments.size(), 0);
-  for (std::size_t k = 0; k < keyed.size(); ++k)
-    first[keyed[k].second] = k == 0 || keyed[k].first != keyed[k - 1].first;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < keyed.size(); ++k) {
+    const std::size_t i = keyed[k].second;
+    first[i] = k == 0 || keyed[k].first != keyed[k - 1].first;
+    if (first[i])
+      kept = i;
+    else if (segments[kept].marker == 0)
+      segments[kept].marker = segments[i].marker;
+  }
   return first;
 }
 
@@ -141,7 +149,7 @@ std::vector<Segment> ConstraintInsertion::resolve_duplicates(const std::vector<S
   return resolved;
 }
 
-void ConstraintInsertion::set_constraints(const std::vector<Segment> &pieces) {
+void ConstraintInsertion::set_constraints(std::vector<Segment> pieces) {
   // Overlapping collinear segments split at each other's vertices repeat pieces.
   const std::vector<char> distinct = first_occurrences(pieces);
   std::vector<Segment> segments;
@@ -280,6 +288,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   std::vector<std::pair<std::size_t, std::size_t>> crossings; // (s, piece)
   std::vector<Point> where;
   std::vector<int32_t> near, at_vertex; // at_vertex: see `at` below
+  std::vector<int32_t> where_origin;    // added_origins() of the new points
   std::multimap<double, std::pair<Point, int32_t>>
       new_vertices; // this round's, as crossing_vertices_
   for (std::size_t s = 0; s < m; ++s) {
@@ -330,11 +339,15 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
       for (auto it = index->lower_bound(point.x - crossing.noise);
            it != index->end() && it->first <= point.x + crossing.noise; ++it)
         consider(it->second.first, it->second.second, crossing.noise);
+    const int32_t origin = std::min(origin_[s], origin_[piece]);
     if (at == -1) {
       at = -2 - static_cast<int32_t>(where.size());
       new_vertices.emplace(point.x, std::make_pair(point, at));
       where.push_back(point);
       near.push_back(triangle[s]);
+      where_origin.push_back(origin);
+    } else if (at < -1) {
+      where_origin[-2 - at] = std::min(where_origin[-2 - at], origin);
     }
     crossings.emplace_back(s, piece);
     at_vertex.push_back(at);
@@ -343,6 +356,7 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
   vertex_triangles_recorded_ = false;
   fit_to_mesh();
   added_points_.insert(added_points_.end(), where.begin(), where.end());
+  added_origins_.insert(added_origins_.end(), where_origin.begin(), where_origin.end());
   for (std::size_t k = 0; k < where.size(); ++k)
     crossing_vertices_.emplace(where[k].x, std::make_pair(where[k], added[k]));
   stats.crossings += static_cast<long>(where.size());

@@ -14,7 +14,9 @@
 namespace clmesh {
 
 // first[i] = 1 unless segments[i] repeats an earlier segment (either direction).
-std::vector<char> first_occurrences(const std::vector<Segment> &segments);
+// A first occurrence whose marker is 0 takes the first non-zero marker of its
+// repeats, as in Triangle, where a repeated segment marks one without a marker.
+std::vector<char> first_occurrences(std::vector<Segment> &segments);
 
 class ConstraintInsertion {
 public:
@@ -29,9 +31,10 @@ public:
   // Maps segment endpoints that are duplicate points to the kept point.
   std::vector<Segment> resolve_duplicates(const std::vector<Segment> &segments);
 
-  // Uploads the constraints (device point numbers, no duplicates, no
-  // zero-length ones) as compressed rows per vertex, for every later phase.
-  void set_constraints(const std::vector<Segment> &segments);
+  // Uploads the constraints (device point numbers, no zero-length ones) as
+  // compressed rows per vertex, for every later phase. Repeats (the pieces
+  // of overlapping collinear segments) are dropped (first_occurrences).
+  void set_constraints(std::vector<Segment> segments);
 
   // Adds points (where segments cross) to the mesh, each walking from a
   // triangle; returns their device numbers.
@@ -45,6 +48,9 @@ public:
   void run(ConstrainedStats &stats, const PointInserter &insert_points);
 
   const std::vector<Point> &added_points() const { return added_points_; }
+  // Per added point, the first constraint given to set_constraints that
+  // crosses there (its index in that list).
+  const std::vector<int32_t> &added_origins() const { return added_origins_; }
 
   const std::vector<Segment> &segments() const { return segments_; }
 
@@ -79,6 +85,7 @@ private:
   std::vector<int32_t> priority_order_; // device constraint d is segments_[priority_order_[d]]
   std::vector<char> split_origin_;      // input segments already counted as split
   std::vector<Point> added_points_;     // vertices added where segments cross
+  std::vector<int32_t> added_origins_;  // added_origins()
   // Their vertices by x, for crossings that fall within rounding of one.
   std::multimap<double, std::pair<Point, int32_t>> crossing_vertices_;
   bool vertex_triangles_recorded_ = false; // mesh_.vertex_triangle is up to date

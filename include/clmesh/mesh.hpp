@@ -34,7 +34,8 @@ struct Mesh {
   // Steiner points), numbered on from the input's.
   std::vector<Point> points;
   long input_points = 0; // how many of `points` came from the input
-  // attribute_count values per point (added points get zeros).
+  // attribute_count values per point (added points get them interpolated
+  // from the input's: docs/reference.md, "Files read and written").
   int attribute_count = 0;
   std::vector<double> point_attributes;
   // Boundary marker of every point as Triangle reports it: its input marker

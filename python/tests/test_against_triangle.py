@@ -96,6 +96,24 @@ def test_markers_segments_and_attributes_match(name, switches):
             ours["triangle_attributes"].ravel().tolist()
 
 
+def test_crossings_repeated_segments_and_region_free_A_match():
+    """Where two segments cross, the new vertex's attributes are interpolated
+    along the first of them; a repeated segment's non-zero marker marks the
+    segment; -A without regions adds no triangle attribute: all as Triangle."""
+    data = {"vertices": np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float),
+            "vertex_attributes": np.array([[1, 10], [2, 20], [3, 30], [4, 40]], dtype=float),
+            "segments": np.array([[0, 2], [1, 3], [2, 0]]),
+            "segment_markers": np.array([[0], [0], [5]])}
+    for switches in ["pc", "pcA", "pce"]:
+        ours, theirs = clmesh.triangulate(data, switches), triangle.triangulate(data, switches)
+        assert _describe(ours) == _describe(theirs)
+        assert np.array_equal(ours["vertices"], theirs["vertices"])
+        assert np.array_equal(ours["vertex_attributes"], theirs["vertex_attributes"])
+        assert np.array_equal(ours["vertex_markers"], theirs["vertex_markers"])
+        assert _marked(ours["segments"], ours["segment_markers"]) == _marked(
+            theirs["segments"], theirs["segment_markers"])
+
+
 @pytest.mark.parametrize("switches, area", [
     ("q", None), ("q30", None), ("a0.0002", 0.0002), ("q25a0.0005", 0.0005)])
 def test_quality_mesh_of_points(switches, area):

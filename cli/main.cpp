@@ -683,8 +683,9 @@ void print_statistics(const clmesh::Input &input, const clmesh::Mesh &mesh,
   say("  Mesh triangles: %zu\n", triangles);
   say("  Mesh edges: %zu\n", (3 * triangles + hull) / 2);
   say("  Mesh exterior boundary edges: %zu\n", hull);
-  if (constrained)
-    say("  Mesh subsegments (constrained edges): %zu\n", mesh.segments.size());
+  if (constrained) // those in the mesh, as the .poly file lists them
+    say("  Mesh subsegments (constrained edges): %zu\n",
+        clmesh::output_segments(clmesh::view_of(mesh)).size());
   say("\n");
 }
 

@@ -123,6 +123,18 @@ sys.exit(abs(given - split) > 1e-9 * given)
 PY
 [[ "$(holes A.1.poly)" == "$(holes "$references/A.1.poly")" ]] || fail "-pq30a0.5 A.poly: holes"
 
+# -V counts the subsegments the mesh keeps, as the .1.poly lists them: not a
+# segment eaten with a hole (Triangle's statistics line).
+fresh eaten_segment
+printf '%s\n' '10 2 0 0' '1 0 0' '2 4 0' '3 4 4' '4 0 4' '5 1 1' '6 3 1' '7 3 3' '8 1 3' \
+  '9 1.5 2' '10 2.5 2' '9 0' '1 1 2' '2 2 3' '3 3 4' '4 4 1' '5 5 6' '6 6 7' '7 7 8' '8 8 5' \
+  '9 9 10' '1' '1 2 1.5' > eaten.poly
+run -pV eaten.poly
+[[ "$(body eaten.1.poly | awk 'NR == 2 { print $1 }')" == 8 ]] ||
+  fail "eaten.poly: $(body eaten.1.poly | awk 'NR == 2 { print $1 }') segments written, not 8"
+grep -q "Mesh subsegments (constrained edges): 8$" stdout.txt ||
+  fail "eaten.poly: -V: $(grep 'Mesh subsegments' stdout.txt)"
+
 # Many crossings among random segments: walks in the constrained mesh must end
 # (they once cycled), for GPU-CDT and for its refinement.
 fresh walks

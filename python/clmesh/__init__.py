@@ -18,6 +18,7 @@ import json
 from . import _clmesh
 from ._errors import (CheckError, DeviceError, Error, InputError, InternalError, OpenCLError,
                       OptionError)
+from ._files import load, loads
 from ._input import arrays as _arrays
 from ._output import mesh_dict as _mesh_dict
 from ._size_field import size_field as _size_field
@@ -27,7 +28,7 @@ __version__ = _clmesh.version
 __all__ = [
     "triangulate", "triangulate_many", "delaunay", "convex_hull", "voronoi", "run", "Result", "devices",
     "statistics", "quality_statistics", "check_mesh", "Error", "InputError", "OptionError",
-    "DeviceError", "OpenCLError", "InternalError", "CheckError",
+    "DeviceError", "OpenCLError", "InternalError", "CheckError", "load", "loads",
 ]
 
 

@@ -358,6 +358,66 @@ nb::list triangulate_many(const std::vector<std::shared_ptr<clmesh::Input>> &inp
   return outcomes;
 }
 
+// Triangle files as the triangle package's load() gives them: the vertices
+// of `poly` (or, when it lists none, of the .node beside it) or else of
+// `node`, the segments, holes and regions of `poly`, the triangles of `ele`,
+// the maximum areas of `area` (empty paths: no such file). Indices
+// zero-based; the readers' InputError names the file and line at fault.
+nb::dict read_files(const std::string &node, const std::string &poly, const std::string &ele,
+                    const std::string &area) {
+  nb::dict d;
+  clmesh::PointSet points;
+  clmesh::PolyFile pslg;
+  if (!poly.empty()) {
+    pslg = clmesh::read_poly(poly);
+    points = pslg.points;
+  } else if (!node.empty()) {
+    points = clmesh::read_node(node);
+  }
+  if (!poly.empty() || !node.empty()) {
+    d["vertices"] = xy_rows(points.points);
+    const auto count = static_cast<std::size_t>(points.attribute_count);
+    if (count > 0)
+      d["vertex_attributes"] =
+          array(std::vector<double>(points.attributes), points.points.size(), count);
+    if (points.has_markers)
+      d["vertex_markers"] =
+          array(std::vector<int32_t>(points.markers.begin(), points.markers.end()),
+                points.markers.size(), 1);
+  }
+  if (!poly.empty()) {
+    if (!pslg.segments.empty()) {
+      const nb::tuple ends = ends_and_markers(pslg.segments);
+      d["segments"] = ends[0];
+      if (pslg.segment_markers)
+        d["segment_markers"] = ends[1];
+    }
+    if (!pslg.holes.empty())
+      d["holes"] = xy_rows(pslg.holes);
+    if (!pslg.regions.empty()) {
+      std::vector<double> rows;
+      for (const clmesh::Region &r : pslg.regions)
+        rows.insert(rows.end(), {r.seed.x, r.seed.y, r.attribute, r.max_area});
+      d["regions"] = array(std::move(rows), pslg.regions.size(), 4);
+    }
+  }
+  if (!ele.empty()) {
+    const clmesh::EleFile mesh =
+        clmesh::read_ele(ele, static_cast<long>(points.points.size()), points.first_index);
+    d["triangles"] = index_rows(mesh.triangles);
+    const auto count = static_cast<std::size_t>(mesh.attribute_count);
+    if (count > 0)
+      d["triangle_attributes"] =
+          array(std::vector<double>(mesh.attributes), mesh.triangles.size(), count);
+    if (!area.empty()) {
+      std::vector<double> bounds = clmesh::read_area(area, mesh.triangles.size());
+      const std::size_t rows = bounds.size();
+      d["triangle_max_area"] = array(std::move(bounds), rows, 1);
+    }
+  }
+  return d;
+}
+
 nb::dict quality_dict(const clmesh::QualityStatistics &q) {
   nb::dict d;
   d["triangles"] = q.triangles;
@@ -543,6 +603,8 @@ NB_MODULE(_clmesh, m) {
         nb::arg("device"), nb::arg("size_field").none(), nb::arg("unsuitable").none(),
         nb::arg("stop_at_error"));
   m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
+  m.def("read_files", &read_files, nb::arg("node"), nb::arg("poly"), nb::arg("ele"),
+        nb::arg("area"));
   m.def("devices", &devices);
   m.def(
       "parse_switches",

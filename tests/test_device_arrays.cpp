@@ -232,6 +232,27 @@ TEST_CASE("device arrays: fills set exactly their range, for 4-, 8- and 16-byte 
   }
 }
 
+TEST_CASE("device arrays: a covered array sets its value as far as it is used, and keeps it") {
+  // CoveredArray: cover(n) sets the entries below n (and kFillAhead beyond)
+  // that were not set, never those set before (written by kernels since);
+  // grow() keeps them.
+  Device &dev = device();
+  const std::size_t size = 4 * kFillAhead, first = 1000, second = kFillAhead + 5000;
+  CoveredArray<cl_int> array(dev, size, -7);
+  array.cover(dev, first, "test");
+  CHECK(array.covered == first + kFillAhead);
+  array.array.fill_range(dev, 3, 0, 10, "test"); // a kernel's writes
+  array.cover(dev, second, "test");
+  CHECK(array.covered == second + kFillAhead);
+  array.grow(dev, 2 * size);
+  CHECK(array.array.size() == 2 * size);
+  array.cover(dev, 2 * size - 1, "test"); // up to the end at most
+  CHECK(array.covered == 2 * size);
+  const std::vector<cl_int> got = array.array.download(dev, 2 * size);
+  CHECK(std::all_of(got.begin(), got.begin() + 10, [](cl_int v) { return v == 3; }));
+  CHECK(std::all_of(got.begin() + 10, got.end(), [](cl_int v) { return v == -7; }));
+}
+
 TEST_CASE("device memory: a CPU device counts no more than this process could hold") {
   Device &dev = device();
   const auto reported =

@@ -93,7 +93,7 @@ ConstraintInsertion::ConstraintInsertion(Device &device, DeviceMesh &mesh)
       counters_(device, kCounters), constraint_mark_(device, mesh.triangle_capacity),
       run_start_(device, mesh.triangle_capacity), run_of_(device, mesh.triangle_capacity),
       boundary_log_(device, kLogPerTriangle * mesh.triangle_capacity),
-      touched_(device, mesh.triangle_capacity), run_counters_(device, kRunCounters) {}
+      run_counters_(device, kRunCounters), touched_(device, mesh.triangle_capacity) {}
 
 std::vector<char> first_occurrences(std::vector<Segment> &segments) {
   // Sorting (edge, position) pairs: one flat array, far cheaper than a std::set of edges.
@@ -391,9 +391,10 @@ void ConstraintInsertion::split_crossings(const std::vector<cl_int> &state,
 
 void ConstraintInsertion::fit_to_mesh() {
   const std::size_t slots = mesh_.triangle_capacity;
-  if (touched_.size() >= slots)
+  touched_.grow(device_, slots);
+  touched_.cover(device_, mesh_.triangle_count, kPhase);
+  if (constraint_mark_.size() >= slots)
     return;
-  touched_ = touched_.grown(device_, slots, 0);
   // The others are rewritten before each use.
   constraint_mark_ = DeviceArray<cl_int>(device_, slots);
   run_start_ = DeviceArray<cl_int>(device_, slots);
@@ -417,7 +418,7 @@ ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
   set_args_from(flip_along_runs_, mesh_.bind_triangulation(flip_along_runs_, 0),
                 run_start_.buffer(), constraint_mark_.buffer(), segment_a_.buffer(),
                 segment_b_.buffer(), run_of_.buffer(), boundary_log_.buffer(),
-                run_counters_.buffer(), touched_.buffer(), log_capacity, max_steps,
+                run_counters_.buffer(), touched_.array.buffer(), log_capacity, max_steps,
                 static_cast<cl_int>(runs));
   launch(device_, flip_along_runs_, runs, kPhase);
   const auto counts = run_counters_.download(device_, kRunCounters);
@@ -439,7 +440,7 @@ ConstraintInsertion::RunPass ConstraintInsertion::flip_runs() {
 }
 
 void ConstraintInsertion::run(ConstrainedStats &stats, const PointInserter &insert_points) {
-  touched_.fill(device_, 0, touched_.size());
+  fit_to_mesh();
   bool first = true;
   // Each outer iteration either inserts a segment, splits one, or flips; the
   // bound (of the pieces and triangles so far: crossings add both) only

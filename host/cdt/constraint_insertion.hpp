@@ -56,7 +56,7 @@ public:
 
   // Per triangle slot: 1 where run() flipped (only there may an edge not be
   // locally Delaunay afterwards); moved out.
-  DeviceArray<cl_int> take_touched() { return std::move(touched_); }
+  DeviceArray<cl_int> take_touched() { return std::move(touched_.array); }
 
 private:
   // One outer iteration's marking; returns the segments still to insert, or
@@ -91,7 +91,10 @@ private:
   bool vertex_triangles_recorded_ = false; // mesh_.vertex_triangle is up to date
   DeviceArray<cl_int> walk_order_, segment_a_, segment_b_, segment_state_, split_vertex_,
       crossed_vertex_, crossed_triangle_, counters_, constraint_mark_, run_start_, run_of_,
-      boundary_log_, edge_table_, touched_, run_counters_;
+      boundary_log_, edge_table_, run_counters_;
+  // Per triangle slot: 1 where run() flipped; 0 as far as the slots are in
+  // use (fit_to_mesh covers them).
+  CoveredArray<cl_int> touched_;
 };
 
 } // namespace clmesh

@@ -22,12 +22,15 @@ ExteriorRemoval::ExteriorRemoval(Device &device, DeviceMesh &mesh)
       removed_(device, mesh.triangle_capacity), label_(device, 1),
       frontier_(device, mesh.triangle_capacity), next_frontier_(device, mesh.triangle_capacity),
       count_(device, 1), flood_result_(device, 3),
-      flood_group_(device.single_group(flood_in_group_, kPhase)) {
-  removed_.fill(device_, 0, mesh.triangle_capacity);
+      flood_group_(device.single_group(flood_in_group_, kPhase)) {}
+
+std::size_t ExteriorRemoval::slots() {
+  removed_.cover(device_, mesh_.triangle_count, kPhase);
+  return mesh_.triangle_count;
 }
 
 long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
-  const std::size_t slots = mesh_.triangle_count;
+  const std::size_t slots = this->slots();
   count_.fill(device_, 0, 1);
   seeds_on_segments_ = 0;
   if (from_hull)
@@ -41,7 +44,7 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
     DeviceArray<cl_int> on_segment(device_, seeds.size());
     set_args_from(seed_from_points_, mesh_.bind_triangulation(seed_from_points_, 0),
                   seed_buffer.buffer(), static_cast<cl_int>(0), static_cast<cl_int>(slots + 8),
-                  removed_.buffer(), frontier_.buffer(), count_.buffer(), on_segment.buffer(),
+                  removed_.array.buffer(), frontier_.buffer(), count_.buffer(), on_segment.buffer(),
                   static_cast<cl_int>(seeds.size()));
     launch(device_, seed_from_points_, seeds.size(), kPhase);
     count_seeds_on_segments(on_segment, seeds.size());
@@ -50,19 +53,20 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
 }
 
 void ExteriorRemoval::seed_from_hull(std::size_t slots) {
-  set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0), removed_.buffer(),
-                frontier_.buffer(), count_.buffer(), static_cast<cl_int>(slots));
+  set_args_from(seed_from_hull_, mesh_.bind_triangulation(seed_from_hull_, 0),
+                removed_.array.buffer(), frontier_.buffer(), count_.buffer(),
+                static_cast<cl_int>(slots));
   launch(device_, seed_from_hull_, slots, kPhase);
 }
 
 long ExteriorRemoval::remove_flat_pockets() {
   if (count_flat(true) == 0)
     return 0; // no flat triangle: no flat pocket (the usual case, one sweep)
-  const std::size_t slots = mesh_.triangle_count, capacity = mesh_.triangle_capacity;
+  const std::size_t slots = this->slots(), capacity = mesh_.triangle_capacity;
   // The pockets: what a removal from the hull would eat (into removed_ for
   // the flood, swapped out after).
-  DeviceArray<cl_int> pocket(device_, capacity);
-  pocket.fill(device_, 0, capacity);
+  CoveredArray<cl_int> pocket(device_, capacity);
+  pocket.cover(device_, slots, kPhase);
   std::swap(removed_, pocket);
   count_.fill(device_, 0, 1);
   seed_from_hull(slots);
@@ -70,36 +74,37 @@ long ExteriorRemoval::remove_flat_pockets() {
   std::swap(removed_, pocket);
   // The pockets with a triangle that is not flat, labelled 0 by a flood
   // closed outside the pockets.
-  DeviceArray<cl_int> outside(device_, capacity);
+  CoveredArray<cl_int> outside(device_, capacity);
+  outside.covered = slots; // seed_thick_pockets sets every slot in use
   label_ = DeviceArray<cl_int>(device_, capacity);
   count_.fill(device_, 0, 1);
   set_args_from(seed_thick_pockets_, mesh_.bind_triangulation(seed_thick_pockets_, 0),
-                pocket.buffer(), outside.buffer(), label_.buffer(), frontier_.buffer(),
+                pocket.array.buffer(), outside.array.buffer(), label_.buffer(), frontier_.buffer(),
                 count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, seed_thick_pockets_, slots, kPhase);
   std::swap(removed_, outside);
   flood(0);
   std::swap(removed_, outside);
   count_.fill(device_, 0, 1);
-  set_args(remove_flat_pockets_, pocket.buffer(), label_.buffer(), removed_.buffer(),
+  set_args(remove_flat_pockets_, pocket.array.buffer(), label_.buffer(), removed_.array.buffer(),
            count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, remove_flat_pockets_, slots, kPhase);
   return count_.read(device_, 0);
 }
 
 long ExteriorRemoval::count_flat(bool every) {
-  const std::size_t slots = mesh_.triangle_count;
+  const std::size_t slots = this->slots();
   count_.fill(device_, 0, 1);
-  set_args_from(count_flat_, mesh_.bind_triangulation(count_flat_, 0), removed_.buffer(),
+  set_args_from(count_flat_, mesh_.bind_triangulation(count_flat_, 0), removed_.array.buffer(),
                 static_cast<cl_int>(every), count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, count_flat_, slots, kPhase);
   return count_.read(device_, 0);
 }
 
 void ExteriorRemoval::remove_unlabelled(const DeviceArray<cl_int> &label) {
-  const std::size_t slots = mesh_.triangle_count;
+  const std::size_t slots = this->slots();
   set_args_from(remove_unlabelled_, mesh_.bind_triangulation(remove_unlabelled_, 0), label.buffer(),
-                removed_.buffer(), static_cast<cl_int>(slots));
+                removed_.array.buffer(), static_cast<cl_int>(slots));
   launch(device_, remove_unlabelled_, slots, kPhase);
 }
 
@@ -114,7 +119,7 @@ long ExteriorRemoval::flood(int region) {
   for (int front = count_.read(device_, 0); front > 0;) {
     if (front <= kInGroup) {
       set_args_from(flood_in_group_, mesh_.bind_triangulation(flood_in_group_, 0),
-                    frontier_.buffer(), removed_.buffer(), static_cast<cl_int>(region),
+                    frontier_.buffer(), removed_.array.buffer(), static_cast<cl_int>(region),
                     label_.buffer(), next_frontier_.buffer(), static_cast<cl_int>(front),
                     static_cast<cl_int>(kInGroup), flood_result_.buffer());
       launch(device_, flood_in_group_, flood_group_, kPhase, flood_group_);
@@ -129,7 +134,7 @@ long ExteriorRemoval::flood(int region) {
     reached += front;
     count_.fill(device_, 0, 1);
     set_args_from(spread_, mesh_.bind_triangulation(spread_, 0), frontier_.buffer(),
-                  removed_.buffer(), static_cast<cl_int>(region), label_.buffer(),
+                  removed_.array.buffer(), static_cast<cl_int>(region), label_.buffer(),
                   next_frontier_.buffer(), count_.buffer(), static_cast<cl_int>(front));
     launch(device_, spread_, static_cast<std::size_t>(front), kPhase);
     std::swap(frontier_, next_frontier_);
@@ -139,13 +144,13 @@ long ExteriorRemoval::flood(int region) {
 }
 
 const DeviceArray<cl_int> &ExteriorRemoval::label_regions(const std::vector<Point> &seeds) {
-  const std::size_t slots = mesh_.triangle_count;
+  const std::size_t slots = this->slots();
   label_ = DeviceArray<cl_int>(device_, mesh_.triangle_capacity);
-  label_.fill(device_, -1, mesh_.triangle_capacity);
+  label_.fill(device_, -1, fill_ahead(slots, mesh_.triangle_capacity));
   DeviceArray<cl_int> on_segment(device_, seeds.size());
   for (std::size_t r = 0; r < seeds.size(); ++r) {
     count_.fill(device_, 0, 1);
-    set_args_from(seed_label_, mesh_.bind_triangulation(seed_label_, 0), removed_.buffer(),
+    set_args_from(seed_label_, mesh_.bind_triangulation(seed_label_, 0), removed_.array.buffer(),
                   cl_double2{{seeds[r].x, seeds[r].y}}, static_cast<cl_int>(0),
                   static_cast<cl_int>(slots + 8), static_cast<cl_int>(r), label_.buffer(),
                   frontier_.buffer(), count_.buffer(), on_segment.buffer());

@@ -19,7 +19,7 @@ public:
   // Eats from the hull inwards when `from_hull`, and from every hole seed;
   // returns how many triangles were removed. removed() flags them per slot.
   long run(bool from_hull, const std::vector<Point> &holes);
-  const DeviceArray<cl_int> &removed() const { return removed_; }
+  const DeviceArray<cl_int> &removed() const { return removed_.array; }
 
   // -c: removes the pockets between the segments and the convex hull whose
   // triangles are all flat, slivers made by rounding (a chain of segments a
@@ -56,6 +56,8 @@ private:
 
   long seeds_on_segments_ = 0;
 
+  // The mesh's slots in use, removed_ covering them.
+  std::size_t slots();
   // Seeds a removal flood from the hull edges that are no constraints.
   void seed_from_hull(std::size_t slots);
   // How many real triangles are flat: every one, or the removed ones.
@@ -63,7 +65,10 @@ private:
 
   cl::Kernel seed_from_hull_, seed_from_points_, spread_, flood_in_group_, seed_label_,
       remove_unlabelled_, seed_thick_pockets_, remove_flat_pockets_, count_flat_;
-  DeviceArray<cl_int> removed_, label_, frontier_, next_frontier_, count_, flood_result_;
+  // Per slot: removed (1) or not; set as far as the mesh's slots are in use
+  // (slots()).
+  CoveredArray<cl_int> removed_;
+  DeviceArray<cl_int> label_, frontier_, next_frontier_, count_, flood_result_;
   std::size_t flood_group_; // the work-group of flood_in_group
 };
 

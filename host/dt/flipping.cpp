@@ -22,14 +22,14 @@ Flipping::Flipping(Device &device, DeviceMesh &mesh, std::size_t group_pass_limi
       exact_list_(device, mesh.list_capacity), proposal_(device, mesh.list_capacity),
       exact_count_(device, 1), flags_(device, mesh.list_capacity), pass_counts_(device, 2),
       active_round_(device, mesh.triangle_capacity), group_result_(device, 4) {
-  active_round_.fill(device_, 0, mesh.triangle_capacity);
   passes_group_limit_ = guarded(kPhase, "querying the work-group size", [&] {
     return passes_in_group_.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device.cl_device());
   });
 }
 
 void Flipping::mark_active(const DeviceArray<cl_int> &active, std::size_t n) {
-  set_args(mark_active_, active.buffer(), active_round_.buffer(), ++round_, static_cast<cl_int>(n));
+  set_args(mark_active_, active.buffer(), active_round_.array.buffer(), ++round_,
+           static_cast<cl_int>(n));
   launch(device_, mark_active_, n, kPhase);
 }
 
@@ -37,7 +37,7 @@ void Flipping::propose(std::size_t n, FlipCounts &counts) {
   const auto items = static_cast<cl_int>(n);
   exact_count_.fill(device_, 0, 1);
   set_args_from(check_fast_, mesh_.bind_triangulation(check_fast_, 0), active_.buffer(),
-                static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_,
+                static_cast<cl_int>(fixed_boundary_), active_round_.array.buffer(), round_,
                 flags_.buffer(), exact_list_.buffer(), exact_count_.buffer(), proposal_.buffer(),
                 items);
   launch(device_, check_fast_, n, kPhase);
@@ -55,6 +55,7 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
                    long max_passes) {
   if (n == 0)
     return true;
+  active_round_.cover(device_, mesh_.triangle_count, kPhase);
   guarded(kPhase, "copying the active list", [&] {
     device_.queue().enqueueCopyBuffer(active.buffer(), active_.buffer(), 0, 0, n * sizeof(cl_int));
   });
@@ -69,7 +70,7 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
       const long left = max_passes < 0 ? std::numeric_limits<cl_int>::max() : max_passes - pass;
       set_args_from(passes_in_group_, mesh_.bind_triangulation(passes_in_group_, 0),
                     active_.buffer(), next_active_.buffer(), static_cast<cl_int>(n),
-                    static_cast<cl_int>(fixed_boundary_), active_round_.buffer(), round_,
+                    static_cast<cl_int>(fixed_boundary_), active_round_.array.buffer(), round_,
                     proposal_.buffer(), flags_.buffer(), static_cast<cl_int>(stamp),
                     static_cast<cl_int>(limit), static_cast<cl_int>(left), group_result_.buffer());
       launch(device_, passes_in_group_, group, kPhase, group);
@@ -94,8 +95,8 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     launch(device_, apply_, n, kPhase);
     set_args_from(relink_and_collect_, mesh_.bind_triangulation(relink_and_collect_, 0),
                   active_.buffer(), proposal_.buffer(), flags_.buffer(), pass_stamp,
-                  next_active_.buffer(), active_round_.buffer(), round_ + 1, pass_counts_.buffer(),
-                  items);
+                  next_active_.buffer(), active_round_.array.buffer(), round_ + 1,
+                  pass_counts_.buffer(), items);
     launch(device_, relink_and_collect_, n, kPhase);
     const std::vector<cl_int> pass_counts = pass_counts_.download(device_, 2);
     ++round_;

@@ -52,8 +52,10 @@ private:
   // Per entry of the active list: the edge flags while proposing, then
   // whether the entry flipped (apply, relink): one array, for less memory.
   DeviceArray<cl_int> flags_;
-  DeviceArray<cl_int> pass_counts_;  // of a pass: {flips, entries of the next list}
-  DeviceArray<cl_int> active_round_; // per triangle: the last check that listed it
+  DeviceArray<cl_int> pass_counts_; // of a pass: {flips, entries of the next list}
+  // Per triangle: the last check that listed it (0: none yet), set as far as
+  // the mesh's slots are in use (covered before each run).
+  CoveredArray<cl_int> active_round_;
   DeviceArray<cl_int> group_result_; // flip_passes_in_group's passes, flips, length, uncertain
   cl_int round_ = 0;
 };

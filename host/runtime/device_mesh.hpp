@@ -115,6 +115,31 @@ inline std::size_t fill_ahead(std::size_t used, std::size_t capacity) {
   return std::min(capacity, used + kFillAhead);
 }
 
+// An array of one value (0 by default) as far as its entries come into use:
+// cover(n) sets those below n not set yet, kFillAhead beyond, within its
+// size, so that the pages past the entries in use are not touched (not
+// resident) and a large capacity costs no fill.
+template <typename T> struct CoveredArray {
+  DeviceArray<T> array;
+  T value{};
+  std::size_t covered = 0; // entries set
+  CoveredArray() = default;
+  CoveredArray(Device &device, std::size_t size, T value_ = T{})
+      : array(device, size), value(value_) {}
+  void cover(Device &device, std::size_t count, const char *phase) {
+    if (count <= covered)
+      return;
+    const std::size_t end = fill_ahead(count, array.size());
+    array.fill_range(device, value, covered, end - covered, phase);
+    covered = end;
+  }
+  // A larger array keeping the covered entries.
+  void grow(Device &device, std::size_t size) {
+    if (size > array.size())
+      array = array.enlarged(device, size, covered);
+  }
+};
+
 // A list on the device that grows (amortised doubling): entries appended
 // from other device arrays, or written by kernels into room reserved first.
 template <typename T> struct DeviceList {

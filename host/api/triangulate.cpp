@@ -103,16 +103,14 @@ DelaunayOptions delaunay_options_of(const Options &options) {
 // (crossed[i]: the input segment added point i was made on), along it; the
 // others' stay as they are.
 void interpolate_crossings(Mesh &mesh, const Input &input, const std::vector<Segment> &crossed) {
-  const std::size_t n = input.points.size();
-  std::vector<double> along;
-  for (std::size_t i = 0; i < crossed.size(); ++i) {
-    const Segment &s = crossed[i];
-    along.clear();
-    append_along(input.point_attributes, input.attribute_count, s,
-                 parameter_along(input.points[s.a], input.points[s.b], mesh.points[n + i]), along);
-    std::copy(along.begin(), along.end(),
-              mesh.point_attributes.begin() + static_cast<std::ptrdiff_t>((n + i) * along.size()));
-  }
+  const std::size_t n = input.points.size(), k = static_cast<std::size_t>(input.attribute_count);
+  const std::vector<Point> crossings(mesh.points.begin() + static_cast<std::ptrdiff_t>(n),
+                                     mesh.points.begin() +
+                                         static_cast<std::ptrdiff_t>(n + crossed.size()));
+  const std::vector<double> values = interpolate_along(input.points, input.point_attributes,
+                                                       input.attribute_count, crossed, crossings);
+  std::copy(values.begin(), values.end(),
+            mesh.point_attributes.begin() + static_cast<std::ptrdiff_t>(n * k));
 }
 
 // The attributes of the Steiner points of a refinement (and of its segment
@@ -134,11 +132,10 @@ void interpolate_added_attributes(Device &device, Mesh &mesh, const Input &input
     hull.ignore_holes = true;
     ConstrainedResult cdt =
         constrained_delaunay(device, Pslg{input.points, input.segments, {}, {}}, hull);
-    for (std::size_t i = 0; i < cdt.added_points.size(); ++i)
-      append_along(input.point_attributes, input.attribute_count, cdt.crossed_segments[i],
-                   parameter_along(input.points[cdt.crossed_segments[i].a],
-                                   input.points[cdt.crossed_segments[i].b], cdt.added_points[i]),
-                   field.attributes);
+    const std::vector<double> crossings =
+        interpolate_along(input.points, input.point_attributes, input.attribute_count,
+                          cdt.crossed_segments, cdt.added_points);
+    field.attributes.insert(field.attributes.end(), crossings.begin(), crossings.end());
     field.points.insert(field.points.end(), cdt.added_points.begin(), cdt.added_points.end());
     field.triangles = std::move(cdt.mesh.triangles);
   } else {

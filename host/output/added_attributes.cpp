@@ -7,21 +7,27 @@
 
 namespace clmesh {
 
-void append_along(const std::vector<double> &attributes, int count, const Segment &segment,
-                  double t, std::vector<double> &out) {
+std::vector<double> interpolate_along(const std::vector<Point> &ends,
+                                      const std::vector<double> &attributes, int count,
+                                      const std::vector<Segment> &segments,
+                                      const std::vector<Point> &points) {
   const auto k = static_cast<std::size_t>(count);
-  for (std::size_t i = 0; i < k; ++i) {
-    const double a = attributes[k * static_cast<std::size_t>(segment.a) + i],
-                 b = attributes[k * static_cast<std::size_t>(segment.b) + i];
-    out.push_back(a + t * (b - a));
+  std::vector<double> result;
+  result.reserve(points.size() * k);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto a = static_cast<std::size_t>(segments[i].a),
+               b = static_cast<std::size_t>(segments[i].b);
+    const double dx = ends[b].x - ends[a].x, dy = ends[b].y - ends[a].y,
+                 length2 = dx * dx + dy * dy;
+    const double t =
+        length2 > 0 ? std::clamp(((points[i].x - ends[a].x) * dx + (points[i].y - ends[a].y) * dy) /
+                                     length2,
+                                 0.0, 1.0)
+                    : 0.0;
+    for (std::size_t j = 0; j < k; ++j)
+      result.push_back(attributes[k * a + j] + t * (attributes[k * b + j] - attributes[k * a + j]));
   }
-}
-
-double parameter_along(const Point &a, const Point &b, const Point &p) {
-  const double dx = b.x - a.x, dy = b.y - a.y, length2 = dx * dx + dy * dy;
-  if (!(length2 > 0))
-    return 0;
-  return std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / length2, 0.0, 1.0);
+  return result;
 }
 
 namespace {

@@ -19,13 +19,13 @@
 
 namespace clmesh {
 
-// The attributes (`count` per point) at t in [0, 1] along segment a-b (point
-// indices into `attributes`), appended to `out`.
-void append_along(const std::vector<double> &attributes, int count, const Segment &segment,
-                  double t, std::vector<double> &out);
-
-// The parameter of the point of segment a-b nearest to p (0 at a, 1 at b).
-double parameter_along(const Point &a, const Point &b, const Point &p);
+// The attributes (`count` per point) of each of `points` along its segment
+// (segments[i] for points[i], ends indices into `ends` and `attributes`):
+// linear in the parameter of the segment's point nearest to it.
+std::vector<double> interpolate_along(const std::vector<Point> &ends,
+                                      const std::vector<double> &attributes, int count,
+                                      const std::vector<Segment> &segments,
+                                      const std::vector<Point> &points);
 
 // A triangulation with attributes at its points, to interpolate over.
 struct AttributeField {

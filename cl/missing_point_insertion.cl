@@ -59,17 +59,45 @@ static inline int next_visible_ghost(__global const double2 *points, __global co
              : -1;
 }
 
+// The priority of point p in triangle t (on its edge `edge`, or -1 inside):
+// the lower, the sooner. Inside a real triangle, the nearer its centre the
+// sooner (the top 32 - index_bits bits: the smallest barycentric coordinate,
+// quantized), so that a split leaves the triangle's other points spread over
+// its three children: fewer rounds and fewer flips than a random choice. Points on
+// an edge or outside the hull come first. Ties go by a bijection of p's
+// index_bits bits (the point numbers are below 2^index_bits), unique, and
+// scattered so that neighbours along the Hilbert order do not wait for each
+// other in turn.
+static inline uint insertion_priority(__global const double2 *points,
+                                      __global const int *tri_vertex, int p, int t, int edge,
+                                      int index_bits) {
+  const uint tie = clm_priority_within((uint)p, index_bits);
+  const int level_bits = 32 - index_bits;
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  if (level_bits <= 0 || edge >= 0 || is_ghost(tri))
+    return tie;
+  const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]], q = points[p];
+  const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  const double la = ((b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x)) / area,
+               lb = ((c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x)) / area;
+  // 0 at the centre, 1 on an edge; NaN (a flat triangle) counts as an edge.
+  const double off_centre = 1.0 - fmin(fmax(3.0 * fmin(fmin(la, lb), 1.0 - la - lb), 0.0), 1.0);
+  const uint levels = (1u << level_bits) - 1u;
+  const uint level = isnan(off_centre) ? levels : (uint)(off_centre * (double)levels);
+  return (level << index_bits) | tie;
+}
+
 // Marks the triangle(s) each pending point would split with its priority.
 // placed: the points were not walked to (no locate_points), all pending
 // where they stand; their status is set here.
 static inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                  __global int *status, const int placed) {
+                                  __global int *status, const int placed, const int index_bits) {
   if (placed)
     status[gid] = CLM_PENDING;
   else if (status[gid] != CLM_PENDING)
     return;
   const int p = remaining[gid], t = location[p], edge = location_edge[p];
-  const uint key = clm_priority_of((uint)p);
+  const uint key = insertion_priority(points, tri_vertex, p, t, edge, index_bits);
   atomic_min(&tri_mark[t], key);
   if (edge >= 0)
     atomic_min(&tri_mark[link_triangle(tri_neighbor[3 * t + edge])], key);
@@ -81,19 +109,21 @@ static inline void mark_container(int gid, CLM_TRIANGULATION_PARAMS, __global co
 }
 
 __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                              __global int *status, const int placed, const int n) {
+                              __global int *status, const int placed, const int index_bits,
+                              const int n) {
   const int gid = get_global_id(0);
   if (gid < n)
-    mark_container(gid, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+    mark_container(gid, CLM_TRIANGULATION_ARGS, remaining, status, placed, index_bits);
 }
 
 // winner[gid] = 1 when every mark written by the point survived.
 static inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                                 __global const int *status, __global int *winner) {
+                                 __global const int *status, __global int *winner,
+                                 const int index_bits) {
   int wins = 0;
   if (status[gid] == CLM_PENDING) {
     const int p = remaining[gid], t = location[p], edge = location_edge[p];
-    const uint key = clm_priority_of((uint)p);
+    const uint key = insertion_priority(points, tri_vertex, p, t, edge, index_bits);
     wins = tri_mark[t] == key &&
            (edge < 0 || tri_mark[link_triangle(tri_neighbor[3 * t + edge])] == key);
     if (edge < 0 &&
@@ -107,10 +137,11 @@ static inline void select_winner(int gid, CLM_TRIANGULATION_PARAMS, __global con
 }
 
 __kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remaining,
-                             __global const int *status, __global int *winner, const int n) {
+                             __global const int *status, __global int *winner, const int index_bits,
+                             const int n) {
   const int gid = get_global_id(0);
   if (gid < n)
-    select_winner(gid, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+    select_winner(gid, CLM_TRIANGULATION_ARGS, remaining, status, winner, index_bits);
 }
 
 // Clears the marks of this round (before the topology changes).
@@ -280,15 +311,16 @@ __kernel void insert_round_in_group(CLM_TRIANGULATION_PARAMS, __global const int
                                     __global int *status, __global int *winner,
                                     __global int *winner_offset, __global int *keep,
                                     volatile __global int *counters, __local int *scratch,
-                                    const int placed, __global int *changed, const int stamp,
-                                    __global const int *free_list, const int free_first,
-                                    const int free_count, const int first_slot, const int n) {
+                                    const int placed, const int index_bits, __global int *changed,
+                                    const int stamp, __global const int *free_list,
+                                    const int free_first, const int free_count,
+                                    const int first_slot, const int n) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size)
-    mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed);
+    mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed, index_bits);
   barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
-    select_winner(k, CLM_TRIANGULATION_ARGS, remaining, status, winner);
+    select_winner(k, CLM_TRIANGULATION_ARGS, remaining, status, winner, index_bits);
   barrier(CLK_GLOBAL_MEM_FENCE);
   int waiting = 0;
   for (int k = lid; k < n; k += size) {

@@ -15,4 +15,19 @@ static inline unsigned int clm_priority_of(unsigned int x) {
   return x;
 }
 
+/* The same for the integers below 2^bits (1 <= bits <= 32): a bijection of
+ * them (odd multipliers and right xor-shifts, each invertible on `bits`
+ * bits). */
+static inline unsigned int clm_priority_within(unsigned int x, int bits) {
+  if (bits >= 32)
+    return clm_priority_of(x);
+  const unsigned int mask = (1u << bits) - 1u;
+  const int shift = (bits + 1) / 2;
+  x = (x * 0x7feb352du) & mask;
+  x ^= x >> shift;
+  x = (x * 0x846ca68bu) & mask;
+  x ^= x >> shift;
+  return x;
+}
+
 #endif

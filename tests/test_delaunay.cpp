@@ -6,6 +6,7 @@
 
 #include "clmesh/clmesh.hpp"
 #include "mesh_fixtures.hpp"
+#include "priority.h"
 #include "runtime/opencl_context.hpp"
 #include "test_support.hpp"
 
@@ -416,6 +417,26 @@ TEST_CASE("delaunay: the first triangulation's default depends on the input's si
   CHECK(small.neighbors == voronoi.neighbors);
   CHECK(small.duplicate_of == voronoi.duplicate_of);
   CHECK(small.triangles == gridded.triangles);
+}
+
+TEST_CASE("delaunay: the ties of missing-point insertion are unique: a bijection on so many bits") {
+  // cl/priority.h clm_priority_within: the points' priorities are unique
+  // only if it maps the numbers below 2^bits one to one onto them.
+  for (int bits = 1; bits <= 20; ++bits) {
+    const unsigned n = 1u << bits;
+    std::vector<char> seen(n, 0);
+    unsigned repeated = 0;
+    for (unsigned x = 0; x < n; ++x) {
+      const unsigned y = clm_priority_within(x, bits);
+      repeated += y >= n || seen[y];
+      if (y < n)
+        seen[y] = 1;
+    }
+    INFO("bits " << bits);
+    CHECK(repeated == 0);
+  }
+  for (const unsigned x : {0u, 1u, 12345u, 0xffffffffu})
+    CHECK(clm_priority_within(x, 32) == clm_priority_of(x));
 }
 
 TEST_CASE("delaunay: bad input is refused with a typed error") {

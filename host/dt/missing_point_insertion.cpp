@@ -68,6 +68,10 @@ void MissingPointInsertion::trim_lists() {
 
 std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
   const auto n = static_cast<cl_int>(pending_);
+  // The bits of the point numbers (the ties of insertion_priority).
+  cl_int index_bits = 1;
+  while (index_bits < 32 && (std::size_t{1} << index_bits) < mesh_.point_capacity)
+    ++index_bits;
   if (n == 0)
     return 0;
   round_points_ = pending_;
@@ -96,8 +100,8 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
     set_args_from(round_in_group_, mesh_.bind_triangulation(round_in_group_, 0),
                   remaining_.buffer(), status_.buffer(), winner_.buffer(), offset_.buffer(),
                   keep_.buffer(), counters_.buffer(), cl::Local(sizeof(cl_int) * group_),
-                  static_cast<cl_int>(!walk), changed_.buffer(), static_cast<cl_int>(stamp),
-                  free_list, free_first, free_count, first_slot, n);
+                  static_cast<cl_int>(!walk), index_bits, changed_.buffer(),
+                  static_cast<cl_int>(stamp), free_list, free_first, free_count, first_slot, n);
     launch(device_, round_in_group_, group_, kPhase, group_);
     const std::vector<cl_int> read = counters_.download(device_, kCounters);
     std::copy(read.begin(), read.end(), counters.begin());
@@ -105,10 +109,10 @@ std::size_t MissingPointInsertion::run_round(int stamp, bool walk) {
     mesh_.triangle_count += free.take(2 * winners);
   } else {
     set_args_from(mark_, mesh_.bind_triangulation(mark_, 0), remaining_.buffer(), status_.buffer(),
-                  static_cast<cl_int>(!walk), n);
+                  static_cast<cl_int>(!walk), index_bits, n);
     launch(device_, mark_, pending_, kPhase);
     set_args_from(select_, mesh_.bind_triangulation(select_, 0), remaining_.buffer(),
-                  status_.buffer(), winner_.buffer(), n);
+                  status_.buffer(), winner_.buffer(), index_bits, n);
     launch(device_, select_, pending_, kPhase);
     set_args_from(clear_marks_, mesh_.bind_triangulation(clear_marks_, 0), remaining_.buffer(),
                   status_.buffer(), n);

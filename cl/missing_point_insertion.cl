@@ -60,31 +60,43 @@ static inline int next_visible_ghost(__global const double2 *points, __global co
 }
 
 // The priority of point p in triangle t (on its edge `edge`, or -1 inside):
-// the lower, the sooner. Inside a real triangle, the nearer its centre the
-// sooner (the top 32 - index_bits bits: the smallest barycentric coordinate,
-// quantized), so that a split leaves the triangle's other points spread over
-// its three children: fewer rounds and fewer flips than a random choice. Points on
-// an edge or outside the hull come first. Ties go by a bijection of p's
-// index_bits bits (the point numbers are below 2^index_bits), unique, and
-// scattered so that neighbours along the Hilbert order do not wait for each
-// other in turn.
+// the lower, the sooner. The top 32 - index_bits bits say how late, from 0
+// to 1 quantized: inside a real triangle, how far p lies from its centre (1
+// minus three times its smallest barycentric coordinate), so that a split
+// leaves the triangle's other points spread over its three children (fewer
+// rounds and fewer flips than a random choice); outside the hull, how near p
+// lies to the hull edge of its ghost (for the distance d beyond it over the
+// edge's length, 1 / (1 + d)), so that the farthest goes first and takes the
+// near ones inside the hull, instead of the ghosts they share making them
+// wait for each other round after round; on an edge, 0. Ties go by a
+// bijection of p's index_bits bits (the point numbers are below
+// 2^index_bits), unique, and scattered so that neighbours along the Hilbert
+// order do not wait for each other in turn.
 static inline uint insertion_priority(__global const double2 *points,
                                       __global const int *tri_vertex, int p, int t, int edge,
                                       int index_bits) {
   const uint tie = clm_priority_within((uint)p, index_bits);
   const int level_bits = 32 - index_bits;
-  const VertexTriple tri = load_vertices(tri_vertex, t);
-  if (level_bits <= 0 || edge >= 0 || is_ghost(tri))
+  if (level_bits <= 0 || edge >= 0)
     return tie;
-  const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]], q = points[p];
-  const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-  const double la = ((b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x)) / area,
-               lb = ((c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x)) / area;
-  // 0 at the centre, 1 on an edge; NaN (a flat triangle) counts as an edge.
-  const double off_centre = 1.0 - fmin(fmax(3.0 * fmin(fmin(la, lb), 1.0 - la - lb), 0.0), 1.0);
+  const VertexTriple tri = load_vertices(tri_vertex, t);
+  const double2 q = points[p];
+  double lateness;
+  if (is_ghost(tri)) {
+    const double2 a = points[ghost_edge_start(tri)], e = points[ghost_edge_end(tri)] - a;
+    const double beyond = fabs(e.x * (q.y - a.y) - e.y * (q.x - a.x)) / (e.x * e.x + e.y * e.y);
+    lateness = 1.0 / (1.0 + beyond);
+  } else {
+    const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]];
+    const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const double la = ((b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x)) / area,
+                 lb = ((c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x)) / area;
+    lateness = 1.0 - 3.0 * fmin(fmin(la, lb), 1.0 - la - lb);
+  }
+  // A flat triangle or a zero-length hull edge gives NaN: as late as can be.
+  lateness = isnan(lateness) ? 1.0 : clamp(lateness, 0.0, 1.0);
   const uint levels = (1u << level_bits) - 1u;
-  const uint level = isnan(off_centre) ? levels : (uint)(off_centre * (double)levels);
-  return (level << index_bits) | tie;
+  return ((uint)(lateness * (double)levels) << index_bits) | tie;
 }
 
 // Marks the triangle(s) each pending point would split with its priority.

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 
 namespace clmesh {
@@ -43,6 +44,16 @@ bool lexicographically_less(const Point &a, const Point &b) {
 
 int orient(const Point &a, const Point &b, const Point &c) {
   return clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+}
+
+// orient(a, b, p) > 0, exactly: a rounded determinant beyond its error bound
+// (a larger one than Shewchuk's first stage) tells at once, as it does for
+// nearly every point of a hull test; orient() decides the rest.
+bool strictly_left(const Point &a, const Point &b, const Point &p) {
+  const double left = (b.x - a.x) * (p.y - a.y), right = (b.y - a.y) * (p.x - a.x);
+  const double bound =
+      4 * std::numeric_limits<double>::epsilon() * (std::abs(left) + std::abs(right));
+  return left - right > bound || (left - right >= -bound && orient(a, b, p) > 0);
 }
 
 // Duplicates of a point set with no triangle (all points collinear).
@@ -170,9 +181,9 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
     for (const int32_t v : group.members) {
       if (v == far)
         continue;
-      if (orient(pa, pf, points[v]) <= 0)
+      if (!strictly_left(pa, pf, points[v]))
         before.members.push_back(v);
-      else if (orient(pf, pb, points[v]) <= 0)
+      else if (!strictly_left(pf, pb, points[v]))
         after.members.push_back(v);
     }
     kept.push_back(far);
@@ -189,41 +200,28 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
 // inside chords of the hull (drop_inside_chords).
 std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
   // Extremes counter-clockwise: min y, max x-y, max x, max x+y, max y,
-  // max y-x, min x, min x+y. Rounded sums only choose which points; the
-  // octagon's corners are input points either way.
-  const auto key = [&](int32_t i, int k) {
-    const Point &p = points[i];
-    switch (k) {
-    case 0:
-      return -p.y;
-    case 1:
-      return p.x - p.y;
-    case 2:
-      return p.x;
-    case 3:
-      return p.x + p.y;
-    case 4:
-      return p.y;
-    case 5:
-      return p.y - p.x;
-    case 6:
-      return -p.x;
-    default:
-      return -p.x - p.y;
-    }
+  // max y-x, min x, min x+y (the first point on a tie). Rounded sums only
+  // choose which points; the octagon's corners are input points either way.
+  const auto keys = [](const Point &p) {
+    return std::array<double, 8>{-p.y, p.x - p.y, p.x, p.x + p.y, p.y, p.y - p.x, -p.x, -p.x - p.y};
   };
   std::array<int32_t, 8> extreme{};
-  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
+  std::array<double, 8> best = keys(points[0]);
+  for (int32_t i = 1; i < static_cast<int32_t>(points.size()); ++i) {
+    const std::array<double, 8> key = keys(points[i]);
     for (int k = 0; k < 8; ++k)
-      if (key(i, k) > key(extreme[k], k))
+      if (key[k] > best[k]) {
+        best[k] = key[k];
         extreme[k] = i;
+      }
+  }
   // Each point outside the octagon goes with the first side it is not
   // strictly inside of.
   std::array<std::vector<int32_t>, 8> outside;
   for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
     for (int k = 0; k < 8; ++k) {
       const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
-      if ((a.x != b.x || a.y != b.y) && orient(a, b, points[i]) <= 0) { // corners may repeat
+      if ((a.x != b.x || a.y != b.y) && !strictly_left(a, b, points[i])) { // corners may repeat
         outside[k].push_back(i);
         break;
       }

@@ -1000,19 +1000,14 @@ public:
 
   void add(const std::string &name) {
     Entry entry{job_for(command_, name), {}, {}};
-    int status = 0;
-    {
-      cli::Capture capture(entry.messages);
-      try {
-        entry.prepared = prepare_input(entry.job);
-      } catch (...) {
-        status = report_error(entry.job.where);
-      }
-    }
+    int status = captured(entry, [&] {
+      entry.prepared = prepare_input(entry.job);
+      return 0;
+    });
     if (entry.prepared && clmesh::options_pack(entry.job.options) &&
         clmesh::input_packs(entry.prepared->input)) {
       const std::size_t points = entry.prepared->input.points.size();
-      if (points_ + points > clmesh::kPackMostPoints || pending_.size() >= clmesh::kPackMostInputs)
+      if (clmesh::pack_full(pending_.size(), points_, points))
         flush();
       points_ += points;
       pending_.push_back(std::move(entry));
@@ -1054,17 +1049,10 @@ public:
     }
     for (std::size_t k = 0; k < pack.size(); ++k) {
       Entry &entry = pack[k];
-      int status;
-      {
-        cli::Capture capture(entry.messages);
-        try {
-          status = meshes.empty() ? mesh_prepared(command_, entry.job, *entry.prepared, devices_)
-                                  : finish_input(command_, entry.job, *entry.prepared, meshes[k],
-                                                 compute_wall, opened_seconds);
-        } catch (...) {
-          status = report_error(entry.job.where);
-        }
-      }
+      const int status = meshes.empty() ? alone(entry) : captured(entry, [&] {
+        return finish_input(command_, entry.job, *entry.prepared, meshes[k], compute_wall,
+                            opened_seconds);
+      });
       done_(status, entry.messages);
     }
   }
@@ -1085,13 +1073,20 @@ private:
     return size;
   }
 
-  int alone(Entry &entry) {
+  // work() with the entry's messages captured; its error, reported, gives
+  // the exit status.
+  template <class Work> int captured(Entry &entry, const Work &work) {
     cli::Capture capture(entry.messages);
     try {
-      return mesh_prepared(command_, entry.job, *entry.prepared, devices_);
+      return work();
     } catch (...) {
       return report_error(entry.job.where);
     }
+  }
+
+  int alone(Entry &entry) {
+    return captured(entry,
+                    [&] { return mesh_prepared(command_, entry.job, *entry.prepared, devices_); });
   }
 
   const CommandLine &command_;

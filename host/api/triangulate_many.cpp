@@ -65,7 +65,7 @@ public:
     validate(input);
     if (!input_packs(input))
       return false;
-    if (points_ + input.points.size() > kPackMostPoints || inputs_.size() >= kPackMostInputs)
+    if (pack_full(inputs_.size(), points_, input.points.size()))
       flush();
     points_ += input.points.size();
     indices_.push_back(i);

@@ -25,6 +25,11 @@ Mesh triangulate_validated(Device &device, const Input &input, const Options &op
 // that its arrays stay small and its first results come soon.
 constexpr std::size_t kPackedLargest = 65536;
 constexpr std::size_t kPackMostPoints = std::size_t{1} << 20, kPackMostInputs = 4096;
+// Whether a pack of `inputs` inputs and `points` points is full for an input
+// of `more` points.
+inline bool pack_full(std::size_t inputs, std::size_t points, std::size_t more) {
+  return points + more > kPackMostPoints || inputs >= kPackMostInputs;
+}
 
 // Whether the options give a plain Delaunay triangulation, which packs:
 // no -p, -r, -q, -a, -D, size field or Voronoi image.

@@ -11,7 +11,8 @@ DevicePool::DevicePool(const std::string &spec) : spec_(spec) { clmesh::offer_po
 
 void DevicePool::check() const { clmesh::find_device(spec_); }
 
-DevicePool::Lease DevicePool::lease(std::size_t size) {
+DevicePool::Lease DevicePool::lease(std::size_t size, unsigned stream) {
+  const std::lock_guard<std::recursive_mutex> lock(mutex_);
   const auto start = std::chrono::steady_clock::now();
   if (!resolved_) {
     const clmesh::DeviceSpecs specs = clmesh::device_specs(spec_);
@@ -20,11 +21,17 @@ DevicePool::Lease DevicePool::lease(std::size_t size) {
     resolved_ = true;
   }
   // One device for every input: no second copy of it.
-  const bool small = size < clmesh::kLargeInput || large_spec_ == small_spec_;
-  std::shared_ptr<clmesh::Device> &device = small ? small_ : large_;
+  const bool large =
+      (size >= clmesh::kLargeInput || shared_between_threads_) && large_spec_ != small_spec_;
+  std::shared_ptr<clmesh::Device> &device = devices_[{large, stream}];
   if (device)
     return {*device, 0};
-  device = clmesh::open_device(small ? small_spec_ : large_spec_);
+  if (stream == 0) {
+    device = clmesh::open_device(large ? large_spec_ : small_spec_);
+  } else {
+    const Lease opened = lease(size, 0); // the mutex is recursive
+    device = clmesh::open_stream(opened.device);
+  }
   return {*device, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
 }
 

@@ -2,13 +2,18 @@
 // inputs, one for its large ones, as the library chooses them when nothing
 // names a device (api/device_choice.hpp: on PoCL, its in-thread and
 // multi-threaded drivers); otherwise the chosen device serves every input.
+// Each stream (a thread meshing inputs at once with others) has a command
+// queue of its own on each device (clmesh::open_stream).
 #pragma once
 
 #include "clmesh/device.hpp"
 
 #include <cstddef>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <utility>
 
 namespace cli {
 
@@ -21,20 +26,30 @@ public:
   // opens nothing.
   void check() const;
 
-  // The device for an input of `size` (clmesh::input_size()), opened on
-  // first use; `opened_seconds`: the time that choosing and opening it took
-  // now (0 when it was open already).
+  // The device for an input of `size` (clmesh::input_size()) as stream
+  // `stream` has it, opened on first use; `opened_seconds`: the time that
+  // choosing and opening it took now (0 when it was open already). Streams
+  // may call it at once.
   struct Lease {
     clmesh::Device &device;
     double opened_seconds;
   };
-  Lease lease(std::size_t size);
+  Lease lease(std::size_t size, unsigned stream = 0);
+
+  // Before any lease: streams will lease at once, so every input takes the
+  // device for large inputs (PoCL's in-thread driver runs kernels on the
+  // calling thread, and its cache of loaded kernels is not safe for two
+  // threads at once; elsewhere the two are one device).
+  void share_between_threads() { shared_between_threads_ = true; }
 
 private:
   std::string spec_;
+  std::recursive_mutex mutex_;
   bool resolved_ = false;
+  bool shared_between_threads_ = false;
   std::string small_spec_, large_spec_;
-  std::shared_ptr<clmesh::Device> small_, large_;
+  // By (large, stream): stream 0 the device as opened, the others its streams.
+  std::map<std::pair<bool, unsigned>, std::shared_ptr<clmesh::Device>> devices_;
 };
 
 } // namespace cli

@@ -1,16 +1,19 @@
 // clmesh CLI — a batch meshed by worker processes (worker_processes.hpp).
 #include "worker_processes.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <optional>
 #include <poll.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <system_error>
+#include <thread>
 #include <unistd.h>
 
 namespace cli {
@@ -23,21 +26,21 @@ constexpr long kStartFailed = -1;
 constexpr long kRetired = -2;
 
 // The memory the parent and its workers share: the next input to take, the
-// inputs written, and the input each worker slot holds.
+// inputs written, and the input each stream of each worker slot holds.
 class Shared {
 public:
-  Shared(std::size_t inputs, unsigned slots)
-      : bytes_(sizeof(std::atomic<std::size_t>) * (1 + slots) +
-               sizeof(std::atomic<unsigned char>) * inputs) {
+  Shared(std::size_t inputs, unsigned workers)
+      : slots_(workers * kMostStreams), bytes_(sizeof(std::atomic<std::size_t>) * (1 + slots_) +
+                                               sizeof(std::atomic<unsigned char>) * inputs) {
     memory_ = ::mmap(nullptr, bytes_, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (memory_ == MAP_FAILED)
       throw std::system_error(errno, std::generic_category(), "mmap");
     auto *sizes = static_cast<std::atomic<std::size_t> *>(memory_);
     next_ = new (sizes) std::atomic<std::size_t>(0);
-    for (unsigned slot = 0; slot < slots; ++slot)
+    for (unsigned slot = 0; slot < slots_; ++slot)
       new (sizes + 1 + slot) std::atomic<std::size_t>(kNone);
     holding_ = sizes + 1;
-    written_ = reinterpret_cast<std::atomic<unsigned char> *>(sizes + 1 + slots);
+    written_ = reinterpret_cast<std::atomic<unsigned char> *>(sizes + 1 + slots_);
     for (std::size_t i = 0; i < inputs; ++i)
       new (written_ + i) std::atomic<unsigned char>(0);
   }
@@ -46,10 +49,14 @@ public:
   Shared &operator=(const Shared &) = delete;
 
   std::atomic<std::size_t> &next() { return *next_; }
-  std::atomic<std::size_t> &holding(unsigned slot) { return holding_[slot]; }
+  // The input that stream `stream` of worker `slot` holds (kNone: none).
+  std::atomic<std::size_t> &holding(unsigned slot, unsigned stream) {
+    return holding_[slot * kMostStreams + stream];
+  }
   std::atomic<unsigned char> &written(std::size_t input) { return written_[input]; }
 
 private:
+  unsigned slots_;
   std::size_t bytes_;
   void *memory_;
   std::atomic<std::size_t> *next_, *holding_;
@@ -75,6 +82,33 @@ void send(int fd, long input, int status, const Messages &messages) {
   }
 }
 
+// One stream of a worker: takes the next input no stream took, until none is
+// left, and sends each one's record (one stream at a time).
+void take_inputs(const WorkerBatch &batch, Shared &shared, unsigned slot, unsigned stream, int fd,
+                 std::mutex &sending) {
+  for (;;) {
+    const std::size_t i = shared.next().fetch_add(1);
+    if (i >= batch.count)
+      break;
+    shared.holding(slot, stream) = i;
+    const std::size_t before = batch.follows[i];
+    while (before != kNone && !shared.written(before))
+      ::usleep(1000);
+    Messages messages;
+    int status;
+    {
+      Capture capture(messages);
+      status = batch.mesh(i, stream);
+    }
+    shared.written(i) = 1;
+    {
+      const std::lock_guard<std::mutex> lock(sending);
+      send(fd, static_cast<long>(i), status, messages);
+    }
+    shared.holding(slot, stream) = kNone;
+  }
+}
+
 [[noreturn]] void work(const WorkerBatch &batch, Shared &shared, unsigned slot, int fd) {
   {
     Messages messages;
@@ -88,24 +122,15 @@ void send(int fd, long input, int status, const Messages &messages) {
       ::_exit(0);
     }
   }
-  for (;;) {
-    const std::size_t i = shared.next().fetch_add(1);
-    if (i >= batch.count)
-      break;
-    shared.holding(slot) = i;
-    const std::size_t before = batch.follows[i];
-    while (before != kNone && !shared.written(before))
-      ::usleep(1000);
-    Messages messages;
-    int status;
-    {
-      Capture capture(messages);
-      status = batch.mesh(i);
-    }
-    shared.written(i) = 1;
-    send(fd, static_cast<long>(i), status, messages);
-    shared.holding(slot) = kNone;
-  }
+  const unsigned streams = batch.streams ? std::clamp(batch.streams(), 1u, kMostStreams) : 1u;
+  std::mutex sending;
+  std::vector<std::thread> threads;
+  for (unsigned stream = 1; stream < streams; ++stream)
+    threads.emplace_back(take_inputs, std::cref(batch), std::ref(shared), slot, stream, fd,
+                         std::ref(sending));
+  take_inputs(batch, shared, slot, 0, fd, sending);
+  for (std::thread &thread : threads)
+    thread.join();
   std::fflush(nullptr);
   ::_exit(0);
 }
@@ -232,8 +257,10 @@ WorkerOutcome run_worker_processes(const WorkerBatch &batch) {
       int status = 0;
       ::waitpid(worker.pid, &status, 0);
       worker.pid = -1;
-      const std::size_t held = shared.holding(slot);
-      if (held != kNone && !results[held]) {
+      for (unsigned stream = 0; stream < kMostStreams; ++stream) {
+        const std::size_t held = shared.holding(slot, stream);
+        if (held == kNone || results[held])
+          continue;
         Messages messages;
         {
           Capture capture(messages);
@@ -241,7 +268,7 @@ WorkerOutcome run_worker_processes(const WorkerBatch &batch) {
                death(status).c_str());
         }
         results[held] = Result{1, std::move(messages)};
-        shared.holding(slot) = kNone;
+        shared.holding(slot, stream) = kNone;
         shared.written(held) = 1;
       }
       if (shared.next() < batch.count && !worker.retired)

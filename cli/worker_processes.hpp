@@ -12,6 +12,8 @@
 // it held (the message names the signal) and a new worker takes its place.
 // A worker may also retire at its start, before taking an input (one device
 // that the processes would only share by time slices): it is not replaced.
+// A worker may mesh several inputs at once, each on a thread (a stream) of
+// its own: on a GPU, where the launches of one context's queues overlap.
 #pragma once
 
 #include "messages.hpp"
@@ -30,6 +32,9 @@ enum class WorkerStart {
   failed, // the run fails (the start said why)
 };
 
+// The most streams a worker may run.
+constexpr unsigned kMostStreams = 64;
+
 struct WorkerBatch {
   std::size_t count = 0; // inputs 0 .. count-1
   unsigned workers = 2;
@@ -39,9 +44,13 @@ struct WorkerBatch {
   // In each worker (slot 0 .. workers-1) before its first input. Slot 0
   // must not retire: some worker has to mesh the inputs.
   std::function<WorkerStart(unsigned slot)> start;
-  // In a worker: meshes input i and returns its exit status; says and warns
-  // into the captured messages.
-  std::function<int(std::size_t)> mesh;
+  // In a worker after its start: how many inputs it meshes at once, each
+  // on a thread of its own (1 to kMostStreams; none: 1).
+  std::function<unsigned()> streams;
+  // In a worker, on stream 0 .. streams - 1: meshes input i and returns its
+  // exit status; says and warns into the captured messages. Called from
+  // several threads at once when streams() > 1.
+  std::function<int(std::size_t, unsigned stream)> mesh;
   // In the parent, in input order: input i's exit status and messages.
   std::function<void(std::size_t, int, const Messages &)> done;
   // The input's name, for the message when its worker dies.

@@ -15,7 +15,9 @@
 # GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
 # "diagnosis meshes profile batch tests". batch times 200 small coastlines
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
-# GPU) against --jobs 8 (and --pack for the point sets), and the single-group kernels of small meshes at
+# GPU, meshing on several streams) against --streams 1, --streams 16,
+# --jobs 8 (and --pack for the point sets), the files of the default and of
+# --streams 1 compared, and the single-group kernels of small meshes at
 # work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
 # the native Triangle once per file when tools/build-triangle.sh's binary is
 # at BUILD_DIR/triangle-native.
@@ -151,9 +153,14 @@ if part batch; then
       line="batch of 200 $kind $switches on '$gpu':"
       packs=""
       [[ $kind == points ]] && packs="--pack"
-      for jobs in "" "--jobs 8" $packs; do
+      for jobs in "" "--streams 1" "--streams 16" "--jobs 8" $packs; do
         # shellcheck disable=SC2086  # $jobs is one option and its value, or none
         line+=" ${jobs:-default workers} $(CLMESH_DEVICE="$gpu" seconds "$clmesh" $switches $jobs --batch list.txt) s;"
+        [[ -z $jobs ]] && cat ./*.1.* | md5sum > streams.md5
+        if [[ $jobs == "--streams 1" ]]; then
+          cmp -s streams.md5 <(cat ./*.1.* | md5sum) && line+=" (the same files)" ||
+            line+=" (OTHER FILES than the default's)"
+        fi
       done
       for group in 128 256; do
         line+=" CLMESH_WORK_GROUP=$group $(CLMESH_DEVICE="$gpu" CLMESH_WORK_GROUP=$group seconds "$clmesh" $switches --batch list.txt) s;"

@@ -12,6 +12,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 using test_support::check_same_mesh;
@@ -271,4 +272,45 @@ TEST_CASE("batch: without a device, on the shared device of triangulate(input, o
       clmesh::triangulate_many(1, count_asked, options, [](std::size_t, clmesh::BatchResult &&) {}),
       clmesh::OptionError);
   CHECK(asked == 0);
+}
+
+TEST_CASE("streams: threads meshing at once, each on a stream of one device, get the meshes "
+          "of one thread") {
+  std::vector<clmesh::Input> inputs;
+  for (unsigned seed = 1; seed <= 8; ++seed)
+    inputs.push_back(points_input(fixtures::uniform(400 + 50 * seed, seed)));
+  inputs.push_back(square_with_hole());
+  const std::vector<std::string> switches = {"pq30", "q25", "zen", "pq30a0.05"};
+  std::vector<clmesh::Mesh> alone;
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    alone.push_back(clmesh::triangulate(device(), inputs[i], switches[i % switches.size()]));
+  constexpr unsigned kThreads = 3;
+  if (clmesh::describe(device()).rfind("basic", 0) == 0) { // PoCL's in-thread driver
+    CHECK_THROWS_AS(clmesh::open_stream(device()), clmesh::DeviceError);
+    return;
+  }
+  std::vector<std::shared_ptr<clmesh::Device>> streams;
+  for (unsigned t = 0; t < kThreads; ++t)
+    streams.push_back(clmesh::open_stream(device()));
+  std::vector<clmesh::Mesh> meshed(inputs.size());
+  std::vector<std::string> errors(kThreads);
+  std::vector<std::thread> threads;
+  for (unsigned t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      try {
+        for (int round = 0; round < 3; ++round)
+          for (std::size_t i = t; i < inputs.size(); i += kThreads)
+            meshed[i] = clmesh::triangulate(*streams[t], inputs[i], switches[i % switches.size()]);
+      } catch (const std::exception &error) {
+        errors[t] = error.what();
+      }
+    });
+  for (std::thread &thread : threads)
+    thread.join();
+  for (unsigned t = 0; t < kThreads; ++t)
+    CHECK(errors[t] == "");
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    CAPTURE(i);
+    check_same_mesh(meshed[i], alone[i]);
+  }
 }

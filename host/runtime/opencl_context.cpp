@@ -263,8 +263,8 @@ DevicePaths device_paths_from_environment() {
   // CLMESH_DEVICE_PATHS=gpu runs the GPU code paths on any device (no
   // prefetching kernels, no host-memory buffers, scans by blocks), =cpu the
   // CPU ones; unset, empty or "auto": the device's type decides. Read here
-  // only (device_taken_in_turns() also asks, for a batch's workers). The meshes never depend on it: the test suite runs its mesh tests
-  // both ways on PoCL's CPU device (tests/CMakeLists.txt).
+  // only (device_taken_in_turns() also asks, for a batch's workers). The meshes never depend on it:
+  // the test suite runs its mesh tests both ways on PoCL's CPU device (tests/CMakeLists.txt).
   const char *env = std::getenv("CLMESH_DEVICE_PATHS");
   const std::string value = env ? lower(env) : std::string();
   if (value.empty() || value == "auto")
@@ -279,7 +279,7 @@ DevicePaths device_paths_from_environment() {
 
 Device::Device(cl::Device device, DeviceDescription description, DevicePaths paths)
     : device_(device), description_(std::move(description)),
-      mapping_pool_(std::make_shared<MappingPool>()) {
+      programs_(std::make_shared<BuiltPrograms>()), mapping_pool_(std::make_shared<MappingPool>()) {
   guarded("setup", "creating the context", [&] {
     context_ = cl::Context(device_);
     queue_ = cl::CommandQueue(context_, device_);
@@ -314,6 +314,37 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
   default_work_group_ = work_group_;
+}
+
+namespace {
+
+// PoCL's in-thread driver ('basic'): kernels run on the thread that waits
+// for them.
+bool runs_on_calling_thread(const DeviceDescription &description) {
+  return description.platform_name == "Portable Computing Language" &&
+         description.device_name.rfind("basic", 0) == 0;
+}
+
+} // namespace
+
+Device::Device(Stream, Device &device)
+    : device_(device.device_), description_(device.description_), context_(device.context_),
+      work_group_(device.work_group_), default_work_group_(device.default_work_group_),
+      programs_(device.programs_), build_identity_(device.build_identity_),
+      cpu_paths_(device.cpu_paths_), can_prefetch_(device.can_prefetch_),
+      prefetching_(device.prefetching_), build_options_(device.build_options_),
+      mapping_pool_(std::make_shared<MappingPool>()) {
+  if (runs_on_calling_thread(description_))
+    throw DeviceError("device '" + description_.device_name +
+                      "' runs kernels on the calling thread, and PoCL's cache of loaded "
+                      "kernels is not safe for two threads at once: no streams on it (its "
+                      "'pthread' device takes them)");
+  guarded("setup", "creating a command queue",
+          [&] { queue_ = cl::CommandQueue(context_, device_); });
+}
+
+std::shared_ptr<Device> open_stream(Device &device) {
+  return std::make_shared<Device>(Device::Stream{}, device);
 }
 
 namespace {
@@ -511,11 +542,13 @@ ProgramCache Device::result_cache(const std::string &file, const std::string &qu
 cl::Program &Device::program(const std::string &file, const std::string &phase) {
   const bool prefetch = can_prefetch_ && prefetching_;
   const std::string key = prefetch ? file + " (prefetching)" : file;
-  auto it = programs_.find(key);
-  if (it != programs_.end())
+  const std::lock_guard<std::recursive_mutex> lock(programs_->mutex);
+  std::map<std::string, cl::Program> &programs = programs_->by_key;
+  auto it = programs.find(key);
+  if (it != programs.end())
     return it->second;
-  if (!predicates_checked_) { // before any other program: the check builds its own
-    predicates_checked_ = true;
+  if (!programs_->predicates_checked) { // before any other program: the check builds its own
+    programs_->predicates_checked = true;
     check_device_predicates(*this);
   }
   const std::string source = kernel_source(file);
@@ -525,7 +558,7 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
     try {
       cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
       program.build(std::vector<cl::Device>{device_}, options.c_str());
-      return programs_.emplace(key, program).first->second;
+      return programs.insert_or_assign(key, program).first->second;
     } catch (const cl::Error &) {
       // A binary the driver no longer takes (CL_INVALID_BINARY, a failed
       // build): built again from the source, and its entry replaced below.
@@ -549,7 +582,7 @@ cl::Program &Device::program(const std::string &file, const std::string &phase) 
   } catch (const cl::Error &) {
     // No binary to keep: the next run builds from the source again.
   }
-  return programs_.emplace(key, program).first->second;
+  return programs.insert_or_assign(key, program).first->second;
 }
 
 cl::Kernel Device::kernel(const std::string &file, const std::string &name,
@@ -640,6 +673,12 @@ Profile &profile_totals() {
   return totals;
 }
 
+// Streams (open_stream) count from several threads.
+std::mutex &profile_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 } // namespace
 
 ProfiledCall::ProfiledCall(const char *cause) : cause_(cause) {
@@ -650,6 +689,7 @@ ProfiledCall::ProfiledCall(const char *cause) : cause_(cause) {
 ProfiledCall::~ProfiledCall() {
   if (!profile)
     return;
+  const std::lock_guard<std::mutex> lock(profile_mutex());
   ProfileTotal &total = profile_totals().calls[cause_];
   total.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   ++total.launches;
@@ -670,6 +710,7 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
     throw OpenCLError(error.err(), "launching", phase, kernel.getInfo<CL_KERNEL_FUNCTION_NAME>());
   }
   if (profile) {
+    const std::lock_guard<std::mutex> lock(profile_mutex());
     ProfileTotal &total = profile_totals().kernels[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
     total.seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,24 @@ DevicePaths device_paths_from_environment();
 
 class MappingPool; // small mappings kept for reuse (opencl_context.cpp)
 
+// The programs built for one context, shared by the Devices on it (its
+// streams): each program is built once, whichever stream asks first.
+struct BuiltPrograms {
+  std::recursive_mutex mutex; // the predicate check builds within a build
+  std::map<std::string, cl::Program> by_key;
+  bool predicates_checked = false; // check_device_predicates() has run
+};
+
 class Device {
 public:
   // paths: by default from CLMESH_DEVICE_PATHS (open_device() takes that).
   Device(cl::Device device, DeviceDescription description,
          DevicePaths paths = device_paths_from_environment());
+  // A stream of `device` (open_stream()): its own command queue on the same
+  // context, sharing its built programs and settings; its own kernels, fill
+  // kernel and kept mappings, so that each is used by one thread.
+  struct Stream {};
+  Device(Stream, Device &device);
 
   const DeviceDescription &description() const { return description_; }
   cl::Context &context() { return context_; }
@@ -125,13 +139,12 @@ private:
   cl::CommandQueue queue_;
   std::size_t work_group_ = 64;
   std::size_t default_work_group_ = 64;
-  std::map<std::string, cl::Program> programs_;
+  std::shared_ptr<BuiltPrograms> programs_;
   cl::Kernel fill_words_;      // created on the first fill
   std::string build_identity_; // platform, device and driver, for the program cache
   bool cpu_paths_ = false;
-  bool predicates_checked_ = false; // check_device_predicates() has run
-  bool can_prefetch_ = false;       // a CPU device of PoCL's (cl/prefetch.h)
-  bool prefetching_ = true;         // programs made now prefetch (when they can)
+  bool can_prefetch_ = false; // a CPU device of PoCL's (cl/prefetch.h)
+  bool prefetching_ = true;   // programs made now prefetch (when they can)
   std::string build_options_ = "-cl-std=CL1.2";
   std::shared_ptr<MappingPool> mapping_pool_;
 };

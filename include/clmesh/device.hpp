@@ -26,6 +26,14 @@ class Device;
 // device in list order) or a case-insensitive substring of "platform device".
 // Throws DeviceError when nothing matches or the device lacks cl_khr_fp64.
 std::shared_ptr<Device> open_device(const std::string &spec = "");
+// A stream of an open device: a second command queue on its context,
+// sharing its built programs. Two threads may mesh at once, each on a stream
+// of its own (a Device is used by one thread at a time); on a GPU their
+// launches then overlap, as those of two processes (two contexts, which the
+// GPU takes in turns) do not. Throws DeviceError for PoCL's in-thread
+// driver ('basic'), whose kernels run on the waiting thread: its cache of
+// loaded kernels is not safe for two threads at once.
+std::shared_ptr<Device> open_stream(Device &device);
 // The device open_device(spec) opens, without opening it. Throws DeviceError
 // as open_device() does.
 DeviceDescription find_device(const std::string &spec = "");

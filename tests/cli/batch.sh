@@ -286,6 +286,22 @@ cpus=$(nproc)
 CLMESH_DEVICE_PATHS=cpu run -V -en -q30 --batch list.txt
 [[ "$(tail -n 1 stdout.txt)" == "clmesh: 7 inputs meshed by $cpus worker process"* ]] ||
   fail "a CPU's default workers ($cpus expected): $(tail -n 1 stdout.txt)"
+# --streams: a worker meshing several inputs at once, each on a thread and a
+# command queue of its own, writes the files and prints the messages of one
+# worker meshing them in turn (but for the device named: on PoCL the streams
+# share its multi-threaded driver, the in-thread one being for one thread).
+for streams in "2 --jobs 1" "3 --jobs 2" "7"; do
+  name="streams.${streams%% *}"
+  fresh "$name"
+  printf '%s\n' "${all[@]}" > list.txt
+  # shellcheck disable=SC2086 # "N --jobs J": both options
+  run -en -q30 --streams $streams --batch list.txt
+  grep -v milliseconds stdout.txt | sed 's/ on pthread-/ on basic-/' > "$work/log/$name.out"
+  cmp -s "$work/log/jobs.1.out" "$work/log/$name.out" ||
+    fail "--streams $streams: other messages: $(diff "$work/log/jobs.1.out" "$work/log/$name.out" | head -5)"
+  rm list.txt stdout.txt stderr.txt
+  same_outputs "--streams $streams" "$work/jobs.1" "$work/$name"
+done
 if "$bin" --list-devices | grep -q '^0 .*Portable Computing Language'; then
   run -V spiral.node
   grep -q "on basic-" stdout.txt || fail "a small input did not get PoCL's in-thread device: $(grep GPU-DT stdout.txt)"
@@ -301,11 +317,18 @@ for jobs in 2 5; do
   run -e --jobs "$jobs" A.poly A.node spiral.node A.node A.poly
   same_outputs "same output names, --jobs $jobs" "$work/same.1" "$work/same.$jobs"
 done
+fresh same.streams
+cp dots.node A.node
+run -e --streams 4 A.poly A.node spiral.node A.node A.poly
+same_outputs "same output names, --streams 4" "$work/same.1" "$work/same.streams"
 # A device that fails fails the run once, whatever the workers.
 cd "$work/same.2"
 rm -f ./*.1.*
 expect "--device nosuch --jobs 2" 1 "nosuch" -- --device nosuch --jobs 2 spiral.node dots.node A.poly
 expect "--jobs 0" 2 "--jobs" -- --jobs 0 spiral.node dots.node
+expect "--streams 0" 2 "--streams" -- --streams 0 spiral.node dots.node
+expect "--streams 65" 2 "--streams" -- --streams 65 spiral.node dots.node
+expect "--pack with --streams 2" 2 "meshes in this process" -- -z --pack --streams 2 spiral.node dots.node
 # A worker that dies fails the input it held; the others are meshed. The
 # small inputs are done long before big.node (-q30 on 200,000 points): then
 # the only worker left holds it.

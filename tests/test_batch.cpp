@@ -239,7 +239,9 @@ TEST_CASE("batch: without a device, on the shared device of triangulate(input, o
   }
   CHECK(!input_error(results[1]).empty());
 
-  // The streaming form holds each input's device until done() returns.
+  // The streaming form holds each input's device until done() returns (on
+  // one stream: streams are the batch's own, the device stays free).
+  options.tuning.streams = 1;
   const std::shared_ptr<clmesh::SharedDevice> shared =
       clmesh::shared_device_for(inputs[0], options);
   REQUIRE(shared == clmesh::shared_device_for(inputs[2], options));
@@ -313,4 +315,61 @@ TEST_CASE("streams: threads meshing at once, each on a stream of one device, get
     CAPTURE(i);
     check_same_mesh(meshed[i], alone[i]);
   }
+}
+
+TEST_CASE("batch: on streams, inputs meshed at once come back in order, each mesh and error "
+          "that of its own call, packs between them") {
+  if (!test_support::device_takes_streams())
+    return; // PoCL's in-thread driver: one stream (the test above checks its refusal)
+  // Point sets that pack (plain Delaunay, with Packing::always) between
+  // inputs that do not (PSLGs), a bad one among the streamed ones.
+  clmesh::Input bad = square_with_hole();
+  bad.segments.push_back({0, 42, 0});
+  std::vector<clmesh::Input> inputs;
+  for (unsigned seed = 1; seed <= 5; ++seed)
+    inputs.push_back(points_input(fixtures::uniform(300 + 40 * seed, seed)));
+  inputs.push_back(square_with_hole());
+  inputs.push_back(points_input(fixtures::uniform(500, 9)));
+  inputs.push_back(bad);
+  for (unsigned seed = 11; seed <= 14; ++seed)
+    inputs.push_back(points_input(fixtures::gaussian(200 + 30 * seed, seed)));
+  for (const std::string switches : {"q30", "z"}) {
+    CAPTURE(switches);
+    clmesh::Options options = clmesh::parse_switches(switches);
+    options.tuning.streams = 3;
+    options.tuning.packing = clmesh::Packing::always;
+    std::vector<std::size_t> handed;
+    std::vector<clmesh::BatchResult> results(inputs.size());
+    clmesh::triangulate_many(
+        device(), inputs.size(), [&](std::size_t i) { return inputs[i]; }, options,
+        [&](std::size_t i, clmesh::BatchResult &&result) {
+          handed.push_back(i);
+          results[i] = std::move(result);
+        });
+    REQUIRE(handed.size() == inputs.size());
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      CAPTURE(i);
+      CHECK(handed[i] == i);
+      if (i == 7) {
+        CHECK(!results[i].ok());
+        CHECK(results[i].message.find("segment") != std::string::npos);
+        continue;
+      }
+      REQUIRE(results[i].ok());
+      check_same_mesh(results[i].mesh, clmesh::triangulate(device(), inputs[i], options));
+    }
+  }
+  // What done() throws ends the batch, with inputs still being meshed.
+  clmesh::Options options = clmesh::parse_switches("q30");
+  options.tuning.streams = 4;
+  std::size_t handed = 0;
+  CHECK_THROWS_AS(clmesh::triangulate_many(
+                      device(), inputs.size(), [&](std::size_t i) { return inputs[i]; }, options,
+                      [&](std::size_t i, clmesh::BatchResult &&) {
+                        ++handed;
+                        if (i == 2)
+                          throw std::runtime_error("enough");
+                      }),
+                  std::runtime_error);
+  CHECK(handed == 3);
 }

@@ -45,6 +45,17 @@ inline clmesh::Device &device() {
   return *opened;
 }
 
+// Whether device() takes streams (clmesh::open_stream): all but PoCL's
+// in-thread driver.
+inline bool device_takes_streams() {
+  try {
+    clmesh::open_stream(device());
+    return true;
+  } catch (const clmesh::DeviceError &) {
+    return false;
+  }
+}
+
 // The mesh of a point set (no segments) with `options`, on device().
 inline clmesh::Mesh triangulate_points(const std::vector<clmesh::Point> &points,
                                        const clmesh::Options &options = {}) {

@@ -2,9 +2,11 @@
 // error kept in its own result instead of ending the batch. Small point sets
 // meshed with plain Delaunay options go in packs, many meshes to one device
 // mesh and one run of the phases (triangulate_packed): the same meshes,
-// far fewer launches.
+// far fewer launches. On a GPU the other inputs are meshed several at once,
+// each on a stream of its own (stream_pool.hpp).
 #include "api/device_choice.hpp"
 #include "api/shared_device.hpp"
+#include "api/stream_pool.hpp"
 #include "api/triangulate_validated.hpp"
 #include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
@@ -13,6 +15,7 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <utility>
 
 namespace clmesh {
@@ -130,30 +133,69 @@ private:
   std::size_t points_ = 0;
 };
 
+// Where an input that does not pack is meshed: its device, the mutex that
+// holds it (null: the caller's device), and how many inputs that device
+// meshes at once (streams_on).
+struct Target {
+  Device *device = nullptr;
+  std::mutex *busy = nullptr;
+  std::size_t streams = 1;
+};
+
 // Inputs 0 .. count - 1 in order: input_of(i) gives input i (an Input or a
-// reference to one); those that pack go to `pack`, the others to
-// alone(input, held), which may hold its device in `held` until done()
-// returns; an error of input_of(i), of the validation or of alone()'s device
-// becomes the input's.
-template <class InputOf, class Alone>
-void mesh_in_order(std::size_t count, const InputOf &input_of, Pack &pack, const Done &done,
+// reference to one); those that pack go to the pack that `make_pack(done)`
+// makes; the others, on a device of several streams (target_of), to a
+// StreamPool, else to alone(input, device, busy, held), which may hold its
+// device in `held` until done() returns; an error of input_of(i), of the
+// validation or of the device becomes the input's. done() is called in
+// input order, on this thread.
+template <class InputOf, class MakePack, class TargetOf, class Alone>
+void mesh_in_order(std::size_t count, const InputOf &input_of, const Options &options,
+                   const Done &done, const MakePack &make_pack, const TargetOf &target_of,
                    const Alone &alone) {
+  const StreamPool::Attempt on_stream = [&](Device &device, const Input &input) {
+    return attempt(
+        device, [&]() -> const Input & { return input; }, options);
+  };
+  std::unique_ptr<StreamPool> pool; // the streamed inputs' results come first
+  auto drain = [&] {
+    if (pool)
+      pool->drain();
+  };
+  const Done in_order = [&](std::size_t i, BatchResult &&result) {
+    drain();
+    done(i, std::move(result));
+  };
+  Pack pack = make_pack(in_order);
   for (std::size_t i = 0; i < count; ++i) {
     BatchResult result;
     std::unique_lock<std::mutex> held;
+    std::optional<Input> streamed;
+    Target target;
     try {
       decltype(auto) given = input_of(i);
       if (pack.take(i, given))
         continue;
       pack.flush();
-      result = alone(given, held);
+      target = target_of(given);
+      if (target.streams > 1)
+        streamed = given;
+      else
+        result = alone(given, *target.device, target.busy, held);
     } catch (const std::exception &) {
       result = failure(); // before the pack's own errors come and go
       pack.flush();
     }
-    done(i, std::move(result)); // the device still held
+    if (streamed) { // what done() throws, there as here, ends the batch
+      if (!pool)
+        pool = std::make_unique<StreamPool>(target.streams, on_stream, done);
+      pool->submit(i, std::move(*streamed), *target.device, target.busy);
+      continue;
+    }
+    in_order(i, std::move(result)); // the device still held
   }
   pack.flush();
+  drain();
 }
 
 // mesh_in_order() with every input on `device`.
@@ -163,12 +205,17 @@ void mesh_on(Device &device, std::size_t count, const InputOf &input_of, const O
   const OnDevice on_device = [&](const Input &, const std::function<void(Device &)> &work) {
     work(device);
   };
-  Pack pack(options, done, on_device);
-  mesh_in_order(count, input_of, pack, done,
-                [&](const Input &given, std::unique_lock<std::mutex> &) {
-                  return attempt(
-                      device, [&]() -> const Input & { return given; }, options);
-                });
+  const std::size_t streams = streams_on(device, options);
+  mesh_in_order(
+      count, input_of, options, done,
+      [&](const Done &in_order) { return Pack(options, in_order, on_device); },
+      [&](const Input &) {
+        return Target{&device, nullptr, streams};
+      },
+      [&](const Input &given, Device &on, std::mutex *, std::unique_lock<std::mutex> &) {
+        return attempt(
+            on, [&]() -> const Input & { return given; }, options);
+      });
 }
 
 } // namespace
@@ -207,15 +254,19 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
     const std::lock_guard<std::mutex> held(shared->busy);
     work(*shared->device);
   };
-  Pack pack(options, done, on_device);
   // Input i's device is held until done() returns (the process keeps it).
-  mesh_in_order(count, input, pack, done,
-                [&](const Input &given, std::unique_lock<std::mutex> &held) {
-                  const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
-                  held = std::unique_lock<std::mutex>(shared->busy);
-                  return attempt(
-                      *shared->device, [&]() -> const Input & { return given; }, options);
-                });
+  mesh_in_order(
+      count, input, options, done,
+      [&](const Done &in_order) { return Pack(options, in_order, on_device); },
+      [&](const Input &given) {
+        const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
+        return Target{shared->device.get(), &shared->busy, streams_on(*shared->device, options)};
+      },
+      [&](const Input &given, Device &on, std::mutex *busy, std::unique_lock<std::mutex> &held) {
+        held = std::unique_lock<std::mutex>(*busy);
+        return attempt(
+            on, [&]() -> const Input & { return given; }, options);
+      });
 }
 
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs,

@@ -334,7 +334,7 @@ Device::Device(Stream, Device &device)
       cpu_paths_(device.cpu_paths_), can_prefetch_(device.can_prefetch_),
       prefetching_(device.prefetching_), build_options_(device.build_options_),
       mapping_pool_(std::make_shared<MappingPool>()) {
-  if (runs_on_calling_thread(description_))
+  if (!device.takes_streams())
     throw DeviceError("device '" + description_.device_name +
                       "' runs kernels on the calling thread, and PoCL's cache of loaded "
                       "kernels is not safe for two threads at once: no streams on it (its "
@@ -342,6 +342,8 @@ Device::Device(Stream, Device &device)
   guarded("setup", "creating a command queue",
           [&] { queue_ = cl::CommandQueue(context_, device_); });
 }
+
+bool Device::takes_streams() const { return !runs_on_calling_thread(description_); }
 
 std::shared_ptr<Device> open_stream(Device &device) {
   return std::make_shared<Device>(Device::Stream{}, device);

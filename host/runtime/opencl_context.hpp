@@ -122,6 +122,9 @@ public:
   // Whether this device takes the CPU paths (DevicePaths): true for a CPU
   // device unless CLMESH_DEVICE_PATHS or the constructor said otherwise.
   bool cpu_paths() const { return cpu_paths_; }
+  // Whether open_stream() takes this device: all but PoCL's in-thread
+  // driver, whose kernels run on the waiting thread.
+  bool takes_streams() const;
   // CL_DEVICE_MAX_MEM_ALLOC_SIZE, in bytes.
   std::size_t max_allocation() const;
   // CL_DEVICE_GLOBAL_MEM_SIZE, in bytes; for a device whose memory is the

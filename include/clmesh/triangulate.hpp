@@ -61,7 +61,8 @@ void triangulate_many(Device &device, std::size_t count,
                       const std::function<void(std::size_t, BatchResult &&)> &done);
 // Both forms on the device triangulate(input, options) would take for each
 // input: set up once per process, and held input by input (calls from other
-// threads may go between two inputs). Throw OptionError, then DeviceError
+// threads may go between two inputs), or on streams of it (Tuning::streams,
+// by default on a GPU), which are the batch's own. Throw OptionError, then DeviceError
 // when no device matches, before meshing anything.
 std::vector<BatchResult> triangulate_many(const std::vector<Input> &inputs, const Options &options);
 void triangulate_many(std::size_t count, const std::function<Input(std::size_t)> &input,

@@ -43,6 +43,12 @@ struct Tuning {
   static constexpr std::size_t kFanBelow = 1024;
   // Batches of small point sets (see Packing).
   Packing packing = Packing::automatic;
+  // triangulate_many: inputs that do not pack meshed at once, each on a
+  // thread and a stream of its own (open_stream); the meshes never depend
+  // on it. 0: on a device that takes the GPU paths, one per hardware thread
+  // (at least 4, at most 16), where the streams' launches overlap; else 1.
+  // PoCL's in-thread driver takes 1 whatever this says.
+  std::size_t streams = 0;
   // On PoCL's CPU devices, kernels prefetch (cl/prefetch.h) for meshes of
   // at least this many points (their capacity, Steiner points included):
   // a smaller mesh stays in the caches, where the prefetches only cost.

@@ -241,8 +241,13 @@ clmesh::Options options_of(const std::string &switches, const std::string &devic
   options.device = device;
   if (field)
     options.size_field = std::make_shared<const clmesh::SizeField>(*field);
-  if (!unsuitable.is_none())
+  if (!unsuitable.is_none()) {
     options.unsuitable = unsuitable_of(unsuitable);
+    // A batch's inputs one at a time (no streams on a GPU): the function
+    // then sees them in order, none after a failed one, and runs on the
+    // meshing thread (which refuses a nested triangulate()).
+    options.tuning.streams = 1;
+  }
   return options;
 }
 

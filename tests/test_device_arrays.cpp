@@ -253,6 +253,48 @@ TEST_CASE("device arrays: a covered array sets its value as far as it is used, a
   CHECK(std::all_of(got.begin() + 10, got.end(), [](cl_int v) { return v == -7; }));
 }
 
+TEST_CASE("device arrays: slab pieces never overlap, and a piece released serves again") {
+  Device &dev = device();
+  BufferSlabs slabs(dev.context(), 128, std::size_t{128} << 20);
+  // Sizes across the classes (about 50 MiB in all), each piece filled with
+  // its own number.
+  std::vector<std::size_t> sizes;
+  for (std::size_t k = 0; k < 300; ++k)
+    sizes.push_back(k % 9 == 0 ? BufferSlabs::kLargest : 4 * (1 + (k * 7919) % (16384 >> k % 7)));
+  std::vector<cl::Buffer> pieces(sizes.size());
+  auto take = [&](std::size_t k) {
+    pieces[k] = slabs.take(sizes[k]);
+    REQUIRE(pieces[k]());
+    dev.queue().enqueueFillBuffer(pieces[k], static_cast<cl_int>(k), 0, sizes[k]);
+  };
+  auto check = [&](std::size_t k) {
+    std::vector<cl_int> got(sizes[k] / 4);
+    dev.queue().enqueueReadBuffer(pieces[k], CL_TRUE, 0, sizes[k], got.data());
+    CHECK(
+        std::all_of(got.begin(), got.end(), [&](cl_int v) { return v == static_cast<cl_int>(k); }));
+  };
+  for (std::size_t k = 0; k < sizes.size(); ++k)
+    take(k);
+  for (std::size_t k = 0; k < sizes.size(); ++k)
+    check(k);
+  // Every other piece goes back and is taken again (from the free lists);
+  // the pieces kept still hold their numbers.
+  for (std::size_t k = 0; k < sizes.size(); k += 2)
+    pieces[k] = cl::Buffer();
+  dev.wait("test");
+  for (std::size_t k = 0; k < sizes.size(); k += 2)
+    take(k);
+  for (std::size_t k = 0; k < sizes.size(); ++k)
+    check(k);
+  // Beyond its bound the slabs give null buffers (the driver's then).
+  BufferSlabs one(dev.context(), 128, std::size_t{16} << 20);
+  std::vector<cl::Buffer> held;
+  for (int k = 0; k < 16; ++k)
+    held.push_back(one.take(BufferSlabs::kLargest));
+  CHECK(std::all_of(held.begin(), held.end(), [](const cl::Buffer &b) { return b() != nullptr; }));
+  CHECK(one.take(4)() == nullptr);
+}
+
 TEST_CASE("device memory: a CPU device counts no more than this process could hold") {
   Device &dev = device();
   const auto reported =

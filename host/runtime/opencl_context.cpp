@@ -314,6 +314,14 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
   default_work_group_ = work_group_;
+  if (!cpu_paths_) {
+    const auto align_bits = guarded("setup", "querying the device", [&] {
+      return device_.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>();
+    });
+    slab_alignment_ = align_bits / 8;
+    slab_bytes_ = std::min<std::size_t>(std::size_t{256} << 20, global_memory() / 16);
+    slabs_ = std::make_shared<BufferSlabs>(context_, slab_alignment_, slab_bytes_);
+  }
 }
 
 namespace {
@@ -341,6 +349,8 @@ Device::Device(Stream, Device &device)
                       "'pthread' device takes them)");
   guarded("setup", "creating a command queue",
           [&] { queue_ = cl::CommandQueue(context_, device_); });
+  if (device.slabs_)
+    slabs_ = std::make_shared<BufferSlabs>(context_, device.slab_alignment_, device.slab_bytes_);
 }
 
 bool Device::takes_streams() const { return !runs_on_calling_thread(description_); }
@@ -475,7 +485,11 @@ cl::Buffer Device::allocate(std::size_t bytes, bool huge_pages) {
       delete mapping; // then the driver's own memory
     }
   }
-  cl::Buffer buffer(context_, CL_MEM_READ_WRITE, bytes);
+  cl::Buffer buffer;
+  if (slabs_ && bytes <= BufferSlabs::kLargest)
+    buffer = slabs_->take(bytes);
+  if (!buffer())
+    buffer = cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
   // CLMESH_POISON_BUFFERS=B (a byte, 0-255; a check): every buffer from the
   // driver starts as bytes B, as a GPU's may hold anything. The meshes must
   // not change: no kernel reads what nothing wrote.
@@ -608,6 +622,11 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
       offset % pattern_size != 0 || bytes % pattern_size != 0)
     throw InternalError("a device fill takes whole elements of 4, 8 or 16 bytes, not " +
                         std::to_string(pattern_size));
+  if (std::getenv("DBGFILL")) {
+    FILE *f = std::fopen("/tmp/pp/fills.txt", "a");
+    std::fprintf(f, "FILL %s %zu %zu\n", phase.c_str(), bytes, offset);
+    std::fclose(f);
+  }
   if (!fill_words_())
     fill_words_ = kernel("fill.cl", "fill_words", phase);
   cl_uint4 words{};

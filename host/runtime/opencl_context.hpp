@@ -3,6 +3,7 @@
 
 #include "clmesh/device.hpp"
 #include "clmesh/errors.hpp"
+#include "runtime/buffer_slabs.hpp"
 #include "runtime/program_cache.hpp"
 
 #include <CL/opencl.hpp>
@@ -86,7 +87,8 @@ public:
   // random all along), one of 2 MiB or more is aligned to 2 MiB with
   // transparent huge pages asked for: the random accesses then miss the TLB
   // far less often. Lists and scratch arrays go without: used in part, a
-  // huge page would hold 2 MiB for the few entries written in it.
+  // huge page would hold 2 MiB for the few entries written in it. On the
+  // GPU paths one of at most 1 MiB is a piece of a slab (buffer_slabs.hpp).
   cl::Buffer allocate(std::size_t bytes, bool huge_pages = false);
   // Sets `bytes` bytes of `buffer` from byte `offset` on to copies of the
   // `pattern_size`-byte `pattern` (4, 8 or 16 bytes; offset and bytes whole
@@ -150,6 +152,10 @@ private:
   bool prefetching_ = true;   // programs made now prefetch (when they can)
   std::string build_options_ = "-cl-std=CL1.2";
   std::shared_ptr<MappingPool> mapping_pool_;
+  // The GPU paths' small buffers (null on the CPU paths): each stream has
+  // its own slabs, whose pieces only its queue uses.
+  std::shared_ptr<BufferSlabs> slabs_;
+  std::size_t slab_alignment_ = 0, slab_bytes_ = 0;
 };
 
 // Source text of a kernel file with its includes expanded.

@@ -25,28 +25,34 @@ DeviceMesh::DeviceMesh(Device &device, std::size_t input_points, std::size_t ext
 void DeviceMesh::grow(Device &device, std::size_t extra_points) {
   const std::size_t points_now = point_capacity + extra_points;
   const std::size_t triangles_now = 2 * points_now + 2;
-  points = points.grown(device, points_now, cl_double2{{0, 0}});
-  original_id = original_id.grown(device, points_now, 0);
-  tri_vertex = tri_vertex.grown(device, 3 * triangles_now, 0);
-  tri_neighbor = tri_neighbor.grown(device, 3 * triangles_now, 0);
-  // Past triangles_filled: set when used (fill_triangle_slots).
+  // Each array keeps its contents; past them its entries are written before
+  // they are read, as in a new mesh's arrays, and are not touched (so not
+  // resident on a CPU device) until then. Past triangles_filled and
+  // points_filled the marks, stamps, duplicates and constraint rows are set
+  // when used (fill_triangle_slots, fill_point_slots).
+  auto keep = [&](auto &array, std::size_t size) {
+    array = array.enlarged(device, size, array.size());
+  };
+  keep(points, points_now);
+  keep(original_id, points_now);
+  keep(tri_vertex, 3 * triangles_now);
+  keep(tri_neighbor, 3 * triangles_now);
   tri_mark = tri_mark.enlarged(device, triangles_now, triangles_filled);
   modified_stamp = modified_stamp.enlarged(device, triangles_now, triangles_filled);
-  children = children.grown(device, 3 * triangles_now, -1);
-  vertex_triangle = vertex_triangle.grown(device, points_now, 0);
-  // Past points_filled: set when used (fill_point_slots).
+  keep(children, 3 * triangles_now);
+  keep(vertex_triangle, points_now);
   duplicate_of = duplicate_of.enlarged(device, points_now, points_filled);
-  location = location.grown(device, points_now, 0);
-  location_edge = location_edge.grown(device, points_now, -1);
+  keep(location, points_now);
+  keep(location_edge, points_now);
   if (has_constraint_rows())
     constraint_start = constraint_start.enlarged(device, points_now + 1, points_filled + 1);
   if (has_regions)
-    tri_region = tri_region.grown(device, triangles_now, -1);
+    keep(tri_region, triangles_now);
   if (point_state.size() > 0) {
-    point_state = point_state.grown(device, points_now, 0);
-    insertion_radius2 = insertion_radius2.grown(device, points_now, 0.0);
-    point_priority = point_priority.grown(device, points_now, 0u);
-    point_segment = point_segment.grown(device, points_now, -1); // CLM_NO_SEGMENT
+    keep(point_state, points_now);
+    keep(insertion_radius2, points_now);
+    keep(point_priority, points_now);
+    keep(point_segment, points_now);
   }
   // Past the end of the old ranges there is room again: the free lists start over.
   free_triangles = FreeList{};

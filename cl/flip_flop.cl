@@ -272,15 +272,15 @@ __kernel void flipflop_propose(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int o
     exact_list[atomic_inc(exact_count)] = gid; // a worklist: its order reaches nothing
 }
 
-// The proposals of the triangles the filter left undecided.
+// The proposals of the triangles the filter left undecided, as many as
+// flipflop_propose counted (read here, not by the host: no round trip), each
+// work-item taking every get_global_size(0)-th.
 __kernel void flipflop_propose_exact(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
-                                     const int orthogonal_test, const int any_redundant,
-                                     const int n) {
-  const int k = get_global_id(0);
-  if (k >= n)
-    return;
-  propose_operation(exact_list[k], 1, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test,
-                    any_redundant);
+                                     const int orthogonal_test, const int any_redundant) {
+  const int n = *exact_count;
+  for (int k = get_global_id(0); k < n; k += get_global_size(0))
+    propose_operation(exact_list[k], 1, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test,
+                      any_redundant);
 }
 
 // Deletes p from its star (a small star, see small_star and removable). 3-1:

@@ -150,17 +150,19 @@ __kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *acti
     proposal[gid] = propose_flip(tri_neighbor, tri_mark, t, bits);
 }
 
-// Resolves the uncertain edges with the exact, perturbed in-circle test.
+// Resolves the uncertain edges with the exact, perturbed in-circle test: as
+// many as flip_check_fast counted (read here, not by the host: no round
+// trip), each work-item taking every get_global_size(0)-th.
 __kernel void flip_check_exact(CLM_TRIANGULATION_PARAMS, __global const int *exact_list,
                                __global const int *active, __global int *flags,
-                               __global int *proposal, const int n) {
-  const int gid = get_global_id(0);
-  if (gid >= n)
-    return;
-  const int index = exact_list[gid], t = active[index];
-  const int bits = resolve_uncertain(t, flags[index], points, tri_vertex, tri_neighbor);
-  flags[index] = bits;
-  proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits);
+                               __global int *proposal, __global const int *exact_count) {
+  const int n = *exact_count;
+  for (int k = get_global_id(0); k < n; k += get_global_size(0)) {
+    const int index = exact_list[k], t = active[index];
+    const int bits = resolve_uncertain(t, flags[index], points, tri_vertex, tri_neighbor);
+    flags[index] = bits;
+    proposal[index] = propose_flip(tri_neighbor, tri_mark, t, bits);
+  }
 }
 
 // 2-2 flip of the proposals that own both marks (apply_proposal).

@@ -33,7 +33,7 @@ void Flipping::mark_active(const DeviceArray<cl_int> &active, std::size_t n) {
   launch(device_, mark_active_, n, kPhase);
 }
 
-void Flipping::propose(std::size_t n, FlipCounts &counts) {
+void Flipping::propose(std::size_t n, cl_int *uncertain) {
   const auto items = static_cast<cl_int>(n);
   exact_count_.fill(device_, 0, 1);
   set_args_from(check_fast_, mesh_.bind_triangulation(check_fast_, 0), active_.buffer(),
@@ -41,14 +41,10 @@ void Flipping::propose(std::size_t n, FlipCounts &counts) {
                 flags_.buffer(), exact_list_.buffer(), exact_count_.buffer(), proposal_.buffer(),
                 items);
   launch(device_, check_fast_, n, kPhase);
-  const int uncertain = exact_count_.read(device_, 0);
-  if (uncertain > 0) {
-    counts.exact_checks += uncertain;
-    set_args_from(check_exact_, mesh_.bind_triangulation(check_exact_, 0), exact_list_.buffer(),
-                  active_.buffer(), flags_.buffer(), proposal_.buffer(),
-                  static_cast<cl_int>(uncertain));
-    launch(device_, check_exact_, static_cast<std::size_t>(uncertain), kPhase);
-  }
+  exact_count_.download_later(device_, uncertain, 1);
+  set_args_from(check_exact_, mesh_.bind_triangulation(check_exact_, 0), exact_list_.buffer(),
+                active_.buffer(), flags_.buffer(), proposal_.buffer(), exact_count_.buffer());
+  launch(device_, check_exact_, sharing_items(device_, n), kPhase);
 }
 
 bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts,
@@ -89,7 +85,8 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
     const auto items = static_cast<cl_int>(n);
     const auto pass_stamp = static_cast<cl_int>(stamp++);
     pass_counts_.fill(device_, 0, 2);
-    propose(n, counts);
+    cl_int uncertain = 0;
+    propose(n, &uncertain);
     set_args_from(apply_, mesh_.bind_triangulation(apply_, 0), active_.buffer(), proposal_.buffer(),
                   flags_.buffer(), pass_counts_.buffer(), pass_stamp, items);
     launch(device_, apply_, n, kPhase);
@@ -99,6 +96,7 @@ bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp,
                   pass_counts_.buffer(), items);
     launch(device_, relink_and_collect_, n, kPhase);
     const std::vector<cl_int> pass_counts = pass_counts_.download(device_, 2);
+    counts.exact_checks += uncertain;
     ++round_;
     counts.flips += pass_counts[0];
     ++counts.passes;

@@ -37,8 +37,9 @@ private:
   // flags_[k] bit i set when edge i of triangle active_[k] (n entries,
   // marked for round_) is not locally Delaunay: the filter, then the exact
   // predicate on the uncertain ones; each triangle proposes its first
-  // flippable edge (proposal_, marks in tri_mark).
-  void propose(std::size_t n, FlipCounts &counts);
+  // flippable edge (proposal_, marks in tri_mark). *uncertain gets how many
+  // went to the exact predicate once the queue has run this far.
+  void propose(std::size_t n, cl_int *uncertain);
 
   Device &device_;
   DeviceMesh &mesh_;

@@ -180,7 +180,8 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
                                                FlipFlopCounts &counts) {
   const auto items = static_cast<cl_int>(n);
   marked_count_.fill(device_, 0, 1);
-  counts.exact_checks += propose(items, any_redundant);
+  cl_int uncertain = 0;
+  propose(items, any_redundant, &uncertain);
   // The proposals have marked every point they mark: the count is read with
   // the scan's total below (the queue runs in order).
   cl_int marked = 0;
@@ -195,6 +196,7 @@ FlipFlop::PassResult FlipFlop::pass_by_kernels(std::size_t n, cl_int any_redunda
   launch(device_, gather_next_, n, kPhase);
   rewritten.append(device_, next_active_, result.next); // the pass's results (and losers)
   result.marked = marked;
+  counts.exact_checks += uncertain;
   result.looked_for_stars = result.marked > 0 || redundant_left_;
   if (result.looked_for_stars)
     result.length = find_stars(stamp, result.next, &result.stars);
@@ -247,17 +249,16 @@ void FlipFlop::know_tracked(std::size_t m) {
 }
 
 // Every active triangle proposes its operation: the filter's kernel, then the
-// exact one for the triangles it could not decide. Returns how many those were.
-long FlipFlop::propose(cl_int items, cl_int any_redundant) {
+// exact one for the triangles it could not decide, which reads how many they
+// are itself. *uncertain gets that count once the queue has run this far
+// (after the next blocking transfer).
+void FlipFlop::propose(cl_int items, cl_int any_redundant, cl_int *uncertain) {
   exact_count_.fill(device_, 0, 1);
   bind(propose_, orthogonal_test_, any_redundant, items);
   launch(device_, propose_, static_cast<std::size_t>(items), kPhase);
-  const int uncertain = exact_count_.read(device_, 0);
-  if (uncertain > 0) {
-    bind(propose_exact_, orthogonal_test_, any_redundant, static_cast<cl_int>(uncertain));
-    launch(device_, propose_exact_, static_cast<std::size_t>(uncertain), kPhase);
-  }
-  return uncertain;
+  exact_count_.download_later(device_, uncertain, 1);
+  bind(propose_exact_, orthogonal_test_, any_redundant);
+  launch(device_, propose_exact_, sharing_items(device_, static_cast<std::size_t>(items)), kPhase);
 }
 
 // Marked points become redundant, and the stars of the redundant ones join the

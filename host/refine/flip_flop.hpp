@@ -105,7 +105,7 @@ private:
   std::size_t passes_in_group(std::size_t n, long &pass, int &stamp,
                               const DeviceArray<cl_int> &new_points, std::size_t m,
                               DeviceList<cl_int> &rewritten, FlipFlopCounts &counts);
-  long propose(cl_int items, cl_int any_redundant);
+  void propose(cl_int items, cl_int any_redundant, cl_int *uncertain);
   // Sets FlipFlop's buffers as CLM_FLIPFLOP_PARAMS (cl/flip_flop.cl) from
   // argument `first` on; returns the index after them.
   cl_uint bind_lists(cl::Kernel &kernel, cl_uint first) const;

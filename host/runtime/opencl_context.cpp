@@ -659,6 +659,10 @@ void Device::discard(const cl::Buffer &buffer, std::size_t offset, std::size_t b
   madvise(reinterpret_cast<void *>(first), last - first, MADV_DONTNEED);
 }
 
+std::size_t sharing_items(const Device &device, std::size_t most) {
+  return device.cpu_paths() ? std::min(most, 64 * device.compute_units()) : most;
+}
+
 void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::string &phase) {
   launch(device, kernel, items, phase, device.fitting_group(kernel, phase));
 }

@@ -140,7 +140,7 @@ def _failed(error, index):
 
 
 def triangulate_many(inputs, opts="", device=None, *, size_field=None, unsuitable=None,
-                     errors="raise"):
+                     errors="raise", streams=None):
     """The meshes of many dicts with the same switches, field and function:
     the list of what triangulate() returns for each, in order, meshed through
     the library's batch (the device set up once, the GIL released once).
@@ -154,9 +154,17 @@ def triangulate_many(inputs, opts="", device=None, *, size_field=None, unsuitabl
     position as its `index`; what `unsuitable` raises is the same object (a
     KeyboardInterrupt or other BaseException that is no Exception ends the
     batch at once, in both modes). Switches that are invalid, or a device
-    that cannot be opened, raise OptionError or DeviceError for the batch."""
+    that cannot be opened, raise OptionError or DeviceError for the batch.
+
+    streams: how many inputs are meshed at once, each on a thread and a
+    command queue of its own (None: several on a GPU, one elsewhere). The
+    meshes are the same whatever it is; with `unsuitable` it is one, and
+    PoCL's in-thread device takes one whatever it says."""
     if errors not in ("raise", "return"):
         raise OptionError(f"errors: expected 'raise' or 'return', got {errors!r}")
+    if streams is not None and (isinstance(streams, bool) or not isinstance(streams, int)
+                                or streams < 1):
+        raise OptionError(f"streams: expected a positive integer or None, got {streams!r}")
     if isinstance(inputs, dict):
         raise InputError("triangulate_many: expected a list of dicts, got a dict "
                          "(triangulate() meshes one)")
@@ -179,7 +187,8 @@ def triangulate_many(inputs, opts="", device=None, *, size_field=None, unsuitabl
             meshes[index] = failure
     outcomes = _clmesh.triangulate_many(converted, switches=switches,
                                         device=_device_spec(device), size_field=field,
-                                        unsuitable=unsuitable, stop_at_error=errors == "raise")
+                                        unsuitable=unsuitable, stop_at_error=errors == "raise",
+                                        streams=streams or 0)
     for index, outcome in zip(meshed, outcomes):
         if isinstance(outcome, BaseException):
             if not isinstance(outcome, Exception):

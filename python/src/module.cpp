@@ -328,14 +328,17 @@ bool ends_batch(const std::exception_ptr &error) {
 }
 
 // Every input meshed through the library's triangulate_many on the shared
-// device, in order, with the GIL released once: for each a Run, or the
-// exception object of its error. The list ends early, after the failed
+// device, in order, with the GIL released once (on `streams` streams, 0:
+// the library's default): for each a Run, or the exception object of its
+// error. The list ends early, after the failed
 // input, with stop_at_error and when an input's error ends the batch.
 nb::list triangulate_many(const std::vector<std::shared_ptr<clmesh::Input>> &inputs,
                           const std::string &switches, const std::string &device,
-                          const clmesh::SizeField *field, nb::handle unsuitable,
-                          bool stop_at_error) {
-  const clmesh::Options options = options_of(switches, device, field, unsuitable);
+                          const clmesh::SizeField *field, nb::handle unsuitable, bool stop_at_error,
+                          std::size_t streams) {
+  clmesh::Options options = options_of(switches, device, field, unsuitable);
+  if (streams > 0 && unsuitable.is_none())
+    options.tuning.streams = streams;
   struct Stop {};
   std::vector<clmesh::BatchResult> results;
   results.reserve(inputs.size());
@@ -606,7 +609,7 @@ NB_MODULE(_clmesh, m) {
         nb::arg("size_field").none() = nb::none(), nb::arg("unsuitable").none() = nb::none());
   m.def("triangulate_many", &triangulate_many, nb::arg("inputs"), nb::arg("switches"),
         nb::arg("device"), nb::arg("size_field").none(), nb::arg("unsuitable").none(),
-        nb::arg("stop_at_error"));
+        nb::arg("stop_at_error"), nb::arg("streams"));
   m.def("quality_statistics", &quality_of, nb::arg("vertices"), nb::arg("triangles"));
   m.def("read_files", &read_files, nb::arg("node"), nb::arg("poly"), nb::arg("ele"),
         nb::arg("area"));

@@ -225,3 +225,18 @@ def test_batches_and_calls_from_threads_give_the_serial_results():
         for mesh, single, expected in zip(many, singles, serial):
             assert same(mesh, expected)
             assert same(single.result(), expected)
+
+
+@pytest.mark.parametrize("switches", ["pq30", "q30ez"])
+def test_streams_give_the_results_of_a_loop(switches):
+    # PoCL's multi-threaded device takes streams (its in-thread one, which
+    # small inputs get by default, takes one).
+    device = "pthread" if any("pthread" in d["name"] for d in clmesh.devices()) else None
+    tris = (pslgs() if switches.startswith("p") else point_sets()) * 3
+    alone = [clmesh.triangulate(tri, switches, device) for tri in tris]
+    many = clmesh.triangulate_many(tris, switches, device, streams=3, errors="return")
+    assert len(many) == len(tris)
+    for mesh, expected in zip(many, alone):
+        assert same(mesh, expected)
+    with pytest.raises(clmesh.OptionError, match="streams"):
+        clmesh.triangulate_many(tris, switches, streams=0)

@@ -172,6 +172,7 @@ Mesh triangulate(Device &device, const Input &input, const Options &options) {
 }
 
 Mesh triangulate_validated(Device &device, const Input &input, const Options &options) {
+  const std::unique_lock<std::mutex> turn = device.take_turn();
   try {
     return mesh_of(device, input, options);
   } catch (const InputError &error) {
@@ -195,6 +196,7 @@ bool input_packs(const Input &input) { return packable(input.points, kPackedLarg
 
 std::vector<Mesh> triangulate_packed(Device &device, const std::vector<const Input *> &inputs,
                                      const Options &options) {
+  const std::unique_lock<std::mutex> turn = device.take_turn();
   std::vector<const std::vector<Point> *> sets;
   for (const Input *input : inputs)
     sets.push_back(&input->points);

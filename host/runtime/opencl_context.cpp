@@ -295,6 +295,8 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     // the ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
     can_prefetch_ =
         cpu_paths_ && platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language";
+    if (platform.getInfo<CL_PLATFORM_NAME>() == "Portable Computing Language")
+      turns_ = std::make_shared<std::mutex>();
     // The exact predicate stages stay out of line on a CPU device, inlined on
     // others (cl/predicates.h): a CPU's stack, a GPU's compiler.
     if ((device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0)
@@ -338,7 +340,7 @@ bool runs_on_calling_thread(const DeviceDescription &description) {
 Device::Device(Stream, Device &device)
     : device_(device.device_), description_(device.description_), context_(device.context_),
       work_group_(device.work_group_), default_work_group_(device.default_work_group_),
-      programs_(device.programs_), build_identity_(device.build_identity_),
+      programs_(device.programs_), turns_(device.turns_), build_identity_(device.build_identity_),
       cpu_paths_(device.cpu_paths_), can_prefetch_(device.can_prefetch_),
       prefetching_(device.prefetching_), build_options_(device.build_options_),
       mapping_pool_(std::make_shared<MappingPool>()) {

@@ -127,6 +127,14 @@ public:
   // Whether open_stream() takes this device: all but PoCL's in-thread
   // driver, whose kernels run on the waiting thread.
   bool takes_streams() const;
+  // Held while a mesh is made on this device or one of its streams, where
+  // the streams take turns: on PoCL, whose cache of loaded kernels is not
+  // safe for two threads submitting at once (PoCL 3.1 aborts in
+  // pocl_release_dlhandle_cache); elsewhere an empty lock (the streams
+  // overlap).
+  std::unique_lock<std::mutex> take_turn() const {
+    return turns_ ? std::unique_lock<std::mutex>(*turns_) : std::unique_lock<std::mutex>();
+  }
   // CL_DEVICE_MAX_MEM_ALLOC_SIZE, in bytes.
   std::size_t max_allocation() const;
   // CL_DEVICE_GLOBAL_MEM_SIZE, in bytes; for a device whose memory is the
@@ -145,8 +153,9 @@ private:
   std::size_t work_group_ = 64;
   std::size_t default_work_group_ = 64;
   std::shared_ptr<BuiltPrograms> programs_;
-  cl::Kernel fill_words_;      // created on the first fill
-  std::string build_identity_; // platform, device and driver, for the program cache
+  std::shared_ptr<std::mutex> turns_; // take_turn(): PoCL's devices only, shared with the streams
+  cl::Kernel fill_words_;             // created on the first fill
+  std::string build_identity_;        // platform, device and driver, for the program cache
   bool cpu_paths_ = false;
   bool can_prefetch_ = false; // a CPU device of PoCL's (cl/prefetch.h)
   bool prefetching_ = true;   // programs made now prefetch (when they can)

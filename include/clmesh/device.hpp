@@ -30,9 +30,10 @@ std::shared_ptr<Device> open_device(const std::string &spec = "");
 // sharing its built programs. Two threads may mesh at once, each on a stream
 // of its own (a Device is used by one thread at a time); on a GPU their
 // launches then overlap, as those of two processes (two contexts, which the
-// GPU takes in turns) do not. Throws DeviceError for PoCL's in-thread
-// driver ('basic'), whose kernels run on the waiting thread: its cache of
-// loaded kernels is not safe for two threads at once.
+// GPU takes in turns) do not. On PoCL the streams take turns, one mesh at
+// a time: its cache of loaded kernels is not safe for two threads
+// submitting at once. Throws DeviceError for PoCL's in-thread driver
+// ('basic'), whose kernels run on the waiting thread.
 std::shared_ptr<Device> open_stream(Device &device);
 // The device open_device(spec) opens, without opening it. Throws DeviceError
 // as open_device() does.

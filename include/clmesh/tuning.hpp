@@ -47,7 +47,8 @@ struct Tuning {
   // thread and a stream of its own (open_stream); the meshes never depend
   // on it. 0: on a device that takes the GPU paths, one per hardware thread
   // (at least 4, at most 16), where the streams' launches overlap; else 1.
-  // PoCL's in-thread driver takes 1 whatever this says.
+  // PoCL's in-thread driver takes 1 whatever this says, and on PoCL's other
+  // devices the streams take turns (its kernel cache is not thread-safe).
   std::size_t streams = 0;
   // On PoCL's CPU devices, kernels prefetch (cl/prefetch.h) for meshes of
   // at least this many points (their capacity, Steiner points included):

@@ -7,6 +7,7 @@
 // clmesh::triangulate(). Several inputs (files, --batch lists, --shard) are
 // meshed one after the other on one device, each as if meshed alone.
 #include "api/device_choice.hpp"
+#include "api/stream_pool.hpp"
 #include "api/triangulate_validated.hpp"
 #include "clmesh/clmesh.hpp"
 #include "clmesh/version.hpp"
@@ -107,7 +108,7 @@ struct CommandLine {
       return streams;
     if (!taken_in_turns || pack || !batch())
       return 1;
-    return std::clamp(allowed_cpus(), 4u, 16u);
+    return static_cast<unsigned>(clmesh::default_streams(allowed_cpus()));
   }
 };
 

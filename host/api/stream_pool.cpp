@@ -8,12 +8,25 @@
 
 namespace clmesh {
 
+BatchResult failure() {
+  BatchResult result;
+  result.error = std::current_exception();
+  try {
+    throw;
+  } catch (const std::exception &error) {
+    result.message = error.what();
+  }
+  return result;
+}
+
+std::size_t default_streams(std::size_t cpus) { return std::clamp<std::size_t>(cpus, 4, 16); }
+
 std::size_t streams_on(const Device &device, const Options &options) {
   if (options.tuning.streams > 0)
     return device.takes_streams() ? options.tuning.streams : 1;
   if (device.cpu_paths() || !device.takes_streams())
     return 1;
-  return std::clamp<std::size_t>(std::thread::hardware_concurrency(), 4, 16);
+  return default_streams(std::thread::hardware_concurrency());
 }
 
 // Results that may wait for an earlier input, a multiple of the streams:
@@ -58,11 +71,8 @@ void StreamPool::submit(std::size_t i, Input input, Device &device, std::mutex *
       if (busy)
         held = std::unique_lock<std::mutex>(*busy);
       stream = open_stream(device);
-    } catch (const std::exception &error) { // the input's error
-      BatchResult failed;
-      failed.error = std::current_exception();
-      failed.message = error.what();
-      finished_.emplace(i, std::move(failed));
+    } catch (const std::exception &) { // the input's error
+      finished_.emplace(i, failure());
       return;
     }
   }

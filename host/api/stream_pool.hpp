@@ -21,6 +21,14 @@
 
 namespace clmesh {
 
+// The result of the error being handled (a std::exception), as
+// triangulate_many reports an input's failure.
+BatchResult failure();
+
+// Streams for a GPU with `cpus` CPUs to drive them: one each, at least 4
+// (the launches of a few overlap even on few CPUs), at most 16.
+std::size_t default_streams(std::size_t cpus);
+
 // How many streams triangulate_many runs on `device`: Tuning::streams, or
 // by default, on a device that takes the GPU paths and streams, one per
 // hardware thread (at least 4, at most 16), else 1 (a CPU's cores are

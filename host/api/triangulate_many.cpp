@@ -22,18 +22,6 @@ namespace clmesh {
 
 namespace {
 
-// The result of the error being handled (a std::exception).
-BatchResult failure() {
-  BatchResult result;
-  result.error = std::current_exception();
-  try {
-    throw;
-  } catch (const std::exception &error) {
-    result.message = error.what();
-  }
-  return result;
-}
-
 // The mesh of the input `input_of()` gives, or the error that stopped it.
 template <class InputOf>
 BatchResult attempt(Device &device, const InputOf &input_of, const Options &options) {

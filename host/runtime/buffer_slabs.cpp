@@ -2,6 +2,8 @@
 #include "runtime/buffer_slabs.hpp"
 
 #include <algorithm>
+#include <mutex>
+#include <vector>
 
 namespace clmesh {
 

@@ -9,8 +9,6 @@
 
 #include <cstddef>
 #include <memory>
-#include <mutex>
-#include <vector>
 
 namespace clmesh {
 
@@ -26,9 +24,9 @@ public:
   // A read-write sub-buffer of `bytes` (1 to kLargest), or a null buffer
   // when the slabs are full (the caller then asks the driver). Its piece of
   // slab returns for the next buffer of its size class once the driver has
-  // deleted it (all its commands done).
-  // The pieces of one BufferSlabs are for one command queue: on PoCL,
-  // sub-buffers of one buffer used from two queues at once crash kernels.
+  // deleted it (all its commands done). The pieces of one BufferSlabs are
+  // for one command queue: on PoCL, sub-buffers of one buffer used from two
+  // queues at once crash kernels.
   cl::Buffer take(std::size_t bytes);
 
   struct State; // shared with the pieces' release callbacks

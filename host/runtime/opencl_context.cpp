@@ -624,11 +624,6 @@ void Device::fill(const cl::Buffer &buffer, const void *pattern, std::size_t pat
       offset % pattern_size != 0 || bytes % pattern_size != 0)
     throw InternalError("a device fill takes whole elements of 4, 8 or 16 bytes, not " +
                         std::to_string(pattern_size));
-  if (std::getenv("DBGFILL")) {
-    FILE *f = std::fopen("/tmp/pp/fills.txt", "a");
-    std::fprintf(f, "FILL %s %zu %zu\n", phase.c_str(), bytes, offset);
-    std::fclose(f);
-  }
   if (!fill_words_())
     fill_words_ = kernel("fill.cl", "fill_words", phase);
   cl_uint4 words{};

@@ -15,7 +15,8 @@
 # GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
 # "diagnosis meshes profile batch tests". batch times 200 small coastlines
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
-# GPU, meshing on several streams) against --streams 1, --streams 16,
+# GPU, meshing on several streams) against --streams 1 (in its worker, and with
+# --jobs 1 in the clmesh process), --streams 16,
 # --jobs 8 (and --pack for the point sets), the files of the default and of
 # --streams 1 compared, and the single-group kernels of small meshes at
 # work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
@@ -38,6 +39,10 @@ if [[ -n "$nvidia" ]] && ! grep -qs nvidia /etc/OpenCL/vendors/*.icd && [[ -w /e
   export LD_LIBRARY_PATH="$(dirname "$nvidia")${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 fi
 "$clmesh" --list-devices | tee "$out/devices.txt"
+# The machine's kernel and driver: a sandboxed kernel (gVisor) passes each
+# call into the GPU's driver through a proxy, which small meshes feel.
+{ uname -sr; nvidia-smi --query-gpu=name,driver_version --format=csv,noheader 2> /dev/null; } |
+  tee -a "$out/summary.txt"
 gpu="${CLMESH_GPU:-NVIDIA}"
 grep -qi "$gpu" "$out/devices.txt" || { echo "gpu-check.sh: no device matches '$gpu'" >&2; exit 1; }
 cpu=Portable
@@ -120,9 +125,11 @@ part meshes &&
 if part profile; then
   mkdir -p "$out/profile"
   cp "$root"/datasets/pslg/*.poly "$out/profile/"
+  start=$(date +%s.%N)
   (cd "$out/profile" && CLMESH_PROFILE=1 CLMESH_DEVICE="$gpu" timeout 300 "$clmesh" -Q -pq30 \
     --jobs 1 ./*.poly) > "$out/profile.txt" 2>&1
-  echo "profile of $(ls "$root"/datasets/pslg/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt):" |
+  echo "profile of $(ls "$root"/datasets/pslg/*.poly | wc -l) PSLGs -pq30 on '$gpu' (profile.txt)," \
+    "$(awk "BEGIN { printf \"%.2f\", $(date +%s.%N) - $start }") s with every launch waited for:" |
     tee -a "$out/summary.txt"
   grep "^host:" "$out/profile.txt" | tee -a "$out/summary.txt"
 fi
@@ -153,7 +160,7 @@ if part batch; then
       line="batch of 200 $kind $switches on '$gpu':"
       packs=""
       [[ $kind == points ]] && packs="--pack"
-      for jobs in "" "--streams 1" "--streams 16" "--jobs 8" $packs; do
+      for jobs in "" "--streams 1" "--jobs 1 --streams 1" "--streams 16" "--jobs 8" $packs; do
         # shellcheck disable=SC2086  # $jobs is one option and its value, or none
         line+=" ${jobs:-default workers} $(CLMESH_DEVICE="$gpu" seconds "$clmesh" $switches $jobs --batch list.txt) s;"
         [[ -z $jobs ]] && cat ./*.1.* | md5sum > streams.md5

@@ -15,11 +15,11 @@
 # GPU_CHECK_PARTS picks the parts, in this order (default: all of them):
 # "diagnosis meshes profile batch tests". batch times 200 small coastlines
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
-# GPU, meshing on several streams) against --streams 1 (in its worker, and with
-# --jobs 1 in the clmesh process), --streams 16,
-# --jobs 8 (and --pack for the point sets), the files of the default and of
-# --streams 1 compared, and the single-group kernels of small meshes at
-# work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
+# GPU, meshing on several streams) against --streams 1 (in its worker, and
+# with --jobs 1 in the clmesh process), --streams 16, --jobs 8 (and --pack
+# for the point sets), the files of the default and of --streams 1 compared,
+# without slabs (CLMESH_SLABS=off), and the single-group kernels of small
+# meshes at work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
 # the native Triangle once per file when tools/build-triangle.sh's binary is
 # at BUILD_DIR/triangle-native.
 set -uo pipefail
@@ -169,6 +169,7 @@ if part batch; then
             line+=" (OTHER FILES than the default's)"
         fi
       done
+      line+=" CLMESH_SLABS=off $(CLMESH_DEVICE="$gpu" CLMESH_SLABS=off seconds "$clmesh" $switches --batch list.txt) s;"
       for group in 128 256; do
         line+=" CLMESH_WORK_GROUP=$group $(CLMESH_DEVICE="$gpu" CLMESH_WORK_GROUP=$group seconds "$clmesh" $switches --batch list.txt) s;"
       done

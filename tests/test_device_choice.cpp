@@ -64,3 +64,60 @@ TEST_CASE("device choice: on PoCL, small inputs on the in-thread device, the sam
     check_same_mesh(shared, clmesh::triangulate(*large, input, options));
   }
 }
+
+namespace {
+
+clmesh::DeviceDescription described(int platform, int device, const std::string &platform_name,
+                                    const std::string &device_name, bool is_cpu) {
+  clmesh::DeviceDescription description;
+  description.platform_index = platform;
+  description.device_index = device;
+  description.platform_name = platform_name;
+  description.device_name = device_name;
+  description.has_fp64 = true;
+  description.is_cpu = is_cpu;
+  return description;
+}
+
+} // namespace
+
+TEST_CASE("device choice: which devices serve small and large inputs, by the devices found") {
+  const std::string pocl = "Portable Computing Language";
+  const auto gpu = described(0, 0, "NVIDIA CUDA", "NVIDIA H200", false);
+  // PoCL up to 4 names its devices by driver, later ones "cpu-minimal" and "cpu".
+  for (const auto &[in_thread, threaded] :
+       {std::pair<std::string, std::string>{"basic-x86", "pthread-x86"},
+        std::pair<std::string, std::string>{"cpu-minimal-x86", "cpu-x86"}}) {
+    CAPTURE(in_thread);
+    const auto minimal = described(1, 1, pocl, in_thread, true);
+    const auto multi = described(1, 0, pocl, threaded, true);
+    SUBCASE("PoCL first: its in-thread device, then its multi-threaded one") {
+      const clmesh::DeviceSpecs specs = clmesh::choose_devices({multi, minimal}, multi, "");
+      CHECK(specs.small_inputs == "1:1");
+      CHECK(specs.large_inputs == "1:0");
+    }
+    SUBCASE("a GPU first: PoCL's in-thread device for small inputs, the GPU for large ones") {
+      const clmesh::DeviceSpecs specs = clmesh::choose_devices({gpu, multi, minimal}, gpu, "");
+      CHECK(specs.small_inputs == "1:1");
+      CHECK(specs.large_inputs == "");
+    }
+    SUBCASE("PoCL without its in-thread device: the default device for all") {
+      for (const auto &first : {multi, gpu}) {
+        const clmesh::DeviceSpecs specs = clmesh::choose_devices({gpu, multi}, first, "");
+        CHECK(specs.small_inputs == "");
+        CHECK(specs.large_inputs == "");
+      }
+    }
+  }
+  SUBCASE("a GPU alone, or another CPU platform first: the default device for all") {
+    const auto minimal = described(2, 0, pocl, "cpu-minimal-x86", true);
+    const auto other_cpu = described(1, 0, "Intel(R) OpenCL", "Intel(R) Xeon(R)", true);
+    for (const auto &[devices, first] :
+         {std::pair<std::vector<clmesh::DeviceDescription>, clmesh::DeviceDescription>{{gpu}, gpu},
+          {{other_cpu, minimal}, other_cpu}}) {
+      const clmesh::DeviceSpecs specs = clmesh::choose_devices(devices, first, "");
+      CHECK(specs.small_inputs == "");
+      CHECK(specs.large_inputs == "");
+    }
+  }
+}

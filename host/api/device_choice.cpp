@@ -13,6 +13,7 @@ namespace clmesh {
 namespace {
 
 constexpr const char *kPoclDrivers = "pthread basic";
+constexpr const char *kPocl = "Portable Computing Language";
 
 bool device_chosen(const std::string &spec) {
   const char *chosen = std::getenv("CLMESH_DEVICE");
@@ -47,25 +48,40 @@ void offer_pocl_drivers(const std::string &spec) {
     ::setenv("POCL_DEVICES", kPoclDrivers, 0);
 }
 
+DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
+                           const DeviceDescription &chosen, const std::string &spec) {
+  // PoCL's CPU drivers by their devices' names: "basic" and "pthread" up to
+  // PoCL 4, "cpu-minimal" and "cpu" since.
+  std::string in_thread, multi_threaded;
+  for (const DeviceDescription &device : devices) {
+    if (device.platform_name != kPocl || !device.is_cpu || !device.has_fp64)
+      continue;
+    const bool minimal =
+        starts_with(device.device_name, "basic") || starts_with(device.device_name, "cpu-minimal");
+    const bool threaded = !minimal && (starts_with(device.device_name, "pthread") ||
+                                       starts_with(device.device_name, "cpu"));
+    if (minimal && in_thread.empty())
+      in_thread = platform_and_device(device);
+    else if (threaded && multi_threaded.empty())
+      multi_threaded = platform_and_device(device);
+  }
+  if (chosen.platform_name == kPocl) {
+    if (in_thread.empty() || multi_threaded.empty())
+      return {spec, spec}; // OpenCL started before the request
+    return {in_thread, multi_threaded};
+  }
+  // A GPU first: small inputs on the CPU's in-thread device, whose kernels
+  // run without a round trip to the GPU's driver each.
+  if (!chosen.is_cpu && !in_thread.empty())
+    return {in_thread, spec};
+  return {spec, spec}; // another CPU platform first: it serves every input
+}
+
 DeviceSpecs device_specs(const std::string &spec) {
   const char *drivers = std::getenv("POCL_DEVICES");
   if (device_chosen(spec) || !drivers || std::strcmp(drivers, kPoclDrivers) != 0)
     return {spec, spec};
-  const DeviceDescription chosen = find_device(spec);
-  if (chosen.platform_name != "Portable Computing Language")
-    return {spec, spec}; // a GPU (or another CPU platform) comes first: it serves every input
-  std::string in_thread, multi_threaded;
-  for (const DeviceDescription &device : list_devices()) {
-    if (device.platform_index != chosen.platform_index || !device.has_fp64)
-      continue;
-    if (starts_with(device.device_name, "basic") && in_thread.empty())
-      in_thread = platform_and_device(device);
-    else if (starts_with(device.device_name, "pthread") && multi_threaded.empty())
-      multi_threaded = platform_and_device(device);
-  }
-  if (in_thread.empty() || multi_threaded.empty())
-    return {spec, spec}; // OpenCL started before the request
-  return {in_thread, multi_threaded};
+  return choose_devices(list_devices(), find_device(spec), spec);
 }
 
 bool device_taken_in_turns(const std::string &spec) {
@@ -77,7 +93,8 @@ bool device_taken_in_turns(const std::string &spec) {
   case DevicePaths::by_type:
     break;
   }
-  return !find_device(spec).is_cpu;
+  // Small inputs on a CPU (choose_devices) take the CPU's workers.
+  return !find_device(device_specs(spec).small_inputs).is_cpu;
 }
 
 } // namespace clmesh

@@ -7,7 +7,10 @@
 
 namespace cli {
 
-DevicePool::DevicePool(const std::string &spec) : spec_(spec) { clmesh::offer_pocl_drivers(spec_); }
+DevicePool::DevicePool(const std::string &spec, clmesh::Meshing meshing)
+    : spec_(spec), meshing_(meshing) {
+  clmesh::offer_pocl_drivers(spec_);
+}
 
 void DevicePool::check() const { clmesh::find_device(spec_); }
 
@@ -15,7 +18,7 @@ DevicePool::Lease DevicePool::lease(std::size_t size, unsigned stream) {
   const std::lock_guard<std::recursive_mutex> lock(mutex_);
   const auto start = std::chrono::steady_clock::now();
   if (!resolved_) {
-    const clmesh::DeviceSpecs specs = clmesh::device_specs(spec_);
+    const clmesh::DeviceSpecs specs = clmesh::device_specs(spec_, meshing_);
     small_spec_ = specs.small_inputs;
     large_spec_ = specs.large_inputs;
     resolved_ = true;

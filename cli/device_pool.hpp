@@ -1,11 +1,13 @@
 // clmesh CLI — the devices a clmesh process meshes on: one for its small
 // inputs, one for its large ones, as the library chooses them when nothing
 // names a device (api/device_choice.hpp: on PoCL, its in-thread and
-// multi-threaded drivers); otherwise the chosen device serves every input.
+// multi-threaded drivers; in a batch with a GPU first, PoCL's in-thread
+// driver and the GPU); otherwise the chosen device serves every input.
 // Each stream (a thread meshing inputs at once with others) has a command
 // queue of its own on each device (clmesh::open_stream).
 #pragma once
 
+#include "api/device_choice.hpp"
 #include "clmesh/device.hpp"
 
 #include <cstddef>
@@ -19,8 +21,9 @@ namespace cli {
 
 class DevicePool {
 public:
-  // Call before any OpenCL call. spec: --device's value ("" for none).
-  explicit DevicePool(const std::string &spec);
+  // Call before any OpenCL call. spec: --device's value ("" for none);
+  // meshing: one input or a batch (clmesh::device_specs).
+  DevicePool(const std::string &spec, clmesh::Meshing meshing);
 
   // Throws DeviceError when the chosen device does not exist or lacks fp64;
   // opens nothing.
@@ -44,6 +47,7 @@ public:
 
 private:
   std::string spec_;
+  clmesh::Meshing meshing_;
   std::recursive_mutex mutex_;
   bool resolved_ = false;
   bool shared_between_threads_ = false;

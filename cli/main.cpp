@@ -1254,7 +1254,8 @@ int main(int argc, char **argv) {
     if (command.sources.empty())
       throw clmesh::OptionError("no input file given (try 'clmesh -h')");
     const unsigned workers = command.workers();
-    cli::DevicePool devices(command.options.device);
+    cli::DevicePool devices(command.options.device,
+                            command.batch() ? clmesh::Meshing::batch : clmesh::Meshing::one_input);
     if (command.batch())
       return run_batch(command, devices, workers);
     return mesh_input(command, job_for(command, command.sources[0].name), devices);

@@ -17,11 +17,12 @@
 # (-pq30) and 200 point sets of 2000 points: the default workers (one on a
 # GPU, meshing on several streams) against --streams 1 (in its worker, and
 # with --jobs 1 in the clmesh process), --streams 16, --jobs 8 (and --pack
-# for the point sets), the files of the default and of --streams 1 compared,
-# without slabs (CLMESH_SLABS=off), and the single-group kernels of small
-# meshes at work-groups of 64 (the default), 128 and 256 (CLMESH_WORK_GROUP), against
-# the native Triangle once per file when tools/build-triangle.sh's binary is
-# at BUILD_DIR/triangle-native.
+# for the point sets), the files of the default and of --streams 1 compared;
+# then with no device named (PoCL's CPU device takes them; the files
+# compared), without slabs (CLMESH_SLABS=off), and the single-group kernels
+# of small meshes at work-groups of 64 (the default), 128 and 256
+# (CLMESH_WORK_GROUP); against the native Triangle once per file when
+# tools/build-triangle.sh's binary is at BUILD_DIR/triangle-native.
 set -uo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="$(cd "${1:-$root/build}" && pwd)"
@@ -169,6 +170,9 @@ if part batch; then
             line+=" (OTHER FILES than the default's)"
         fi
       done
+      line+=" no device named (small inputs on PoCL's CPU device) $(env -u CLMESH_DEVICE seconds "$clmesh" $switches --batch list.txt) s"
+      cmp -s streams.md5 <(cat ./*.1.* | md5sum) && line+=" (the same files);" ||
+        line+=" (OTHER FILES than the default's);"
       line+=" CLMESH_SLABS=off $(CLMESH_DEVICE="$gpu" CLMESH_SLABS=off seconds "$clmesh" $switches --batch list.txt) s;"
       for group in 128 256; do
         line+=" CLMESH_WORK_GROUP=$group $(CLMESH_DEVICE="$gpu" CLMESH_WORK_GROUP=$group seconds "$clmesh" $switches --batch list.txt) s;"

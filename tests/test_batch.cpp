@@ -243,8 +243,8 @@ TEST_CASE("batch: without a device, on the shared device of triangulate(input, o
   // one stream: streams are the batch's own, the device stays free).
   options.tuning.streams = 1;
   const std::shared_ptr<clmesh::SharedDevice> shared =
-      clmesh::shared_device_for(inputs[0], options);
-  REQUIRE(shared == clmesh::shared_device_for(inputs[2], options));
+      clmesh::shared_device_for(inputs[0], options, clmesh::Meshing::batch);
+  REQUIRE(shared == clmesh::shared_device_for(inputs[2], options, clmesh::Meshing::batch));
   std::vector<bool> free_while_meshing;
   clmesh::triangulate_many(
       2, [&](std::size_t i) { return inputs[2 * i]; }, options, // the two good ones

@@ -27,9 +27,11 @@ TEST_CASE("device choice: an input's size counts points, segments, triangles and
 }
 
 TEST_CASE("device choice: a named device serves every input") {
-  const clmesh::DeviceSpecs specs = clmesh::device_specs("0");
-  CHECK(specs.small_inputs == "0");
-  CHECK(specs.large_inputs == "0");
+  for (const auto meshing : {clmesh::Meshing::one_input, clmesh::Meshing::batch}) {
+    const clmesh::DeviceSpecs specs = clmesh::device_specs("0", meshing);
+    CHECK(specs.small_inputs == "0");
+    CHECK(specs.large_inputs == "0");
+  }
 }
 
 // Its own process (each test case is its own CTest test): the request comes
@@ -37,7 +39,8 @@ TEST_CASE("device choice: a named device serves every input") {
 TEST_CASE("device choice: on PoCL, small inputs on the in-thread device, the same meshes") {
   const bool chosen = std::getenv("CLMESH_DEVICE") || std::getenv("POCL_DEVICES");
   clmesh::offer_pocl_drivers("");
-  const clmesh::DeviceSpecs specs = clmesh::device_specs("");
+  const clmesh::DeviceSpecs specs = clmesh::device_specs("", clmesh::Meshing::one_input);
+  CHECK(clmesh::device_specs("", clmesh::Meshing::batch).small_inputs == specs.small_inputs);
   const clmesh::DeviceDescription first = clmesh::find_device("");
   if (chosen || first.platform_name != "Portable Computing Language") {
     CHECK(specs.small_inputs == specs.large_inputs); // the default device serves all
@@ -82,6 +85,7 @@ clmesh::DeviceDescription described(int platform, int device, const std::string 
 } // namespace
 
 TEST_CASE("device choice: which devices serve small and large inputs, by the devices found") {
+  using clmesh::Meshing;
   const std::string pocl = "Portable Computing Language";
   const auto gpu = described(0, 0, "NVIDIA CUDA", "NVIDIA H200", false);
   // PoCL up to 4 names its devices by driver, later ones "cpu-minimal" and "cpu".
@@ -91,22 +95,28 @@ TEST_CASE("device choice: which devices serve small and large inputs, by the dev
     CAPTURE(in_thread);
     const auto minimal = described(1, 1, pocl, in_thread, true);
     const auto multi = described(1, 0, pocl, threaded, true);
-    SUBCASE("PoCL first: its in-thread device, then its multi-threaded one") {
-      const clmesh::DeviceSpecs specs = clmesh::choose_devices({multi, minimal}, multi, "");
-      CHECK(specs.small_inputs == "1:1");
-      CHECK(specs.large_inputs == "1:0");
-    }
-    SUBCASE("a GPU first: PoCL's in-thread device for small inputs, the GPU for large ones") {
-      const clmesh::DeviceSpecs specs = clmesh::choose_devices({gpu, multi, minimal}, gpu, "");
-      CHECK(specs.small_inputs == "1:1");
-      CHECK(specs.large_inputs == "");
-    }
-    SUBCASE("PoCL without its in-thread device: the default device for all") {
-      for (const auto &first : {multi, gpu}) {
-        const clmesh::DeviceSpecs specs = clmesh::choose_devices({gpu, multi}, first, "");
-        CHECK(specs.small_inputs == "");
-        CHECK(specs.large_inputs == "");
+    for (const Meshing meshing : {Meshing::one_input, Meshing::batch}) {
+      CAPTURE(static_cast<int>(meshing));
+      SUBCASE("PoCL first: its in-thread device, then its multi-threaded one") {
+        const auto specs = clmesh::choose_devices({multi, minimal}, multi, "", meshing);
+        CHECK(specs.small_inputs == "1:1");
+        CHECK(specs.large_inputs == "1:0");
       }
+      SUBCASE("PoCL without its in-thread device: the default device for all") {
+        for (const auto &first : {multi, gpu}) {
+          const auto specs = clmesh::choose_devices({gpu, multi}, first, "", meshing);
+          CHECK(specs.small_inputs == "");
+          CHECK(specs.large_inputs == "");
+        }
+      }
+    }
+    SUBCASE("a GPU first: in a batch PoCL's in-thread device for small inputs, else the GPU") {
+      const auto batch = clmesh::choose_devices({gpu, multi, minimal}, gpu, "", Meshing::batch);
+      CHECK(batch.small_inputs == "1:1");
+      CHECK(batch.large_inputs == "");
+      const auto alone = clmesh::choose_devices({gpu, multi, minimal}, gpu, "", Meshing::one_input);
+      CHECK(alone.small_inputs == "");
+      CHECK(alone.large_inputs == "");
     }
   }
   SUBCASE("a GPU alone, or another CPU platform first: the default device for all") {
@@ -115,7 +125,7 @@ TEST_CASE("device choice: which devices serve small and large inputs, by the dev
     for (const auto &[devices, first] :
          {std::pair<std::vector<clmesh::DeviceDescription>, clmesh::DeviceDescription>{{gpu}, gpu},
           {{other_cpu, minimal}, other_cpu}}) {
-      const clmesh::DeviceSpecs specs = clmesh::choose_devices(devices, first, "");
+      const auto specs = clmesh::choose_devices(devices, first, "", Meshing::batch);
       CHECK(specs.small_inputs == "");
       CHECK(specs.large_inputs == "");
     }

@@ -49,7 +49,8 @@ void offer_pocl_drivers(const std::string &spec) {
 }
 
 DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
-                           const DeviceDescription &chosen, const std::string &spec) {
+                           const DeviceDescription &chosen, const std::string &spec,
+                           Meshing meshing) {
   // PoCL's CPU drivers by their devices' names: "basic" and "pthread" up to
   // PoCL 4, "cpu-minimal" and "cpu" since.
   std::string in_thread, multi_threaded;
@@ -70,18 +71,18 @@ DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
       return {spec, spec}; // OpenCL started before the request
     return {in_thread, multi_threaded};
   }
-  // A GPU first: small inputs on the CPU's in-thread device, whose kernels
-  // run without a round trip to the GPU's driver each.
-  if (!chosen.is_cpu && !in_thread.empty())
+  // A GPU first, in a batch: small inputs on the CPU's in-thread device,
+  // whose kernels run without a round trip to the GPU's driver each.
+  if (meshing == Meshing::batch && !chosen.is_cpu && !in_thread.empty())
     return {in_thread, spec};
   return {spec, spec}; // another CPU platform first: it serves every input
 }
 
-DeviceSpecs device_specs(const std::string &spec) {
+DeviceSpecs device_specs(const std::string &spec, Meshing meshing) {
   const char *drivers = std::getenv("POCL_DEVICES");
   if (device_chosen(spec) || !drivers || std::strcmp(drivers, kPoclDrivers) != 0)
     return {spec, spec};
-  return choose_devices(list_devices(), find_device(spec), spec);
+  return choose_devices(list_devices(), find_device(spec), spec, meshing);
 }
 
 bool device_taken_in_turns(const std::string &spec) {
@@ -94,7 +95,7 @@ bool device_taken_in_turns(const std::string &spec) {
     break;
   }
   // Small inputs on a CPU (choose_devices) take the CPU's workers.
-  return !find_device(device_specs(spec).small_inputs).is_cpu;
+  return !find_device(device_specs(spec, Meshing::batch).small_inputs).is_cpu;
 }
 
 } // namespace clmesh

@@ -8,14 +8,17 @@
 // thread that launches them, so the hundreds of launches of a small mesh
 // cost no hand-offs to PoCL's threads (a 500-vertex coastline with -pq30
 // meshes about 5x faster). Larger inputs run on the multi-threaded device.
-// If a GPU gives the default device and PoCL is there too, small inputs run
-// on PoCL's in-thread device and larger ones on the GPU: a small mesh's
-// hundreds of launches and reads each cost a round trip to the GPU's driver
-// (on an H200, 2000 coastlines took 17 times the native Triangle's time),
-// while a batch's worker processes mesh small inputs on every CPU at once.
-// Every device gives the same mesh. Otherwise (another CPU platform first,
-// a device or POCL_DEVICES chosen, or OpenCL already started without the
-// request) the default device serves every input.
+// In a batch, if a GPU gives the default device and PoCL is there too, small
+// inputs run on PoCL's in-thread device and larger ones on the GPU: a small
+// mesh's hundreds of launches and reads each cost a round trip to the GPU's
+// driver (on an H200, 2000 coastlines took 17 times the native Triangle's
+// time), while a batch's worker processes mesh small inputs on every CPU at
+// once. An input meshed alone keeps the GPU: PoCL's in-thread device would
+// give it one core, and where that beats the GPU is not measured. Every
+// device gives the same mesh. Otherwise
+// (another CPU platform first, a device or POCL_DEVICES chosen, or OpenCL
+// already started without the request) the default device serves every
+// input.
 #pragma once
 
 #include "clmesh/device.hpp"
@@ -41,6 +44,9 @@ std::size_t input_size(const Input &input, const Options &options);
 // OpenCL call: afterwards it changes nothing.
 void offer_pocl_drivers(const std::string &spec);
 
+// What the devices are chosen for: one input at a time, or a batch of them.
+enum class Meshing { one_input, batch };
+
 // The specs (as open_device() takes them) of the devices for small and large
 // inputs: when `spec` is "", CLMESH_DEVICE is unset and POCL_DEVICES is
 // "pthread basic", choose_devices() over the devices found; else `spec` for
@@ -48,17 +54,19 @@ void offer_pocl_drivers(const std::string &spec);
 struct DeviceSpecs {
   std::string small_inputs, large_inputs;
 };
-DeviceSpecs device_specs(const std::string &spec);
+DeviceSpecs device_specs(const std::string &spec, Meshing meshing);
 
 // The choice itself, `chosen` being the default device among `devices`:
 // PoCL's in-thread and multi-threaded devices when PoCL gives the default
-// device; PoCL's in-thread device and `spec` when a device that is not a CPU
-// does; else `spec` for both (also when PoCL lacks one of its devices).
+// device; for a batch, PoCL's in-thread device and `spec` when a device that
+// is not a CPU does; else `spec` for both (also when PoCL lacks one of its
+// devices).
 DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
-                           const DeviceDescription &chosen, const std::string &spec);
+                           const DeviceDescription &chosen, const std::string &spec,
+                           Meshing meshing);
 
-// Whether processes would only take turns on the device small inputs get
-// (device_specs): any device but a CPU (a GPU runs one process's kernels at
+// Whether processes would only take turns on the device a batch's small
+// inputs get (device_specs): any device but a CPU (a GPU runs one process's kernels at
 // a time, switching between them), or any device with
 // CLMESH_DEVICE_PATHS=gpu. A batch on such a device is meshed by one worker
 // process (cli). Throws DeviceError as find_device().

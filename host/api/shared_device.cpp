@@ -28,16 +28,18 @@ std::shared_ptr<SharedDevice> shared_device(const std::string &spec) {
   return slot;
 }
 
-std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options) {
+std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options,
+                                                Meshing meshing) {
   static std::mutex mutex;
-  static std::map<std::string, DeviceSpecs> specs_of;
+  static std::map<std::pair<std::string, Meshing>, DeviceSpecs> specs_of;
   DeviceSpecs specs;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    auto found = specs_of.find(options.device);
+    const std::pair<std::string, Meshing> key{options.device, meshing};
+    auto found = specs_of.find(key);
     if (found == specs_of.end()) {
       offer_pocl_drivers(options.device);
-      found = specs_of.emplace(options.device, device_specs(options.device)).first;
+      found = specs_of.emplace(key, device_specs(options.device, meshing)).first;
     }
     specs = found->second;
   }

@@ -2,6 +2,7 @@
 // the first call that names it, and used by one call at a time.
 #pragma once
 
+#include "api/device_choice.hpp"
 #include "clmesh/device.hpp"
 #include "clmesh/input.hpp"
 #include "clmesh/options.hpp"
@@ -23,8 +24,9 @@ struct SharedDevice {
 std::shared_ptr<SharedDevice> shared_device(const std::string &spec);
 
 // The shared device for `input` meshed with `options`: of the devices
-// device_specs(options.device) gives, the one for its size
+// device_specs(options.device, meshing) gives, the one for its size
 // (device_choice.hpp). The process's first call asks PoCL for its drivers.
-std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options);
+std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Options &options,
+                                                Meshing meshing);
 
 } // namespace clmesh

@@ -311,7 +311,8 @@ Mesh triangulate(Device &device, const Input &input, const std::string &switches
 }
 
 Mesh triangulate(const Input &input, const Options &options) {
-  const std::shared_ptr<SharedDevice> shared = shared_device_for(input, options);
+  const std::shared_ptr<SharedDevice> shared =
+      shared_device_for(input, options, Meshing::one_input);
   std::lock_guard<std::mutex> lock(shared->busy);
   return triangulate(*shared->device, input, options);
 }

@@ -238,7 +238,7 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
   find_device(options.device);        // no such device: the batch's error
   // A pack runs on the device its first input would take, held meanwhile.
   const OnDevice on_device = [&](const Input &first, const std::function<void(Device &)> &work) {
-    const std::shared_ptr<SharedDevice> shared = shared_device_for(first, options);
+    const std::shared_ptr<SharedDevice> shared = shared_device_for(first, options, Meshing::batch);
     const std::lock_guard<std::mutex> held(shared->busy);
     work(*shared->device);
   };
@@ -247,7 +247,8 @@ void triangulate_many(std::size_t count, const std::function<Input(std::size_t)>
       count, input, options, done,
       [&](const Done &in_order) { return Pack(options, in_order, on_device); },
       [&](const Input &given) {
-        const std::shared_ptr<SharedDevice> shared = shared_device_for(given, options);
+        const std::shared_ptr<SharedDevice> shared =
+            shared_device_for(given, options, Meshing::batch);
         return Target{shared->device.get(), &shared->busy, streams_on(*shared->device, options)};
       },
       [&](const Input &given, Device &on, std::mutex *busy, std::unique_lock<std::mutex> &held) {

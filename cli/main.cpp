@@ -1183,11 +1183,14 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
     batch.follows = same_outputs(command, inputs);
     // Without --jobs, a device that processes take in turns (a GPU) gets
     // one worker: more would only wait for it, and switching between them
-    // costs (twice the time on an H100).
+    // costs (twice the time on an H100). The device is the small inputs'
+    // (a GPU machine's batch gives them to PoCL), or with --streams the one
+    // that then takes every input.
     batch.start = [&](unsigned slot) {
       try {
         devices.check();
-        if (slot > 0 && command.jobs == 0 && clmesh::device_taken_in_turns(command.options.device))
+        if (slot > 0 && command.jobs == 0 &&
+            clmesh::device_taken_in_turns(command.options.device, command.streams > 1))
           return cli::WorkerStart::retire;
         return cli::WorkerStart::mesh;
       } catch (...) {
@@ -1197,7 +1200,7 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
     };
     batch.streams = [&] {
       const unsigned streams =
-          command.streams_on(clmesh::device_taken_in_turns(command.options.device));
+          command.streams_on(clmesh::device_taken_in_turns(command.options.device, false));
       if (streams > 1)
         devices.share_between_threads();
       return streams;

@@ -85,7 +85,7 @@ DeviceSpecs device_specs(const std::string &spec, Meshing meshing) {
   return choose_devices(list_devices(), find_device(spec), spec, meshing);
 }
 
-bool device_taken_in_turns(const std::string &spec) {
+bool device_taken_in_turns(const std::string &spec, bool every_input_large) {
   switch (device_paths_from_environment()) {
   case DevicePaths::gpu:
     return true;
@@ -95,7 +95,8 @@ bool device_taken_in_turns(const std::string &spec) {
     break;
   }
   // Small inputs on a CPU (choose_devices) take the CPU's workers.
-  return !find_device(device_specs(spec, Meshing::batch).small_inputs).is_cpu;
+  const DeviceSpecs specs = device_specs(spec, Meshing::batch);
+  return !find_device(every_input_large ? specs.large_inputs : specs.small_inputs).is_cpu;
 }
 
 } // namespace clmesh

@@ -66,10 +66,12 @@ DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
                            Meshing meshing);
 
 // Whether processes would only take turns on the device a batch's small
-// inputs get (device_specs): any device but a CPU (a GPU runs one process's kernels at
-// a time, switching between them), or any device with
-// CLMESH_DEVICE_PATHS=gpu. A batch on such a device is meshed by one worker
-// process (cli). Throws DeviceError as find_device().
-bool device_taken_in_turns(const std::string &spec);
+// inputs get (device_specs), or with every_input_large (a batch on streams
+// puts every input on the large inputs' device) on that one: any device but
+// a CPU (a GPU runs one process's kernels at a time, switching between
+// them), or any device with CLMESH_DEVICE_PATHS=gpu. A batch on such a
+// device is meshed by one worker process (cli). Throws DeviceError as
+// find_device().
+bool device_taken_in_turns(const std::string &spec, bool every_input_large);
 
 } // namespace clmesh

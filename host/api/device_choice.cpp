@@ -75,7 +75,7 @@ DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
   // whose kernels run without a round trip to the GPU's driver each.
   if (meshing == Meshing::batch && !chosen.is_cpu && !in_thread.empty())
     return {in_thread, spec};
-  return {spec, spec}; // another CPU platform first: it serves every input
+  return {spec, spec}; // the default device serves every input
 }
 
 DeviceSpecs device_specs(const std::string &spec, Meshing meshing) {

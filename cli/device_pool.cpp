@@ -21,11 +21,11 @@ DevicePool::Lease DevicePool::lease(std::size_t size, unsigned stream) {
     const clmesh::DeviceSpecs specs = clmesh::device_specs(spec_, meshing_);
     small_spec_ = specs.small_inputs;
     large_spec_ = specs.large_inputs;
+    large_from_ = specs.large_from;
     resolved_ = true;
   }
   // One device for every input: no second copy of it.
-  const bool large =
-      (size >= clmesh::kLargeInput || shared_between_threads_) && large_spec_ != small_spec_;
+  const bool large = (size >= large_from_ || shared_between_threads_) && large_spec_ != small_spec_;
   std::shared_ptr<clmesh::Device> &device = devices_[{large, stream}];
   if (device)
     return {*device, 0};

@@ -52,6 +52,7 @@ private:
   bool resolved_ = false;
   bool shared_between_threads_ = false;
   std::string small_spec_, large_spec_;
+  std::size_t large_from_ = 0;
   // By (large, stream): stream 0 the device as opened, the others its streams.
   std::map<std::pair<bool, unsigned>, std::shared_ptr<clmesh::Device>> devices_;
 };

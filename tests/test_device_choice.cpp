@@ -101,6 +101,10 @@ TEST_CASE("device choice: which devices serve small and large inputs, by the dev
         const auto specs = clmesh::choose_devices({multi, minimal}, multi, "", meshing);
         CHECK(specs.small_inputs == "1:1");
         CHECK(specs.large_inputs == "1:0");
+        // A batch keeps every CPU busy with its workers: larger inputs stay
+        // on the in-thread device than for one input meshed alone.
+        CHECK(specs.large_from ==
+              (meshing == Meshing::batch ? clmesh::kLargeInBatch : clmesh::kLargeAlone));
       }
       SUBCASE("PoCL without its in-thread device: the default device for all") {
         for (const auto &first : {multi, gpu}) {
@@ -114,6 +118,7 @@ TEST_CASE("device choice: which devices serve small and large inputs, by the dev
       const auto batch = clmesh::choose_devices({gpu, multi, minimal}, gpu, "", Meshing::batch);
       CHECK(batch.small_inputs == "1:1");
       CHECK(batch.large_inputs == "");
+      CHECK(batch.large_from == clmesh::kLargeInBatch);
       const auto alone = clmesh::choose_devices({gpu, multi, minimal}, gpu, "", Meshing::one_input);
       CHECK(alone.small_inputs == "");
       CHECK(alone.large_inputs == "");

@@ -66,15 +66,16 @@ DeviceSpecs choose_devices(const std::vector<DeviceDescription> &devices,
     else if (threaded && multi_threaded.empty())
       multi_threaded = platform_and_device(device);
   }
+  const std::size_t large_from = meshing == Meshing::batch ? kLargeInBatch : kLargeAlone;
   if (chosen.platform_name == kPocl) {
     if (in_thread.empty() || multi_threaded.empty())
       return {spec, spec}; // OpenCL started before the request
-    return {in_thread, multi_threaded};
+    return {in_thread, multi_threaded, large_from};
   }
   // A GPU first, in a batch: small inputs on the CPU's in-thread device,
   // whose kernels run without a round trip to the GPU's driver each.
   if (meshing == Meshing::batch && !chosen.is_cpu && !in_thread.empty())
-    return {in_thread, spec};
+    return {in_thread, spec, large_from};
   return {spec, spec}; // the default device serves every input
 }
 

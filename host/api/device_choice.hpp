@@ -3,11 +3,15 @@
 // When nothing chose the device (no spec, neither CLMESH_DEVICE nor
 // POCL_DEVICES set), clmesh asks PoCL, before the process's first OpenCL
 // call, for its multi-threaded CPU driver ("pthread") and its in-thread
-// driver ("basic"). If PoCL then gives the default device, inputs smaller
-// than kLargeInput run on the in-thread device: the kernels run in the
-// thread that launches them, so the hundreds of launches of a small mesh
-// cost no hand-offs to PoCL's threads (a 500-vertex coastline with -pq30
-// meshes about 5x faster). Larger inputs run on the multi-threaded device.
+// driver ("basic"). If PoCL then gives the default device, small inputs
+// run on the in-thread device: the kernels run in the thread that launches
+// them, so the hundreds of launches of a small mesh cost no hand-offs to
+// PoCL's threads (a 500-vertex coastline with -pq30 meshes about 5x
+// faster). Larger inputs run on the multi-threaded device. In a batch, whose
+// worker processes keep every CPU busy, an input is small below
+// kLargeInBatch; meshed alone, below kLargeAlone, about where the
+// multi-threaded device overtakes on two CPUs (a coastline of 20,000
+// vertices, -pq30) and sooner on more.
 // In a batch, if a GPU gives the default device and PoCL is there too, small
 // inputs run on PoCL's in-thread device and larger ones on the GPU: a small
 // mesh's hundreds of launches and reads each cost a round trip to the GPU's
@@ -31,8 +35,8 @@
 
 namespace clmesh {
 
-// Inputs of at least this size run on the multi-threaded device.
-constexpr std::size_t kLargeInput = 100000;
+// Inputs of at least this size (input_size) run on the large inputs' device.
+constexpr std::size_t kLargeInBatch = 100000, kLargeAlone = 30000;
 
 // An input's size as the choice weighs it: points, segments and triangles,
 // and with -a about the points the area bound asks for (the bounding box's
@@ -53,6 +57,7 @@ enum class Meshing { one_input, batch };
 // both. Throws DeviceError as find_device().
 struct DeviceSpecs {
   std::string small_inputs, large_inputs;
+  std::size_t large_from = kLargeInBatch; // the size from which an input is large
 };
 DeviceSpecs device_specs(const std::string &spec, Meshing meshing);
 

@@ -311,6 +311,13 @@ done
 if "$bin" --list-devices | grep -q '^0 .*Portable Computing Language'; then
   run -V spiral.node
   grep -q "on basic-" stdout.txt || fail "a small input did not get PoCL's in-thread device: $(grep GPU-DT stdout.txt)"
+  # 33,343 points: PoCL's multi-threaded device when meshed alone, its
+  # in-thread one in a batch (whose workers keep the CPUs busy).
+  cp "$source_dir/datasets/greenland.node" .
+  run -V greenland.node
+  grep -q "on pthread-" stdout.txt || fail "greenland.node alone: $(grep GPU-DT stdout.txt)"
+  run -V greenland.node spiral.node
+  [[ "$(grep -c "on basic-" stdout.txt)" == 2 ]] || fail "greenland.node in a batch: $(grep GPU-DT stdout.txt)"
 fi
 # Inputs with the same output names: the later one's files are left, as when
 # meshed in turn, however many workers.

@@ -25,7 +25,7 @@ DevicePool::Lease DevicePool::lease(std::size_t size, unsigned stream) {
     resolved_ = true;
   }
   // One device for every input: no second copy of it.
-  const bool large = (size >= large_from_ || shared_between_threads_) && large_spec_ != small_spec_;
+  const bool large = (size >= large_from_ || every_input_large_) && large_spec_ != small_spec_;
   std::shared_ptr<clmesh::Device> &device = devices_[{large, stream}];
   if (device)
     return {*device, 0};

@@ -39,18 +39,20 @@ public:
   };
   Lease lease(std::size_t size, unsigned stream = 0);
 
-  // Before any lease: streams will lease at once, so every input takes the
-  // device for large inputs (PoCL's in-thread driver runs kernels on the
+  // Before any lease: every input takes the device for large inputs. For
+  // streams, which lease at once: PoCL's in-thread driver runs kernels on the
   // calling thread, and its cache of loaded kernels is not safe for two
-  // threads at once; elsewhere the two are one device).
-  void share_between_threads() { shared_between_threads_ = true; }
+  // threads at once. For packs: they are for the GPU that a batch's small
+  // inputs would otherwise leave (device_specs). Where nothing chose two
+  // devices, the two are one.
+  void take_every_input_as_large() { every_input_large_ = true; }
 
 private:
   std::string spec_;
   clmesh::Meshing meshing_;
   std::recursive_mutex mutex_;
   bool resolved_ = false;
-  bool shared_between_threads_ = false;
+  bool every_input_large_ = false;
   std::string small_spec_, large_spec_;
   std::size_t large_from_ = 0;
   // By (large, stream): stream 0 the device as opened, the others its streams.

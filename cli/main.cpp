@@ -1153,6 +1153,10 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
   std::size_t failed = 0;
   if (command.pack) {
     workers = 1; // this process
+    // Packs are for a GPU: on one the small inputs would leave (no device
+    // named), they take it too; a CPU's in-thread device keeps them.
+    if (!inputs.empty() && clmesh::device_taken_in_turns(command.options.device, true))
+      devices.take_every_input_as_large();
     if (!inputs.empty())
       devices.check(); // a device that fails fails the run, not an input
     std::size_t done = 0;
@@ -1202,7 +1206,7 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
       const unsigned streams =
           command.streams_on(clmesh::device_taken_in_turns(command.options.device, false));
       if (streams > 1)
-        devices.share_between_threads();
+        devices.take_every_input_as_large();
       return streams;
     };
     batch.mesh = [&](std::size_t i, unsigned stream) {

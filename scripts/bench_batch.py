@@ -13,9 +13,11 @@ in BUILD/bench/batch-*/:
 
 Timed, as wall time from start to exit of everything the batch needs:
   clmesh --batch   build/clmesh -Q SWITCHES --batch LIST: one run, its worker
-                   processes (--jobs, by default one a CPU, one on a GPU, where
-                   it meshes several inputs at once on streams) each setting
-                   the device, context and kernels up once
+                   processes (--jobs, by default one a CPU, with the small
+                   inputs on PoCL's in-thread device also where a GPU comes
+                   first; one with CLMESH_DEVICE naming a GPU, meshing several
+                   inputs at once on streams) each setting the device,
+                   context and kernels up once
   --jobs 1         the same with one worker meshing one input at a time
   --pack           the point sets in packs, in one process (clmesh --pack; meant
                    for GPUs: a CPU meshes small sets faster one by one)
@@ -224,8 +226,8 @@ def main():
                  "Wall time from start to exit of everything the batch needs, reading and "
                  "writing the files included, after one untimed run of clmesh and of "
                  "Triangle on the first input.  clmesh: one run of build/clmesh -Q SWITCHES "
-                 "--batch LIST with its default workers (one process a CPU, one on a GPU, there "
-                 "on several streams), and with --jobs 1 (one input at a time), and the point sets with --pack (packs of small meshes in "
+                 "--batch LIST with its default workers (one process a CPU; one on a GPU "
+                 "named, there on several streams), and with --jobs 1 (one input at a time), and the point sets with --pack (packs of small meshes in "
                  "one process, for GPUs).  Triangle x N: the native binary (-O3 -march=native, "
                  "build-triangle.sh) run once per file, one after the other.  Python loop: "
                  "triangle.triangulate (the PyPI wheel) on each file's arrays in one Python "

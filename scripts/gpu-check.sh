@@ -170,7 +170,7 @@ if part batch; then
             line+=" (OTHER FILES than the default's)"
         fi
       done
-      line+=" no device named (small inputs on PoCL's CPU device) $(env -u CLMESH_DEVICE seconds "$clmesh" $switches --batch list.txt) s"
+      line+=" no device named (small inputs on PoCL's CPU device) $(unset CLMESH_DEVICE; seconds "$clmesh" $switches --batch list.txt) s"
       cmp -s streams.md5 <(cat ./*.1.* | md5sum) && line+=" (the same files);" ||
         line+=" (OTHER FILES than the default's);"
       line+=" CLMESH_SLABS=off $(CLMESH_DEVICE="$gpu" CLMESH_SLABS=off seconds "$clmesh" $switches --batch list.txt) s;"

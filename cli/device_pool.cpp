@@ -18,19 +18,17 @@ DevicePool::Lease DevicePool::lease(std::size_t size, unsigned stream) {
   const std::lock_guard<std::recursive_mutex> lock(mutex_);
   const auto start = std::chrono::steady_clock::now();
   if (!resolved_) {
-    const clmesh::DeviceSpecs specs = clmesh::device_specs(spec_, meshing_);
-    small_spec_ = specs.small_inputs;
-    large_spec_ = specs.large_inputs;
-    large_from_ = specs.large_from;
+    specs_ = clmesh::device_specs(spec_, meshing_);
     resolved_ = true;
   }
   // One device for every input: no second copy of it.
-  const bool large = (size >= large_from_ || every_input_large_) && large_spec_ != small_spec_;
+  const bool large =
+      (specs_.large(size) || every_input_large_) && specs_.large_inputs != specs_.small_inputs;
   std::shared_ptr<clmesh::Device> &device = devices_[{large, stream}];
   if (device)
     return {*device, 0};
   if (stream == 0) {
-    device = clmesh::open_device(large ? large_spec_ : small_spec_);
+    device = clmesh::open_device(large ? specs_.large_inputs : specs_.small_inputs);
   } else {
     const Lease opened = lease(size, 0); // the mutex is recursive
     device = clmesh::open_stream(opened.device);

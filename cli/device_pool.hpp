@@ -53,8 +53,7 @@ private:
   std::recursive_mutex mutex_;
   bool resolved_ = false;
   bool every_input_large_ = false;
-  std::string small_spec_, large_spec_;
-  std::size_t large_from_ = 0;
+  clmesh::DeviceSpecs specs_; // resolved on the first lease
   // By (large, stream): stream 0 the device as opened, the others its streams.
   std::map<std::pair<bool, unsigned>, std::shared_ptr<clmesh::Device>> devices_;
 };

@@ -1154,12 +1154,13 @@ int run_batch(const CommandLine &command, cli::DevicePool &devices, unsigned wor
   std::size_t failed = 0;
   if (command.pack) {
     workers = 1; // this process
-    // Packs are for a GPU: on one the small inputs would leave (no device
-    // named), they take it too; a CPU's in-thread device keeps them.
-    if (!inputs.empty() && clmesh::device_taken_in_turns(command.options.device, true))
-      devices.take_every_input_as_large();
-    if (!inputs.empty())
+    if (!inputs.empty()) {
       devices.check(); // a device that fails fails the run, not an input
+      // Packs are for a GPU: on one the small inputs would leave (no device
+      // named), they take it too; a CPU's in-thread device keeps them.
+      if (clmesh::device_taken_in_turns(command.options.device, true))
+        devices.take_every_input_as_large();
+    }
     std::size_t done = 0;
     const std::function<void(int, const cli::Messages &)> report =
         [&](int status, const cli::Messages &messages) {

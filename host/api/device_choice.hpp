@@ -12,17 +12,18 @@
 // kLargeInBatch; meshed alone, below kLargeAlone, about where the
 // multi-threaded device overtakes on two CPUs (a coastline of 20,000
 // vertices, -pq30) and sooner on more.
+//
 // In a batch, if a GPU gives the default device and PoCL is there too, small
 // inputs run on PoCL's in-thread device and larger ones on the GPU: a small
 // mesh's hundreds of launches and reads each cost a round trip to the GPU's
 // driver (on an H200, 2000 coastlines took 17 times the native Triangle's
 // time), while a batch's worker processes mesh small inputs on every CPU at
 // once. An input meshed alone keeps the GPU: PoCL's in-thread device would
-// give it one core, and where that beats the GPU is not measured. Every
-// device gives the same mesh. Otherwise
-// (another CPU platform first, a device or POCL_DEVICES chosen, or OpenCL
-// already started without the request) the default device serves every
-// input.
+// give it one core, and where that beats the GPU is not measured.
+//
+// Every device gives the same mesh. Otherwise (another CPU platform first, a
+// device or POCL_DEVICES chosen, or OpenCL already started without the
+// request) the default device serves every input.
 #pragma once
 
 #include "clmesh/device.hpp"
@@ -58,6 +59,10 @@ enum class Meshing { one_input, batch };
 struct DeviceSpecs {
   std::string small_inputs, large_inputs;
   std::size_t large_from = kLargeInBatch; // the size from which an input is large
+  bool large(std::size_t size) const { return size >= large_from; }
+  const std::string &for_size(std::size_t size) const {
+    return large(size) ? large_inputs : small_inputs;
+  }
 };
 DeviceSpecs device_specs(const std::string &spec, Meshing meshing);
 

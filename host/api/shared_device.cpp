@@ -43,8 +43,7 @@ std::shared_ptr<SharedDevice> shared_device_for(const Input &input, const Option
     }
     specs = found->second;
   }
-  return shared_device(input_size(input, options) < specs.large_from ? specs.small_inputs
-                                                                     : specs.large_inputs);
+  return shared_device(specs.for_size(input_size(input, options)));
 }
 
 } // namespace clmesh

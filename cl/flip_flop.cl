@@ -268,6 +268,9 @@ __kernel void flipflop_propose(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int o
   operation[gid] = CLM_OP_NONE;
   prefetch_triangle_and_neighbours(active, gid, n, points, any_redundant ? point_state : 0,
                                    tri_vertex, tri_neighbor);
+  if (constrained)
+    prefetch_subsegment_tests(active, gid, n, point_segment, constraint_start, constraint_adjacent,
+                              tri_vertex);
   if (!propose_operation(gid, 0, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test, any_redundant))
     exact_list[atomic_inc(exact_count)] = gid; // a worklist: its order reaches nothing
 }

@@ -278,9 +278,13 @@ static inline bool splits_subsegment(CLM_MESH_PARAMS, __global const int *contai
   return subsegment_at(CLM_MESH_ARGS, container[k], split_edge[k]);
 }
 
-// Is edge i of real triangle t a subsegment or on the domain's boundary?
+// Is edge i of real triangle t a subsegment or on the domain's boundary? A
+// ghost lies across boundary edges only, whose ends are hull vertices: their
+// states, at hand, spare most edges the read of the triangle across.
 static inline bool bounds_domain(CLM_MESH_PARAMS, int t, int i) {
-  return is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i]))) ||
+  return (on_hull(point_state[tri_vertex[3 * t + next3(i)]]) &&
+          on_hull(point_state[tri_vertex[3 * t + prev3(i)]]) &&
+          is_ghost(load_vertices(tri_vertex, link_triangle(tri_neighbor[3 * t + i])))) ||
          subsegment_at(CLM_MESH_ARGS, t, i);
 }
 
@@ -517,9 +521,12 @@ static inline bool assessed_as_is(CLM_MESH_PARAMS, int t, int note, int stamp) {
 // Prefetching for find_bad_triangles over a list (prefetch.h): every entry
 // needs its stamp, notes and triangle; one carried from the last
 // search (below `carried`) that is as assessed needs its mark, the others
-// their corners.
+// their corners, and in a constrained mesh their segments (point_segment
+// and constraint_start, else 0).
 static inline void prefetch_search(__global const int *list, int gid, int n, int carried, int stamp,
                                    __global const double2 *points, __global const int *point_state,
+                                   __global const int *point_segment,
+                                   __global const int *constraint_start,
                                    __global const int *tri_vertex,
                                    __global const int *modified_stamp, __global const int *notes,
                                    volatile __global const uint *tri_mark) {
@@ -530,10 +537,13 @@ static inline void prefetch_search(__global const int *list, int gid, int n, int
     warm(tri_vertex + 3 * far);
   }
   const int near = entry_ahead(list, gid, 1, n);
-  if (near >= 0 && gid + CLM_AHEAD < carried && modified_stamp[near] < stamp)
+  if (near >= 0 && gid + CLM_AHEAD < carried && modified_stamp[near] < stamp) {
     warm_for_write(tri_mark + near);
-  else
+  } else {
     warm_corners(points, point_state, tri_vertex, near);
+    if (point_segment)
+      warm_corner_segments(point_segment, constraint_start, tri_vertex, near);
+  }
 }
 
 // Per entry: is_bad[gid] for the triangle list[gid] (use_list), else for
@@ -563,8 +573,9 @@ static inline void prefetch_search(__global const int *list, int gid, int n, int
 // Entry gid of find_bad_triangles (of n).
 static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
   if (use_list)
-    prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, tri_vertex,
-                    modified_stamp, notes, tri_mark);
+    prefetch_search(list, gid, n, carried, searched_stamp, points, point_state,
+                    constrained ? point_segment : 0, constraint_start, tri_vertex, modified_stamp,
+                    notes, tri_mark);
   else
     warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;
@@ -906,10 +917,12 @@ static inline WalkResult walk_in_domain(CLM_MESH_PARAMS, int t, double2 p, int m
 // edge a split splits), or -1 inside; container[k] = -1 when it falls on a
 // vertex or is dropped.
 // Prefetching for locate_candidates (prefetch.h): the bad triangle where a
-// walk starts, its corners and its neighbours.
+// walk starts, its corners and its neighbours, and in a constrained mesh its
+// corners' segments (point_segment and constraint_start, else 0).
 static inline void
 prefetch_walk_start(__global const int *origin, int k, int n, __global const double2 *points,
-                    __global const int *point_state, __global const int *tri_vertex,
+                    __global const int *point_state, __global const int *point_segment,
+                    __global const int *constraint_start, __global const int *tri_vertex,
                     __global const int *tri_neighbor, __global const int *modified_stamp,
                     __global const int *last_container) {
   const int far = entry_ahead(origin, k, 2, n);
@@ -921,6 +934,8 @@ prefetch_walk_start(__global const int *origin, int k, int n, __global const dou
   const int near = entry_ahead(origin, k, 1, n);
   warm_corners(points, point_state, tri_vertex, near);
   warm_neighbours(tri_vertex, tri_neighbor, near);
+  if (point_segment)
+    warm_corner_segments(point_segment, constraint_start, tri_vertex, near);
 }
 
 // locate_candidates' arguments after the mesh's, shared with place_in_group.
@@ -1007,8 +1022,8 @@ static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k)
 
 __kernel void locate_candidates(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int n) {
   const int k = get_global_id(0);
-  prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
-                      last_container);
+  prefetch_walk_start(origin, k, n, points, point_state, constrained ? point_segment : 0,
+                      constraint_start, tri_vertex, tri_neighbor, modified_stamp, last_container);
   if (k < n)
     locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
 }
@@ -1271,8 +1286,8 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
 static inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size) {
-    prefetch_walk_start(origin, k, n, points, point_state, tri_vertex, tri_neighbor, modified_stamp,
-                        last_container);
+    prefetch_walk_start(origin, k, n, points, point_state, constrained ? point_segment : 0,
+                        constraint_start, tri_vertex, tri_neighbor, modified_stamp, last_container);
     locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
   }
   barrier(CLK_GLOBAL_MEM_FENCE);

@@ -151,6 +151,49 @@ static inline void prefetch_triangle_and_neighbours(__global const int *list, in
   warm_opposite(points, point_state, tri_vertex, tri_neighbor, entry_ahead(list, gid, 1, n));
 }
 
+// What the subsegment test (refinement.h is_subsegment) reads of triangle t's
+// corners (t's record warm): the segment each lies on and where its
+// constraint row starts.
+static inline void warm_corner_segments(__global const int *point_segment,
+                                        __global const int *constraint_start,
+                                        __global const int *tri_vertex, int t) {
+  if (t < 0)
+    return;
+  for (int i = 0; i < 3; ++i) {
+    const int v = tri_vertex[3 * t + i];
+    if (v >= 0) {
+      warm(point_segment + v);
+      warm(constraint_start + v);
+    }
+  }
+}
+
+// The constraint rows of triangle t's corners (t's record and the rows'
+// starts warm).
+static inline void warm_corner_rows(__global const int *constraint_start,
+                                    __global const int *constraint_adjacent,
+                                    __global const int *tri_vertex, int t) {
+  if (t < 0)
+    return;
+  for (int i = 0; i < 3; ++i) {
+    const int v = tri_vertex[3 * t + i];
+    if (v >= 0)
+      warm(constraint_adjacent + constraint_start[v]);
+  }
+}
+
+// For a kernel that tests, per entry of `list`, whether edges of a triangle
+// are subsegments (after prefetch_triangle_and_neighbours, which warms the
+// triangles three stages ahead).
+static inline void prefetch_subsegment_tests(__global const int *list, int gid, int n,
+                                             __global const int *point_segment,
+                                             __global const int *constraint_start,
+                                             __global const int *constraint_adjacent,
+                                             __global const int *tri_vertex) {
+  warm_corner_segments(point_segment, constraint_start, tri_vertex, entry_ahead(list, gid, 2, n));
+  warm_corner_rows(constraint_start, constraint_adjacent, tri_vertex, entry_ahead(list, gid, 1, n));
+}
+
 // For a kernel that reads, per entry of `list`, a triangle's vertices and
 // their points (and states, unless point_state is 0).
 static inline void prefetch_corners(__global const int *list, int gid, int n,

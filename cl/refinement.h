@@ -107,15 +107,20 @@ static inline bool is_subsegment(__global const double2 *points,
          !between_on_segment(points, point_segment, segment_end, s, d, a, b);
 }
 
-// Is edge i of triangle t (opposite its vertex i) a subsegment?
+// Is edge i of triangle t (opposite its vertex i) a subsegment? An edge with
+// neither end added on a segment and no constraint row at its first end is
+// none (is_subsegment's answer, told without reading the triangle across).
 static inline bool subsegment_at(CLM_MESH_PARAMS, int t, int i) {
   if (!constrained)
+    return false;
+  const int a = tri_vertex[3 * t + next3(i)], b = tri_vertex[3 * t + prev3(i)];
+  if (a >= 0 && b >= 0 && point_segment[a] < 0 && point_segment[b] < 0 &&
+      constraint_start[a] == constraint_start[a + 1])
     return false;
   const int link = tri_neighbor[3 * t + i];
   const int across = tri_vertex[3 * link_triangle(link) + link_edge(link)];
   return is_subsegment(points, constraint_start, constraint_adjacent, constraint_segment,
-                       point_segment, segment_end, tri_vertex[3 * t + next3(i)],
-                       tri_vertex[3 * t + prev3(i)], tri_vertex[3 * t + i], across);
+                       point_segment, segment_end, a, b, tri_vertex[3 * t + i], across);
 }
 
 // The segment that subsegment a-b is part of (is_subsegment holds), or -1 for

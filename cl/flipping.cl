@@ -130,13 +130,31 @@ static inline int relink_and_list(int t, int prop, int flipped, __global const i
 // flags[gid]: check_triangle's bits for active[gid]. The triangles the
 // filter decided propose at once (proposal[gid]); the others do in
 // flip_check_exact.
+// Prefetching for flip_check_fast (prefetch.h): what
+// prefetch_triangle_and_neighbours warms, and the rounds and marks of the
+// neighbours of the triangle two stages ahead (its links warm), which the
+// test of each edge and the proposal read.
+static inline void prefetch_check(__global const int *active, int gid, int n,
+                                  __global const double2 *points, __global const int *tri_vertex,
+                                  __global const int *tri_neighbor,
+                                  __global const int *active_round,
+                                  volatile __global const uint *tri_mark) {
+  prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
+  const int t = entry_ahead(active, gid, 2, n);
+  for (int i = 0; i < 3 && t >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * t + i]);
+    warm(active_round + u);
+    warm_for_write(tri_mark + u);
+  }
+}
+
 __kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *active,
                               const int fixed_boundary, __global const int *active_round,
                               const int round, __global int *flags, __global int *exact_list,
                               volatile __global int *exact_count, __global int *proposal,
                               const int n) {
   const int gid = get_global_id(0);
-  prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
+  prefetch_check(active, gid, n, points, tri_vertex, tri_neighbor, active_round, tri_mark);
   if (gid >= n)
     return;
   const int t = active[gid];

@@ -18,6 +18,28 @@
 #define CLM_DUPLICATE 1
 #define CLM_LOST 2
 
+// Prefetching for the kernels over the remaining points that read each
+// one's container (prefetch.h): its location three stages ahead, then the
+// container's record, stamp and mark, then its corners' points.
+static inline void
+prefetch_container(__global const int *remaining, int gid, int n, __global const double2 *points,
+                   __global const int *tri_vertex, __global const int *modified_stamp,
+                   volatile __global const uint *tri_mark, __global const int *location) {
+  const int p_far = entry_ahead(remaining, gid, 3, n);
+  if (p_far >= 0)
+    warm(location + p_far);
+  const int p_middle = entry_ahead(remaining, gid, 2, n);
+  if (p_middle >= 0) {
+    const int t = location[p_middle];
+    warm(tri_vertex + 3 * t);
+    warm(modified_stamp + t);
+    warm_for_write(tri_mark + t);
+  }
+  const int p_near = entry_ahead(remaining, gid, 1, n);
+  if (p_near >= 0)
+    warm_corners(points, 0, tri_vertex, location[p_near]);
+}
+
 // Walks from location[p] to the triangle holding p; a point whose triangle was
 // not rewritten since the last walk (stamp `since`) stays where it is.
 // Results: location[p], location_edge[p] (-1: interior or ghost region, i: on
@@ -26,6 +48,7 @@ __kernel void locate_points(CLM_TRIANGULATION_PARAMS, const int since,
                             __global const int *remaining, __global int *status,
                             const int max_steps, const int n) {
   const int gid = get_global_id(0);
+  prefetch_container(remaining, gid, n, points, tri_vertex, modified_stamp, tri_mark, location);
   if (gid >= n)
     return;
   const int p = remaining[gid];
@@ -124,6 +147,7 @@ __kernel void mark_containers(CLM_TRIANGULATION_PARAMS, __global const int *rema
                               __global int *status, const int placed, const int index_bits,
                               const int n) {
   const int gid = get_global_id(0);
+  prefetch_container(remaining, gid, n, points, tri_vertex, modified_stamp, tri_mark, location);
   if (gid < n)
     mark_container(gid, CLM_TRIANGULATION_ARGS, remaining, status, placed, index_bits);
 }
@@ -152,6 +176,7 @@ __kernel void select_winners(CLM_TRIANGULATION_PARAMS, __global const int *remai
                              __global const int *status, __global int *winner, const int index_bits,
                              const int n) {
   const int gid = get_global_id(0);
+  prefetch_container(remaining, gid, n, points, tri_vertex, modified_stamp, tri_mark, location);
   if (gid < n)
     select_winner(gid, CLM_TRIANGULATION_ARGS, remaining, status, winner, index_bits);
 }

@@ -266,8 +266,9 @@ __kernel void flipflop_propose(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int o
   if (gid >= n)
     return;
   operation[gid] = CLM_OP_NONE;
-  prefetch_triangle_and_neighbours(active, gid, n, points, any_redundant ? point_state : 0,
-                                   tri_vertex, tri_neighbor);
+  // (The states: redundant points, and dependent_pair for every edge that flips.)
+  prefetch_triangle_and_neighbours(active, gid, n, points, point_state, tri_vertex, tri_neighbor);
+  warm_marks_around(tri_mark, tri_neighbor, entry_ahead(active, gid, 2, n));
   if (constrained)
     prefetch_subsegment_tests(active, gid, n, point_segment, constraint_start, constraint_adjacent,
                               tri_vertex);

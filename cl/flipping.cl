@@ -141,11 +141,9 @@ static inline void prefetch_check(__global const int *active, int gid, int n,
                                   volatile __global const uint *tri_mark) {
   prefetch_triangle_and_neighbours(active, gid, n, points, 0, tri_vertex, tri_neighbor);
   const int t = entry_ahead(active, gid, 2, n);
-  for (int i = 0; i < 3 && t >= 0; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * t + i]);
-    warm(active_round + u);
-    warm_for_write(tri_mark + u);
-  }
+  warm_marks_around(tri_mark, tri_neighbor, t);
+  for (int i = 0; i < 3 && t >= 0; ++i)
+    warm(active_round + link_triangle(tri_neighbor[3 * t + i]));
 }
 
 __kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *active,

@@ -98,7 +98,8 @@ static inline bool touches_hull(__global const int *point_state, VertexTriple tr
 // beside a hull edge or another chain, which bound it, since the triangle
 // across its longest edge would otherwise be Delaunay): every point that
 // could split it lands within the same noise, and splitting it only makes
-// more.
+// more. Without segments (point_segment 0 in assess and the functions that
+// call it) no angle is the input's.
 typedef struct {
   double2 p[3];
   double length_squared[3];
@@ -185,11 +186,12 @@ static inline Quality assess(__global const double2 *points, __global const int 
                                (4.0 * twice_area * twice_area * q.length_squared[q.shortest]);
   q.skinny = ratio_bound_squared > 0 && ratio_squared > ratio_bound_squared;
   q.large = max_area > 0 && 0.5 * twice_area > max_area;
-  q.unfixable = q.skinny && !q.large &&
-                (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL || flat_corners(q.p) ||
-                 along_one_segment(point_segment, segment_end, tri) ||
-                 across_input_angle(points, point_segment, segment_end, tri.v[next3(q.shortest)],
-                                    tri.v[prev3(q.shortest)]));
+  q.unfixable =
+      q.skinny && !q.large &&
+      (point_state[tri.v[q.shortest]] == CLM_POINT_ACUTE_HULL || flat_corners(q.p) ||
+       (point_segment && (along_one_segment(point_segment, segment_end, tri) ||
+                          across_input_angle(points, point_segment, segment_end,
+                                             tri.v[next3(q.shortest)], tri.v[prev3(q.shortest)]))));
   return q;
 }
 
@@ -596,7 +598,8 @@ static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gi
   uint priority;
   bool bad = !is_ghost(tri) && !is_dead(tri) &&
              bad_triangle_candidate(
-                 points, point_state, point_segment, segment_end, tri, ratio_bound_squared,
+                 points, point_state, constrained ? point_segment : 0, segment_end, tri,
+                 ratio_bound_squared,
                  area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
                  offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
                  protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
@@ -644,8 +647,8 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
     return;
   const double bound =
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t);
-  const Quality q =
-      assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, bound);
+  const Quality q = assess(points, point_state, constrained ? point_segment : 0, segment_end, tri,
+                           ratio_bound_squared, bound);
   const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
   if (!q.skinny && !q.large && !encroaching)
     return; // a good triangle: no candidate, nothing to count
@@ -654,12 +657,13 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
   if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
-       bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
-                              ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
-       beyond_edges(q.p, mask, steiner)) ||
-      (bad_triangle_candidate(points, point_state, point_segment, segment_end, tri,
-                              ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
+       bad_triangle_candidate(points, point_state, constrained ? point_segment : 0, segment_end,
+                              tri, ratio_bound_squared, bound, 1e300, false, 0, &steiner,
                               &priority) &&
+       beyond_edges(q.p, mask, steiner)) ||
+      (bad_triangle_candidate(points, point_state, constrained ? point_segment : 0, segment_end,
+                              tri, ratio_bound_squared, bound, offconstant, encroaching, mask,
+                              &steiner, &priority) &&
        (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) ||
         is_stuck(modified_stamp, notes, located_stamp, t))))
     atomic_inc(counts);
@@ -960,7 +964,8 @@ static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k)
   uint rank;
   const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
   bad_triangle_candidate(
-      points, point_state, point_segment, segment_end, bad_triangle, ratio_bound_squared,
+      points, point_state, constrained ? point_segment : 0, segment_end, bad_triangle,
+      ratio_bound_squared,
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, bad),
       offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
       protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank); // bad: the search found it so

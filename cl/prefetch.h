@@ -151,6 +151,17 @@ static inline void prefetch_triangle_and_neighbours(__global const int *list, in
   warm_opposite(points, point_state, tri_vertex, tri_neighbor, entry_ahead(list, gid, 1, n));
 }
 
+// The marks of triangle t and of its neighbours, which a proposal to flip
+// one of its edges takes (t's record warm).
+static inline void warm_marks_around(volatile __global const uint *tri_mark,
+                                     __global const int *tri_neighbor, int t) {
+  if (t < 0)
+    return;
+  warm_for_write(tri_mark + t);
+  for (int i = 0; i < 3; ++i)
+    warm_for_write(tri_mark + link_triangle(tri_neighbor[3 * t + i]));
+}
+
 // What the subsegment test (refinement.h is_subsegment) reads of triangle t's
 // corners (t's record warm): the segment each lies on and where its
 // constraint row starts.

@@ -642,6 +642,7 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   const int t = get_global_id(0);
   if (t >= n)
     return;
+  warm_corners(points, point_state, tri_vertex, slot_ahead(t, 1, n));
   const VertexTriple tri = load_vertices(tri_vertex, t);
   if (is_ghost(tri) || is_dead(tri))
     return;
@@ -719,17 +720,17 @@ __kernel void flag_unsettled(__global const int *bad, const int bad_count,
 
 // Prefetching for a kernel that reads the marks of two rings of triangles
 // around each triangle of `list` (prefetch.h): the triangle's mark (and its
-// tie mark; tie_mark may be 0: none) and links, then its neighbours' marks and
-// links, then the marks of theirs.
+// entry in `also`, the tie marks or notes, or 0: none) and links, then its
+// neighbours' marks and links, then the marks of theirs.
 static inline void prefetch_two_rings(__global const int *list, int k, int n,
                                       volatile __global const uint *tri_mark,
-                                      __global const int *tie_mark,
+                                      __global const int *also,
                                       __global const int *tri_neighbor) {
   const int far = entry_ahead(list, k, 3, n);
   if (far >= 0) {
     warm(tri_mark + far);
-    if (tie_mark)
-      warm(tie_mark + far);
+    if (also)
+      warm(also + far);
     warm(tri_neighbor + 3 * far);
   }
   const int middle = entry_ahead(list, k, 2, n);
@@ -743,6 +744,36 @@ static inline void prefetch_two_rings(__global const int *list, int k, int n,
     const int u = link_triangle(tri_neighbor[3 * near + i]);
     for (int j = 0; j < 3 && u >= 0; ++j)
       warm(tri_mark + link_triangle(tri_neighbor[3 * u + j]));
+  }
+}
+
+// The same for three rings (the filter with a distance ring): each one
+// stage earlier, and the links of the second ring with its marks (warming
+// the third ring's marks too costs more than it saves).
+static inline void prefetch_three_rings(__global const int *list, int k, int n,
+                                        volatile __global const uint *tri_mark,
+                                        __global const int *tie_mark,
+                                        __global const int *tri_neighbor) {
+  const int far = entry_ahead(list, k, 4, n);
+  if (far >= 0) {
+    warm(tri_mark + far);
+    warm(tie_mark + far);
+    warm(tri_neighbor + 3 * far);
+  }
+  const int middle = entry_ahead(list, k, 3, n);
+  for (int i = 0; i < 3 && middle >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * middle + i]);
+    warm(tri_mark + u);
+    warm(tri_neighbor + 3 * u);
+  }
+  const int near = entry_ahead(list, k, 2, n);
+  for (int i = 0; i < 3 && near >= 0; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * near + i]);
+    for (int j = 0; j < 3 && u >= 0; ++j) {
+      const int w = link_triangle(tri_neighbor[3 * u + j]);
+      warm(tri_mark + w);
+      warm(tri_neighbor + 3 * w);
+    }
   }
 }
 
@@ -781,7 +812,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
                                __global const uint *tri_mark, const int rings,
                                __global const int *notes, __global int *elected, const int n) {
   const int k = get_global_id(0);
-  prefetch_two_rings(bad, k, n, tri_mark, 0, tri_neighbor);
+  prefetch_two_rings(bad, k, n, tri_mark, notes, tri_neighbor);
   if (k < n)
     elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
 }
@@ -848,7 +879,7 @@ static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARC
   barrier(CLK_GLOBAL_MEM_FENCE);
   const int electing = rings > 0 ? bad_count : 0;
   for (int k = lid; k < electing; k += size) {
-    prefetch_two_rings(bad, k, electing, tri_mark, 0, tri_neighbor);
+    prefetch_two_rings(bad, k, electing, tri_mark, notes, tri_neighbor);
     is_bad[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
@@ -1185,7 +1216,10 @@ static inline bool survives(CLM_MESH_PARAMS, __global const int *container,
 
 // Candidate k of insertion_filter, its prefetching first (of n).
 static inline void filter_entry(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int k, const int n) {
-  prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
+  if (rings + distance_rings > 2)
+    prefetch_three_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
+  else
+    prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
   if (k < n)
     survive[k] = survives(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate,
                           radius2, rings, distance_rings, near2, parallel_midpoints, k);

@@ -106,6 +106,24 @@ static inline void append_in_group(const int *items, int count, __global int *li
     list[first + k] = items[k];
 }
 
+// The share of work-item gid (of `size`) in the entries [0, n) of a list
+// whose length only the device knows (host: sharing_items): entries first,
+// first + step, ... below end. On the CPU paths (CLM_ITEMS_IN_TURN: a
+// work-group's work-items run one after another) a run of consecutive entries
+// each, so that the list and what it leads to are read in order; elsewhere
+// every size-th entry, neighbouring work-items reading neighbouring entries.
+typedef struct {
+  int first, end, step;
+} Share;
+static inline Share share_of(int gid, int size, int n) {
+#ifdef CLM_ITEMS_IN_TURN
+  const int run = n / size + (n % size != 0);
+  return (Share){min(n, gid * run), min(n, gid * run + run), 1};
+#else
+  return (Share){gid, n, size};
+#endif
+}
+
 static inline bool is_dead(VertexTriple tri) { return tri.v[0] == CLM_DEAD; }
 
 static inline bool is_ghost(VertexTriple tri) {

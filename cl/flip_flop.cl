@@ -278,11 +278,12 @@ __kernel void flipflop_propose(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int o
 
 // The proposals of the triangles the filter left undecided, as many as
 // flipflop_propose counted (read here, not by the host: no round trip), each
-// work-item taking every get_global_size(0)-th.
+// work-item taking its share (share_of).
 __kernel void flipflop_propose_exact(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS,
                                      const int orthogonal_test, const int any_redundant) {
   const int n = *exact_count;
-  for (int k = get_global_id(0); k < n; k += get_global_size(0))
+  const Share share = share_of(get_global_id(0), get_global_size(0), n);
+  for (int k = share.first; k < share.end; k += share.step)
     propose_operation(exact_list[k], 1, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, orthogonal_test,
                       any_redundant);
 }

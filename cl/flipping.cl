@@ -168,12 +168,13 @@ __kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *acti
 
 // Resolves the uncertain edges with the exact, perturbed in-circle test: as
 // many as flip_check_fast counted (read here, not by the host: no round
-// trip), each work-item taking every get_global_size(0)-th.
+// trip), each work-item taking its share (share_of).
 __kernel void flip_check_exact(CLM_TRIANGULATION_PARAMS, __global const int *exact_list,
                                __global const int *active, __global int *flags,
                                __global int *proposal, __global const int *exact_count) {
   const int n = *exact_count;
-  for (int k = get_global_id(0); k < n; k += get_global_size(0)) {
+  const Share share = share_of(get_global_id(0), get_global_size(0), n);
+  for (int k = share.first; k < share.end; k += share.step) {
     const int index = exact_list[k], t = active[index];
     const int bits = resolve_uncertain(t, flags[index], points, tri_vertex, tri_neighbor);
     flags[index] = bits;

@@ -291,6 +291,9 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
     cpu_paths_ = paths == DevicePaths::by_type
                      ? (device_.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_CPU) != 0
                      : paths == DevicePaths::cpu;
+    // The kernels that share a list take runs of it there (cl/common.h share_of).
+    if (cpu_paths_)
+      build_options_ += " -DCLM_ITEMS_IN_TURN";
     // A CPU runs a work-group's work-items in turn: they can prefetch for
     // the ones after them (cl/prefetch.h), with a builtin of PoCL's compiler.
     can_prefetch_ =

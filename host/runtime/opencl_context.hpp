@@ -171,10 +171,10 @@ private:
 std::string kernel_source(const std::string &file);
 
 // Work-items for a kernel that shares a list whose length only the device
-// knows (at most `most` entries), each work-item taking every
-// get_global_size(0)-th entry: saves the round trip that reading the length
-// would cost. On the GPU paths one an entry (those past the length stop at
-// once), on the CPU paths a few a compute unit (each loops over its share).
+// knows (at most `most` entries), each work-item taking its share of it
+// (cl/common.h share_of): saves the round trip that reading the length would
+// cost. On the GPU paths one an entry (those past the length stop at once),
+// on the CPU paths a few a compute unit (each loops over its run of entries).
 std::size_t sharing_items(const Device &device, std::size_t most);
 
 // Launches `kernel` over `items` work-items (rounded up to the work-group

@@ -8,6 +8,7 @@
 #define CLM_SCAN_ITEMS 8
 
 #include "group_scan.h"
+#include "prefetch.h"
 
 // Exclusive scan of each block; block_sums[g] = block total.
 __kernel void scan_blocks(__global const int *in, __global int *out, __global int *block_sums,
@@ -82,9 +83,13 @@ __kernel void compact_indices(__global const int *keep, __global const int *offs
 // Duplicates in a list of slots (negative entries are dropped): each slot
 // keeps its first position, found with atomic minimum in marks[] (all
 // 0xffffffff outside these kernels, restored by unique_compact), so the list
-// kept is the same however the work is scheduled.
+// kept is the same however the work is scheduled. unique_mark warms the
+// marks of the slots a few entries on (prefetch.h).
 __kernel void unique_mark(__global const int *list, volatile __global uint *marks, const int n) {
   const int gid = get_global_id(0);
+  const int ahead = entry_ahead(list, gid, 1, n);
+  if (ahead >= 0)
+    warm_for_write(marks + ahead);
   if (gid < n)
     mark_first_entry(list, marks, gid);
 }

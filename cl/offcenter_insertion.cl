@@ -718,61 +718,36 @@ __kernel void flag_unsettled(__global const int *bad, const int bad_count,
     flags[gid] = 1;
 }
 
-// Prefetching for a kernel that reads the marks of two rings of triangles
-// around each triangle of `list` (prefetch.h): the triangle's mark (and its
-// entry in `also`, the tie marks or notes, or 0: none) and links, then its
-// neighbours' marks and links, then the marks of theirs.
-static inline void prefetch_two_rings(__global const int *list, int k, int n,
-                                      volatile __global const uint *tri_mark,
-                                      __global const int *also,
-                                      __global const int *tri_neighbor) {
-  const int far = entry_ahead(list, k, 3, n);
+// Prefetching for a kernel that reads the marks of `rings` rings of
+// triangles (2 or 3) around each triangle of `list` (prefetch.h): the
+// triangle's mark (and its entry in `also`, the tie marks or notes, or 0:
+// none) and links, then its neighbours' marks and links, then the marks of
+// theirs, with three rings their links too and each stage one earlier
+// (warming the third ring's marks as well costs more than it saves).
+static inline void prefetch_rings(__global const int *list, int k, int n,
+                                  volatile __global const uint *tri_mark, __global const int *also,
+                                  __global const int *tri_neighbor, const int rings) {
+  const int far = entry_ahead(list, k, rings + 1, n);
   if (far >= 0) {
     warm(tri_mark + far);
     if (also)
       warm(also + far);
     warm(tri_neighbor + 3 * far);
   }
-  const int middle = entry_ahead(list, k, 2, n);
+  const int middle = entry_ahead(list, k, rings, n);
   for (int i = 0; i < 3 && middle >= 0; ++i) {
     const int u = link_triangle(tri_neighbor[3 * middle + i]);
     warm(tri_mark + u);
     warm(tri_neighbor + 3 * u);
   }
-  const int near = entry_ahead(list, k, 1, n);
-  for (int i = 0; i < 3 && near >= 0; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * near + i]);
-    for (int j = 0; j < 3 && u >= 0; ++j)
-      warm(tri_mark + link_triangle(tri_neighbor[3 * u + j]));
-  }
-}
-
-// The same for three rings (the filter with a distance ring): each one
-// stage earlier, and the links of the second ring with its marks (warming
-// the third ring's marks too costs more than it saves).
-static inline void prefetch_three_rings(__global const int *list, int k, int n,
-                                        volatile __global const uint *tri_mark,
-                                        __global const int *tie_mark,
-                                        __global const int *tri_neighbor) {
-  const int far = entry_ahead(list, k, 4, n);
-  if (far >= 0) {
-    warm(tri_mark + far);
-    warm(tie_mark + far);
-    warm(tri_neighbor + 3 * far);
-  }
-  const int middle = entry_ahead(list, k, 3, n);
-  for (int i = 0; i < 3 && middle >= 0; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * middle + i]);
-    warm(tri_mark + u);
-    warm(tri_neighbor + 3 * u);
-  }
-  const int near = entry_ahead(list, k, 2, n);
+  const int near = entry_ahead(list, k, rings - 1, n);
   for (int i = 0; i < 3 && near >= 0; ++i) {
     const int u = link_triangle(tri_neighbor[3 * near + i]);
     for (int j = 0; j < 3 && u >= 0; ++j) {
       const int w = link_triangle(tri_neighbor[3 * u + j]);
       warm(tri_mark + w);
-      warm(tri_neighbor + 3 * w);
+      if (rings > 2)
+        warm(tri_neighbor + 3 * w);
     }
   }
 }
@@ -812,7 +787,7 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
                                __global const uint *tri_mark, const int rings,
                                __global const int *notes, __global int *elected, const int n) {
   const int k = get_global_id(0);
-  prefetch_two_rings(bad, k, n, tri_mark, notes, tri_neighbor);
+  prefetch_rings(bad, k, n, tri_mark, notes, tri_neighbor, 2);
   if (k < n)
     elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
 }
@@ -879,7 +854,7 @@ static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARC
   barrier(CLK_GLOBAL_MEM_FENCE);
   const int electing = rings > 0 ? bad_count : 0;
   for (int k = lid; k < electing; k += size) {
-    prefetch_two_rings(bad, k, electing, tri_mark, notes, tri_neighbor);
+    prefetch_rings(bad, k, electing, tri_mark, notes, tri_neighbor, 2);
     is_bad[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
   }
   barrier(CLK_GLOBAL_MEM_FENCE);
@@ -1216,10 +1191,8 @@ static inline bool survives(CLM_MESH_PARAMS, __global const int *container,
 
 // Candidate k of insertion_filter, its prefetching first (of n).
 static inline void filter_entry(CLM_MESH_PARAMS, CLM_FILTER_PARAMS, const int k, const int n) {
-  if (rings + distance_rings > 2)
-    prefetch_three_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
-  else
-    prefetch_two_rings(container, k, n, tri_mark, tie_mark, tri_neighbor);
+  prefetch_rings(container, k, n, tri_mark, tie_mark, tri_neighbor,
+                 rings + distance_rings > 2 ? 3 : 2);
   if (k < n)
     survive[k] = survives(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate,
                           radius2, rings, distance_rings, near2, parallel_midpoints, k);

@@ -11,6 +11,7 @@
 // triangle the slot descends from. Or from a user's callback on the host: the
 // corners gathered here, the answers scattered back.
 #include "common.h"
+#include "prefetch.h"
 
 // The slot of entry i: list[i] (use_list), else i; -1 for none.
 static inline int slot_of(__global const int *list, int use_list, int i) {
@@ -95,6 +96,27 @@ static inline double field_at(double2 p, __global const double2 *field_points,
   return value;
 }
 
+// Prefetching for evaluate_size_field (prefetch.h): the slot's record and
+// hint two stages ahead, then its corners and its hinted background
+// triangle's record.
+static inline void prefetch_slot(__global const int *list, int use_list, int i, int n,
+                                 __global const double2 *points, __global const int *tri_vertex,
+                                 __global const int *hint, int hinted,
+                                 __global const int *field_triangles) {
+  const int far = use_list ? entry_ahead(list, i, 2, n) : slot_ahead(i, 2, n);
+  if (far >= 0) {
+    warm(tri_vertex + 3 * far);
+    if (hinted)
+      warm(hint + far);
+  }
+  const int near = use_list ? entry_ahead(list, i, 1, n) : slot_ahead(i, 1, n);
+  if (near < 0)
+    return;
+  warm_corners(points, 0, tri_vertex, near);
+  if (hinted && hint[near] >= 0)
+    warm(field_triangles + 3 * hint[near]);
+}
+
 // bound[t] for the slot of each entry: the background at its centroid (-1
 // for a ghost or a dead slot); with combine, the tighter of that and the
 // bound already there. hint (hinted): per slot, a background triangle to
@@ -112,6 +134,7 @@ __kernel void evaluate_size_field(__global const double2 *points, __global const
   const int i = get_global_id(0);
   if (i >= n)
     return;
+  prefetch_slot(list, use_list, i, n, points, tri_vertex, hint, hinted, field_triangles);
   const int t = slot_of(list, use_list, i);
   if (t < 0)
     return;

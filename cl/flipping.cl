@@ -127,9 +127,6 @@ static inline int relink_and_list(int t, int prop, int flipped, __global const i
   return count;
 }
 
-// flags[gid]: check_triangle's bits for active[gid]. The triangles the
-// filter decided propose at once (proposal[gid]); the others do in
-// flip_check_exact.
 // Prefetching for flip_check_fast (prefetch.h): what
 // prefetch_triangle_and_neighbours warms, and the rounds and marks of the
 // neighbours of the triangle two stages ahead (its links warm), which the
@@ -146,6 +143,9 @@ static inline void prefetch_check(__global const int *active, int gid, int n,
     warm(active_round + link_triangle(tri_neighbor[3 * t + i]));
 }
 
+// flags[gid]: check_triangle's bits for active[gid]. The triangles the
+// filter decided propose at once (proposal[gid]); the others do in
+// flip_check_exact.
 __kernel void flip_check_fast(CLM_TRIANGULATION_PARAMS, __global const int *active,
                               const int fixed_boundary, __global const int *active_round,
                               const int round, __global int *flags, __global int *exact_list,

@@ -575,9 +575,8 @@ static inline void prefetch_search(__global const int *list, int gid, int n, int
 // Entry gid of find_bad_triangles (of n).
 static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gid, const int n) {
   if (use_list)
-    prefetch_search(list, gid, n, carried, searched_stamp, points, point_state,
-                    constrained ? point_segment : 0, constraint_start, tri_vertex, modified_stamp,
-                    notes, tri_mark);
+    prefetch_search(list, gid, n, carried, searched_stamp, points, point_state, CLM_SEGMENTS_IF_ANY,
+                    constraint_start, tri_vertex, modified_stamp, notes, tri_mark);
   else
     warm_corners(points, point_state, tri_vertex, slot_ahead(gid, 1, n));
   const int t = use_list ? list[gid] : gid;
@@ -598,8 +597,7 @@ static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gi
   uint priority;
   bool bad = !is_ghost(tri) && !is_dead(tri) &&
              bad_triangle_candidate(
-                 points, point_state, constrained ? point_segment : 0, segment_end, tri,
-                 ratio_bound_squared,
+                 points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri, ratio_bound_squared,
                  area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
                  offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
                  protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
@@ -648,7 +646,7 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
     return;
   const double bound =
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t);
-  const Quality q = assess(points, point_state, constrained ? point_segment : 0, segment_end, tri,
+  const Quality q = assess(points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri,
                            ratio_bound_squared, bound);
   const bool encroaching = conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri);
   if (!q.skinny && !q.large && !encroaching)
@@ -658,13 +656,12 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
   if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
-       bad_triangle_candidate(points, point_state, constrained ? point_segment : 0, segment_end,
-                              tri, ratio_bound_squared, bound, 1e300, false, 0, &steiner,
-                              &priority) &&
+       bad_triangle_candidate(points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri,
+                              ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
        beyond_edges(q.p, mask, steiner)) ||
-      (bad_triangle_candidate(points, point_state, constrained ? point_segment : 0, segment_end,
-                              tri, ratio_bound_squared, bound, offconstant, encroaching, mask,
-                              &steiner, &priority) &&
+      (bad_triangle_candidate(points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri,
+                              ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
+                              &priority) &&
        (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) ||
         is_stuck(modified_stamp, notes, located_stamp, t))))
     atomic_inc(counts);
@@ -970,8 +967,7 @@ static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k)
   uint rank;
   const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
   bad_triangle_candidate(
-      points, point_state, constrained ? point_segment : 0, segment_end, bad_triangle,
-      ratio_bound_squared,
+      points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, bad_triangle, ratio_bound_squared,
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, bad),
       offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
       protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank); // bad: the search found it so
@@ -1033,8 +1029,8 @@ static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k)
 
 __kernel void locate_candidates(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int n) {
   const int k = get_global_id(0);
-  prefetch_walk_start(origin, k, n, points, point_state, constrained ? point_segment : 0,
-                      constraint_start, tri_vertex, tri_neighbor, modified_stamp, last_container);
+  prefetch_walk_start(origin, k, n, points, point_state, CLM_SEGMENTS_IF_ANY, constraint_start,
+                      tri_vertex, tri_neighbor, modified_stamp, last_container);
   if (k < n)
     locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
 }
@@ -1298,8 +1294,8 @@ __kernel void append_survivors(CLM_MESH_PARAMS, __global const double2 *candidat
 static inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size) {
-    prefetch_walk_start(origin, k, n, points, point_state, constrained ? point_segment : 0,
-                        constraint_start, tri_vertex, tri_neighbor, modified_stamp, last_container);
+    prefetch_walk_start(origin, k, n, points, point_state, CLM_SEGMENTS_IF_ANY, constraint_start,
+                        tri_vertex, tri_neighbor, modified_stamp, last_container);
     locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
   }
   barrier(CLK_GLOBAL_MEM_FENCE);

@@ -45,6 +45,11 @@ static inline bool in_lens(double2 pa, double2 pb, double2 c, double lens) {
 #define CLM_NO_SEGMENT (-1)    // on no segment, or the end of a single segment
 #define CLM_SEGMENT_JOINT (-2) // an input vertex where two or more segments meet
 
+// point_segment where a mesh has segments, else 0: without them every point's
+// is CLM_NO_SEGMENT, and the tests and prefetches given 0 read none (for a
+// function with the mesh's parameters, CLM_MESH_PARAMS, in scope).
+#define CLM_SEGMENTS_IF_ANY (constrained ? point_segment : 0)
+
 // The entry of edge a-b in the constraint rows, or -1.
 static inline int constraint_entry(__global const int *constraint_start,
                                    __global const int *constraint_adjacent, int a, int b) {

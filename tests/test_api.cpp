@@ -597,7 +597,8 @@ TEST_CASE("api: the three triangulate() overloads give the same mesh") {
   CHECK_THROWS_AS(clmesh::triangulate(device(), pslg, "pu"), clmesh::OptionError);
 }
 
-TEST_CASE("api: find_device names the device open_device opens; every spec of it gives one mesh") {
+TEST_CASE(
+    "api: find_device names the device open_device opens, and every spec of it gives one mesh") {
   const clmesh::DeviceDescription found = clmesh::find_device();
   CHECK(found.has_fp64);
   CHECK(clmesh::describe(*clmesh::open_device()) ==
@@ -793,7 +794,7 @@ TEST_CASE("api: statistics JSON and text have the counts, constraints only with 
                  "\"refinement\""));
 }
 
-TEST_CASE("api: a quality mesh is the same on every run; GPU-QM and GPU-QM-V both valid") {
+TEST_CASE("api: a quality mesh is the same on every run, GPU-QM and GPU-QM-V both valid") {
   clmesh::Input input;
   input.points = fixtures::gaussian(3000, 6);
   const clmesh::Options options = clmesh::parse_switches("q30");

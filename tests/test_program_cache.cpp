@@ -101,7 +101,7 @@ void damaged_scan_entry_is_rebuilt(const std::string &name, Damage damage) {
 
 } // namespace
 
-TEST_CASE("program cache: entries are keyed by source and identity; empty turns it off") {
+TEST_CASE("program cache: entries are keyed by source and identity, empty turns it off") {
   const fs::path dir = fresh_directory("cache-keys");
   {
     const CacheDirectory set(dir.string());

@@ -149,7 +149,7 @@ TEST_CASE("refine mesh: -r alone makes a valid mesh constrained Delaunay, adding
   CHECK(quality.points.size() > grid.points.size());
 }
 
-TEST_CASE("refine mesh: holes in the mesh stay holes; .poly holes carve; regions are ignored") {
+TEST_CASE("refine mesh: holes in the mesh stay holes, .poly holes carve, regions are ignored") {
   // A frame: the grid less its middle triangles.
   clmesh::Input frame = skewed_grid(6, 6, 1);
   std::vector<clmesh::Triangle> kept;
@@ -196,7 +196,7 @@ double area_bound_at(const clmesh::Input &given, Point p) {
   return bound;
 }
 
-TEST_CASE("refine mesh: .area bounds the triangles in each given triangle; attributes diffuse") {
+TEST_CASE("refine mesh: .area bounds the triangles in each given triangle, attributes diffuse") {
   clmesh::Input grid = skewed_grid(4, 4, 1);
   // Attributes: the triangle's index, and its row.
   grid.triangle_attribute_count = 2;

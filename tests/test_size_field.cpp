@@ -149,7 +149,7 @@ TEST_CASE("size field: a callback that asks what the field asks gives the same m
   }
 }
 
-TEST_CASE("size field: what the callback throws reaches the caller; bad fields are refused") {
+TEST_CASE("size field: what the callback throws reaches the caller, bad fields are refused") {
   const clmesh::Input input = unit_square();
   clmesh::Options options = clmesh::parse_switches("pq");
   long asked = 0;

@@ -33,6 +33,7 @@
 #include "clmesh/errors.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -220,11 +221,13 @@ struct RefinementSteps {
 // remaining bad triangles, reported, instead of a hang.
 constexpr long kMaxIterations = 1000;
 
-// A mesh to refine (-r): its triangles (input numbering) and their area
-// bounds (empty: none).
+// A mesh to refine (-r): its triangles (input numbering), their area
+// bounds (empty: none) and, with those, each triangle's neighbours across the
+// edges opposite its corners (-1 on the boundary).
 struct GivenMesh {
   const std::vector<Triangle> &triangles;
   const std::vector<double> &max_area;
+  const std::vector<cl_int> &across;
 };
 
 // The marker that tells a given mesh's inner edges among the constraints of
@@ -280,9 +283,9 @@ public:
     scheduler_.release_flipping(); // the iterations flip by FlipFlop
     if (options_.size_field || options_.unsuitable || triangle_areas_) {
       device_.program("size_bound.cl", "setup");
-      size_bound_ =
-          std::make_unique<SizeBound>(device_, mesh(), options_.size_field, triangle_areas_.get(),
-                                      options_.unsuitable, options_.attributes);
+      size_bound_ = std::make_unique<SizeBound>(
+          device_, mesh(), options_.size_field, triangle_areas_.get(),
+          triangle_areas_ ? &given_->across : nullptr, options_.unsuitable, options_.attributes);
       triangle_areas_.reset();                      // on the device now
       scheduler_.timer().charge(SizeBound::kPhase); // the background grids' set-up
     }
@@ -806,9 +809,13 @@ private:
 // The constraints of a given mesh's CDT: the segments (marker 0 turned to 1
 // on the mesh's boundary, as Triangle marks boundary edges), the boundary
 // edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
-// later, keeping the first.
+// later, keeping the first. With `across`, each triangle's neighbours there:
+// across[3 t + i] the triangle across the edge opposite corner i of
+// triangle t (the first by number where an edge has several), -1 on the
+// boundary.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
-                                      const std::vector<Segment> &segments, std::size_t vertices) {
+                                      const std::vector<Segment> &segments, std::size_t vertices,
+                                      std::vector<cl_int> *across) {
   const DirectedEdges directed(triangles, vertices);
   auto on_boundary = [&](int32_t a, int32_t b) { return directed.has(a, b) != directed.has(b, a); };
   std::vector<Segment> constraints = segments;
@@ -826,7 +833,34 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
           continue;
         constraints.push_back({from, to, inner ? kInnerEdge : 1});
       }
+  if (across) {
+    // Edge a -> b of triangle t is the one opposite t's corner after b.
+    across->assign(3 * triangles.size(), -1);
+    for (std::size_t a = 0; a < vertices; ++a)
+      for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
+        if (reverse[e] < 0)
+          continue;
+        const Triangle &t = triangles[edges[e].triangle];
+        std::size_t from = 0;
+        while (t[from] != static_cast<int32_t>(a) || t[(from + 1) % 3] != edges[e].head)
+          ++from;
+        (*across)[3 * std::size_t{edges[e].triangle} + (from + 2) % 3] =
+            static_cast<cl_int>(edges[static_cast<std::size_t>(reverse[e])].triangle);
+      }
+  }
   return constraints;
+}
+
+// Host work before the device's timer started, added to the compute time
+// and to `phase`.
+void charge_host_phase(DelaunayStats &stats, const char *phase, double seconds) {
+  stats.compute_seconds += seconds;
+  for (PhaseTime &time : stats.phases)
+    if (time.name == phase) {
+      time.seconds += seconds;
+      return;
+    }
+  stats.phases.push_back({phase, seconds});
 }
 
 } // namespace
@@ -859,6 +893,7 @@ RefineResult refine_constrained(Device &device, const Pslg &pslg,
 RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Triangle> &triangles,
                          const std::vector<double> &max_area, const ConstrainedOptions &constrained,
                          const RefineOptions &options) {
+  const auto started = std::chrono::steady_clock::now();
   // Vertices that no triangle or segment uses (the middle nodes of a six-node
   // mesh, points left over) stay out of the mesh, as in Triangle. `kept`
   // numbers the others in order, so the renumbering keeps every order.
@@ -899,18 +934,26 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   const std::vector<Point> &points = every_point ? pslg.points : kept_points;
   const std::vector<Triangle> &corners = every_point ? triangles : renumbered_triangles;
   const std::vector<Segment> &segments = every_point ? pslg.segments : renumbered_segments;
-  const std::vector<Segment> constraints = mesh_constraints(corners, segments, points.size());
+  std::vector<cl_int> across; // the .area bounds' walks take it
+  const bool areas = options.regional_areas && !max_area.empty();
+  const std::vector<Segment> constraints =
+      mesh_constraints(corners, segments, points.size(), areas ? &across : nullptr);
   const std::vector<Region> no_regions;
   const Pslg subset{points, constraints, pslg.holes, no_regions};
 
   RefineResult result;
   check_area_bound(device, subset.points, options, result.stats);
-  const GivenMesh given{corners, max_area};
+  const GivenMesh given{corners, max_area, across};
+  // The given mesh's edges, found on the host, are part of its
+  // reconstruction's time (the device's starts with the Refinement).
+  const double edges_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   Refinement refinement(device, subset.points, options, result, &subset, &constrained, &given);
   if (refinement.triangulate()) {
     refinement.iterate();
     refinement.finish();
   }
+  charge_host_phase(result.mesh.stats, MeshReconstruction::kPhase, edges_seconds);
   if (every_point)
     return result;
   // Back to the input's numbering; the added points follow all its points.

@@ -1,7 +1,5 @@
 #include "refine/size_bound.hpp"
 
-#include "io/directed_edges.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -13,7 +11,8 @@ const char *kFile = "size_bound.cl";
 }
 
 SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
-                     const SizeField *areas, const Unsuitable *unsuitable, bool keep_regions)
+                     const SizeField *areas, const std::vector<cl_int> *areas_across,
+                     const Unsuitable *unsuitable, bool keep_regions)
     : device_(device), mesh_(mesh), unsuitable_(unsuitable), keep_regions_(keep_regions),
       evaluate_(device.kernel(kFile, "evaluate_size_field", kPhase)),
       gather_(device.kernel(kFile, "gather_corners", kPhase)),
@@ -21,13 +20,14 @@ SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
       bound_(device, mesh.triangle_capacity), no_list_(device, 1) {
   bound_.fill(device_, -1, mesh.triangle_capacity);
   if (field)
-    backgrounds_.emplace_back(device_, *field, false);
+    backgrounds_.emplace_back(device_, *field, nullptr);
   if (areas)
-    backgrounds_.emplace_back(device_, *areas, true);
+    backgrounds_.emplace_back(device_, *areas, areas_across);
 }
 
-SizeBound::Background::Background(Device &device, const SizeField &field, bool per_triangle)
-    : per_triangle(per_triangle) {
+SizeBound::Background::Background(Device &device, const SizeField &field,
+                                  const std::vector<cl_int> *across)
+    : per_triangle(across != nullptr) {
   std::vector<cl_double2> points;
   double low_x = HUGE_VAL, low_y = HUGE_VAL, high_x = -HUGE_VAL, high_y = -HUGE_VAL;
   for (const Point &p : field.points) {
@@ -129,17 +129,11 @@ SizeBound::Background::Background(Device &device, const SizeField &field, bool p
   triangles = DeviceArray<cl_int>(device, corners.size());
   triangles.upload(device, corners);
   std::vector<cl_int>().swap(corners);
-  if (per_triangle) { // a walk from the given triangle a slot descends from
-    const DirectedEdges directed(field.triangles, field.points.size());
-    std::vector<cl_int> neighbor(3 * field.triangles.size());
-    for (std::size_t k = 0; k < field.triangles.size(); ++k)
-      for (int i = 0; i < 3; ++i)
-        neighbor[3 * k + static_cast<std::size_t>(i)] = static_cast<cl_int>(
-            directed.triangle_of(field.triangles[k][(i + 2) % 3], field.triangles[k][(i + 1) % 3]));
-    across = DeviceArray<cl_int>(device, neighbor.size());
-    across.upload(device, neighbor);
+  if (across) { // a walk from the given triangle a slot descends from
+    this->across = DeviceArray<cl_int>(device, across->size());
+    this->across.upload(device, *across);
   } else {
-    across = DeviceArray<cl_int>(device, 1);
+    this->across = DeviceArray<cl_int>(device, 1);
   }
   cell_start = DeviceArray<cl_int>(device, start.size());
   cell_start.upload(device, start);

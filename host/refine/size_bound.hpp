@@ -21,8 +21,11 @@ public:
   // triangles of `areas` its slots descend from: tried first, and unless
   // `keep_regions` (the slots take those triangles' attributes) replaced by
   // the triangle that holds the slot's centroid, where a walk finds one.
+  // `areas_across`: the triangles of `areas` across the edge opposite each
+  // corner (-1 on the boundary), as the walk takes them.
   SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field, const SizeField *areas,
-            const Unsuitable *unsuitable, bool keep_regions);
+            const std::vector<cl_int> *areas_across, const Unsuitable *unsuitable,
+            bool keep_regions);
 
   // Room for every triangle slot of the mesh (after it grew).
   void fit();
@@ -36,7 +39,8 @@ private:
   // A background mesh on the device, with its grid of cells (see
   // cl/size_bound.cl): values per vertex (interpolated) or per triangle.
   struct Background {
-    Background(Device &device, const SizeField &mesh, bool per_triangle);
+    // `across`: the neighbours of a mesh with values per triangle.
+    Background(Device &device, const SizeField &mesh, const std::vector<cl_int> *across);
     bool per_triangle;
     DeviceArray<cl_double2> points;
     DeviceArray<cl_double> value;

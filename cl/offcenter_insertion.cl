@@ -23,6 +23,7 @@
 // Quality decisions use floating point, as Triangle's do; the insertion that follows uses the exact
 // predicates.
 #include "common.h"
+#include "election.h"
 #include "group_scan.h"
 #include "mesh_params.h"
 #include "prefetch.h"
@@ -197,8 +198,9 @@ static inline Quality assess(__global const double2 *points, __global const int 
 
 // The candidate of triangle `tri` when it is bad and can be mended: its
 // off-center (Üngör's, as Triangle computes it, on the side of the shortest
-// edge) and its priority, the shortest edge's squared length as a float. The
-// search and the location both compute it, so that no per-slot copy is kept.
+// edge), its priority, the shortest edge's squared length as a float, and
+// whether it is bad by its area alone (area_only). The search and the
+// location both compute it, so that no per-slot copy is kept.
 // -Y (protect 1): does edge i of real triangle t lie on the domain's
 // boundary? -YY (protect 2): or on a segment? No point may split it.
 static inline bool is_protected(CLM_MESH_PARAMS, int t, int i, int protect) {
@@ -230,7 +232,7 @@ static inline bool bad_triangle_candidate(__global const double2 *points,
                                           __global const int *segment_end, VertexTriple tri,
                                           double ratio_bound_squared, double max_area,
                                           double offconstant, bool encroaching, int protected_mask,
-                                          double2 *steiner, uint *priority) {
+                                          double2 *steiner, uint *priority, bool *area_only) {
   const Quality q =
       assess(points, point_state, point_segment, segment_end, tri, ratio_bound_squared, max_area);
   if (!encroaching && ((!q.skinny && !q.large) || q.unfixable))
@@ -253,8 +255,9 @@ static inline bool bad_triangle_candidate(__global const double2 *points,
   // Skinny triangles: the shorter the shortest edge, the worse. Triangles
   // only too large: the larger the better, so that an area bound refines the
   // whole domain at once rather than as a front from where it began.
-  *priority = as_uint(q.skinny || encroaching ? (float)q.length_squared[shortest]
-                                              : (float)(1.0 / q.length_squared[shortest]));
+  *area_only = !q.skinny && !encroaching;
+  *priority = as_uint(*area_only ? (float)(1.0 / q.length_squared[shortest])
+                                 : (float)q.length_squared[shortest]);
   // A degenerate computation leaves the triangle alone, and so does a
   // candidate beyond an edge of its own that no point may split (-Y).
   return isfinite(steiner->x) && isfinite(steiner->y) &&
@@ -441,6 +444,7 @@ static inline bool stranded(CLM_MESH_PARAMS, int inward, int t, VertexTriple tri
 #define CLM_NOTE_BEHIND_SHIFT 1 // 3 bits
 #define CLM_NOTE_APEX_SHIFT 4   // 3 bits
 #define CLM_NOTE_STUCK 0x80
+#define CLM_NOTE_AREA_ONLY 0x100 // see settle_elected
 
 // Is bad triangle t stuck: did a location drop its candidate beyond a
 // boundary edge or subsegment that cannot be split (splittable), not one of
@@ -595,12 +599,13 @@ static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gi
   const VertexTriple tri = load_vertices(tri_vertex, t);
   double2 steiner;
   uint priority;
+  bool area_only;
   bool bad = !is_ghost(tri) && !is_dead(tri) &&
              bad_triangle_candidate(
                  points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri, ratio_bound_squared,
                  area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, t),
                  offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, t, tri),
-                 protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority);
+                 protected_edges(CLM_MESH_ARGS, t, protect), &steiner, &priority, &area_only);
   const int behind = bad ? edges_behind(CLM_MESH_ARGS, t, tri, steiner) : 0;
   const bool stuck = is_stuck(modified_stamp, notes, located_stamp, t);
   bad = bad && !unsplittable_edge(CLM_MESH_ARGS, inward, t, behind) && !stuck;
@@ -615,6 +620,8 @@ static inline void search_entry(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, const int gi
     tri_mark[t] = touches_hull(point_state, tri) ? priority : priority | CLM_OFFCENTER_RANK;
     if (splits_own_edge(CLM_MESH_ARGS, t, tri, steiner, lens, protect))
       note |= CLM_NOTE_SPLITS_OWN_EDGE;
+    if (area_only)
+      note |= CLM_NOTE_AREA_ONLY;
   }
   notes[t] = note;
 }
@@ -653,15 +660,17 @@ __kernel void count_unfixable_triangles(CLM_MESH_PARAMS, const double ratio_boun
     return; // a good triangle: no candidate, nothing to count
   double2 steiner;
   uint priority;
+  bool area_only;
   const int mask = protected_edges(CLM_MESH_ARGS, t, protect);
   if (q.unfixable || (encroaching && flat_corners(q.p)) ||
       (mask &&
        bad_triangle_candidate(points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri,
-                              ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority) &&
+                              ratio_bound_squared, bound, 1e300, false, 0, &steiner, &priority,
+                              &area_only) &&
        beyond_edges(q.p, mask, steiner)) ||
       (bad_triangle_candidate(points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, tri,
                               ratio_bound_squared, bound, offconstant, encroaching, mask, &steiner,
-                              &priority) &&
+                              &priority, &area_only) &&
        (stranded(CLM_MESH_ARGS, inward, t, tri, steiner) ||
         is_stuck(modified_stamp, notes, located_stamp, t))))
     atomic_inc(counts);
@@ -789,6 +798,82 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
     elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
 }
 
+// A second round of the election (Luby's), when the first elected fewer
+// than one bad triangle in CLM_SECOND_ROUND_SHARE (cl/election.h): a
+// triangle bad by its area alone (CLM_NOTE_AREA_ONLY, set by
+// find_bad_triangles) that the first round left out, with no elected
+// triangle within `rings` rings, is elected when no such triangle within
+// them has a better priority. Where an area bound refines large triangles,
+// the first round elects about one bad triangle in seven and the mesh grows
+// by a fifth per iteration; the second round about doubles what is elected,
+// and its points are mostly points the area bound asks for anyway (for the
+// angle bound it would add points that later insertions make needless).
+// Three passes, each reading only marks the others do not write: the
+// elected triangles mark their slots 0, which no priority beats
+// (settle_elected); the others that take no part clear their marks
+// (retire_blocked); those left are elected as in the first round
+// (elect_again). gather_elected clears every mark after.
+static inline void settle_elected_entry(__global const int *bad, __global const int *elected,
+                                        volatile __global uint *tri_mark, const int k) {
+  if (elected[k])
+    tri_mark[bad[k]] = 0;
+}
+
+// Is a triangle within `rings` rings of t elected (mark 0)?
+static inline bool near_elected(__global const int *tri_neighbor,
+                                volatile __global const uint *tri_mark, const int rings, int t) {
+  for (int i = 0; i < 3; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * t + i]);
+    if (tri_mark[u] == 0)
+      return true;
+    for (int j = 0; j < 3 && rings > 1; ++j)
+      if (tri_mark[link_triangle(tri_neighbor[3 * u + j])] == 0)
+        return true;
+  }
+  return false;
+}
+
+static inline void retire_blocked_entry(__global const int *bad, __global const int *tri_neighbor,
+                                        volatile __global uint *tri_mark, const int rings,
+                                        __global const int *notes, __global const int *elected,
+                                        const int k) {
+  const int t = bad[k];
+  if (!elected[k] &&
+      (!(notes[t] & CLM_NOTE_AREA_ONLY) || near_elected(tri_neighbor, tri_mark, rings, t)))
+    tri_mark[t] = CLM_NO_MARK;
+}
+
+static inline void elect_again_entry(__global const int *bad, __global const int *tri_neighbor,
+                                     volatile __global const uint *tri_mark, const int rings,
+                                     __global const int *notes, __global int *elected,
+                                     const int k) {
+  if (!elected[k] && tri_mark[bad[k]] != CLM_NO_MARK)
+    elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
+}
+
+__kernel void settle_elected(__global const int *bad, __global const int *elected,
+                             __global uint *tri_mark, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    settle_elected_entry(bad, elected, tri_mark, k);
+}
+
+__kernel void retire_blocked(__global const int *bad, __global const int *tri_neighbor,
+                             __global uint *tri_mark, const int rings, __global const int *notes,
+                             __global const int *elected, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    retire_blocked_entry(bad, tri_neighbor, tri_mark, rings, notes, elected, k);
+}
+
+__kernel void elect_again(__global const int *bad, __global const int *tri_neighbor,
+                          __global const uint *tri_mark, const int rings, __global const int *notes,
+                          __global int *elected, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    elect_again_entry(bad, tri_neighbor, tri_mark, rings, notes, elected, k);
+}
+
 // The elected bad triangles as the candidates' origins (offsets by prefix sum),
 // each bad triangle's mark cleared. One left waiting forgets where its last
 // candidate was: it may be rewritten before the next search that locates it.
@@ -854,6 +939,18 @@ static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARC
     prefetch_rings(bad, k, electing, tri_mark, notes, tri_neighbor, 2);
     is_bad[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
   }
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  const int first_round = group_exclusive_scan(is_bad, offset, electing, scratch);
+  // The second round (settle_elected), its passes empty when it does not run.
+  const int again = CLM_SECOND_ROUND_SHARE * first_round < electing ? electing : 0;
+  for (int k = lid; k < again; k += size)
+    settle_elected_entry(bad, is_bad, tri_mark, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < again; k += size)
+    retire_blocked_entry(bad, tri_neighbor, tri_mark, rings, notes, is_bad, k);
+  barrier(CLK_GLOBAL_MEM_FENCE);
+  for (int k = lid; k < again; k += size)
+    elect_again_entry(bad, tri_neighbor, tri_mark, rings, notes, is_bad, k);
   barrier(CLK_GLOBAL_MEM_FENCE);
   const int elected = group_exclusive_scan(is_bad, offset, electing, scratch);
   for (int k = lid; k < electing; k += size)
@@ -965,12 +1062,14 @@ static inline void locate_entry(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, const int k)
   const int bad = origin[k], known = last_container[bad];
   double2 c;
   uint rank;
+  bool area_only;
   const VertexTriple bad_triangle = load_vertices(tri_vertex, bad);
   bad_triangle_candidate(
       points, point_state, CLM_SEGMENTS_IF_ANY, segment_end, bad_triangle, ratio_bound_squared,
       area_bound_of(tri_region, regional, region_area, size_bound, sized, max_area, bad),
       offconstant, conforming && encroaches_subsegment(CLM_MESH_ARGS, bad, bad_triangle),
-      protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank); // bad: the search found it so
+      protected_edges(CLM_MESH_ARGS, bad, protect), &c, &rank,
+      &area_only); // bad: the search found it so
   candidate[k] = c;
   const bool unchanged =
       modified_stamp[bad] < located_stamp && known >= 0 && modified_stamp[known] < located_stamp;

@@ -1,5 +1,7 @@
 #include "refine/offcenter_insertion.hpp"
 
+#include "election.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,6 +38,9 @@ OffcenterInsertion::OffcenterInsertion(
       find_bad_(device.kernel(kFile, "find_bad_triangles", kPhase)),
       gather_bad_(device.kernel(kFile, "gather_bad_triangles", kPhase)),
       elect_(device.kernel(kFile, "elect_candidates", kPhase)),
+      settle_elected_(device.kernel(kFile, "settle_elected", kPhase)),
+      retire_blocked_(device.kernel(kFile, "retire_blocked", kPhase)),
+      elect_again_(device.kernel(kFile, "elect_again", kPhase)),
       gather_elected_(device.kernel(kFile, "gather_elected", kPhase)),
       locate_(device.kernel(kFile, "locate_candidates", kPhase)),
       mark_(device.kernel(kFile, "mark_candidate_containers", kPhase)),
@@ -277,6 +282,18 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
            static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  if (CLM_SECOND_ROUND_SHARE * candidates_ < bad_) { // the second round (cl/election.h)
+    set_args(settle_elected_, bad_list_.buffer(), keep_.buffer(), mesh_.tri_mark.buffer(), bad);
+    launch(device_, settle_elected_, bad_, kPhase);
+    const auto rings = static_cast<cl_int>(election_rings_);
+    set_args(retire_blocked_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(),
+             mesh_.tri_mark.buffer(), rings, notes_.buffer(), keep_.buffer(), bad);
+    launch(device_, retire_blocked_, bad_, kPhase);
+    set_args(elect_again_, bad_list_.buffer(), mesh_.tri_neighbor.buffer(), mesh_.tri_mark.buffer(),
+             rings, notes_.buffer(), keep_.buffer(), bad);
+    launch(device_, elect_again_, bad_, kPhase);
+    candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
+  }
   set_args(gather_elected_, bad_list_.buffer(), keep_.buffer(), offset_.buffer(),
            mesh_.tri_mark.buffer(), last_container_.buffer(), origin_.buffer(), bad);
   launch(device_, gather_elected_, bad_, kPhase);

@@ -165,8 +165,8 @@ private:
   int protected_segments_; // -Y
   bool inward_;            // split points of boundary edges kept inside
   cl::Kernel flag_hull_, count_unfixable_, flag_unsettled_, find_bad_, gather_bad_, elect_,
-      gather_elected_, locate_, mark_, ties_, filter_, clear_, append_, step_one_in_group_,
-      place_in_group_;
+      settle_elected_, retire_blocked_, elect_again_, gather_elected_, locate_, mark_, ties_,
+      filter_, clear_, append_, step_one_in_group_, place_in_group_;
   std::size_t bad_ = 0, candidates_ = 0;
   bool searched_ = false; // the first search examines every slot
   bool elected_ = false;  // the last search elected too (step_one_in_group)

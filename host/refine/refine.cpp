@@ -223,11 +223,12 @@ constexpr long kMaxIterations = 1000;
 
 // A mesh to refine (-r): its triangles (input numbering), their area
 // bounds (empty: none) and, with those, each triangle's neighbours across the
-// edges opposite its corners (-1 on the boundary).
+// edges opposite its corners (-1 on the boundary; emptied once on the
+// device).
 struct GivenMesh {
   const std::vector<Triangle> &triangles;
   const std::vector<double> &max_area;
-  const std::vector<cl_int> &across;
+  std::vector<cl_int> &across;
 };
 
 // The marker that tells a given mesh's inner edges among the constraints of
@@ -286,7 +287,9 @@ public:
       size_bound_ = std::make_unique<SizeBound>(
           device_, mesh(), options_.size_field, triangle_areas_.get(),
           triangle_areas_ ? &given_->across : nullptr, options_.unsuitable, options_.attributes);
-      triangle_areas_.reset();                      // on the device now
+      triangle_areas_.reset(); // on the device now, and so are the neighbours
+      if (given_)
+        std::vector<cl_int>().swap(given_->across);
       scheduler_.timer().charge(SizeBound::kPhase); // the background grids' set-up
     }
     make_steps();
@@ -944,6 +947,7 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   RefineResult result;
   check_area_bound(device, subset.points, options, result.stats);
   const GivenMesh given{corners, max_area, across};
+  release_free_heap(); // the edge lists' pages, before the device's arrays
   // The given mesh's edges, found on the host, are part of its
   // reconstruction's time (the device's starts with the Refinement).
   const double edges_seconds =

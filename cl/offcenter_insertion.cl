@@ -798,16 +798,16 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
     elected[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
 }
 
-// A second round of the election (Luby's), when the first elected fewer
-// than one bad triangle in CLM_SECOND_ROUND_SHARE (cl/election.h): a
+// A second round of the election (Luby's), when triangles may have an area
+// bound and the first round elected fewer than one bad triangle in
+// CLM_SECOND_ROUND_SHARE (cl/election.h): a
 // triangle bad by its area alone (CLM_NOTE_AREA_ONLY, set by
 // find_bad_triangles) that the first round left out, with no elected
 // triangle within `rings` rings, is elected when no such triangle within
 // them has a better priority. Where an area bound refines large triangles,
-// the first round elects about one bad triangle in seven and the mesh grows
-// by a fifth per iteration; the second round about doubles what is elected,
-// and its points are mostly points the area bound asks for anyway (for the
-// angle bound it would add points that later insertions make needless).
+// the first round elects about one bad triangle in seven and the second
+// about doubles that, with points the area bound mostly asks for anyway (for
+// the angle bound it would add points that later insertions make needless).
 // Three passes, each reading only marks the others do not write: the
 // elected triangles mark their slots 0, which no priority beats
 // (settle_elected); the others that take no part clear their marks
@@ -904,18 +904,19 @@ __kernel void gather_elected(__global const int *bad, __global const int *electe
 // removed into list (group_unique, with unique_keep and unique_offset; with
 // use_list 0 both counts are 0 and the search sweeps the `slots` slots), then
 // find_bad_triangles, the bad ones' prefix sum and gather_bad_triangles
-// (into bad), and with an election (rings > 0) elect_candidates, the elected
+// (into bad), and with an election (rings > 0) elect_candidates (and its
+// second round where second_round allows it, settle_elected), the elected
 // ones' prefix sum and gather_elected (into origin). counts[0..3): the
 // entries searched, the bad triangles, the candidates. The barriers stand
 // outside any data-dependent branch.
 #define CLM_SEARCH_GROUP_PARAMS                                                                    \
   __global int *bad, const int last_bad, __global const int *changed, const int changed_count,     \
       __global int *search, __global int *unique_keep, __global int *unique_offset,                \
-      __global int *offset, const int rings, __global int *last_container, __global int *origin,   \
-      __local int *scratch, __global int *counts, const int slots
+      __global int *offset, const int rings, const int second_round, __global int *last_container, \
+      __global int *origin, __local int *scratch, __global int *counts, const int slots
 #define CLM_SEARCH_GROUP_ARGS                                                                      \
   bad, last_bad, changed, changed_count, search, unique_keep, unique_offset, offset, rings,        \
-      last_container, origin, scratch, counts, slots
+      second_round, last_container, origin, scratch, counts, slots
 // Returns the bad triangles and the candidates to every work-item.
 static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARCH_GROUP_PARAMS) {
   const int lid = get_local_id(0), size = get_local_size(0);
@@ -942,7 +943,7 @@ static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARC
   barrier(CLK_GLOBAL_MEM_FENCE);
   const int first_round = group_exclusive_scan(is_bad, offset, electing, scratch);
   // The second round (settle_elected), its passes empty when it does not run.
-  const int again = CLM_SECOND_ROUND_SHARE * first_round < electing ? electing : 0;
+  const int again = second_round && CLM_SECOND_ROUND_SHARE * first_round < electing ? electing : 0;
   for (int k = lid; k < again; k += size)
     settle_elected_entry(bad, is_bad, tri_mark, k);
   barrier(CLK_GLOBAL_MEM_FENCE);

@@ -64,6 +64,10 @@ OffcenterInsertion::OffcenterInsertion(
       place_group_(device.single_group(place_in_group_, kPhase)) {
   std::vector<cl_double> areas(region_areas.begin(), region_areas.end());
   region_area_.upload(device_, areas);
+  // The election's second round takes triangles bad by their area alone:
+  // without an area bound of any kind there are none.
+  second_round_ = max_area_ > 0 || size_bound_ != nullptr ||
+                  std::any_of(areas.begin(), areas.end(), [](double a) { return a > 0; });
   stuck_count_.fill(device_, 0, 1);
   const double pi = 3.14159265358979323846, angle = min_angle * pi / 180;
   cos_bound_ = std::cos(angle);
@@ -217,7 +221,7 @@ std::size_t OffcenterInsertion::step_one_in_group(const DeviceList<cl_int> *chan
                 bad_list_.buffer(), static_cast<cl_int>(last_bad), changed_list,
                 static_cast<cl_int>(changed_count), search_.items.buffer(), pooled_keep_.buffer(),
                 pooled_offset_.buffer(), offset_.buffer(), static_cast<cl_int>(election_rings_),
-                last_container_.buffer(), origin_.buffer(),
+                static_cast<cl_int>(second_round_), last_container_.buffer(), origin_.buffer(),
                 cl::Local(sizeof(cl_int) * search_group_), search_counts_.buffer(),
                 static_cast<cl_int>(mesh_.triangle_count), candidate_.buffer(), container_.buffer(),
                 split_edge_.buffer(), priority_.buffer(), radius2_.buffer(),
@@ -282,7 +286,7 @@ std::size_t OffcenterInsertion::elect_candidates(PrefixScan &scan) {
            static_cast<cl_int>(election_rings_), notes_.buffer(), keep_.buffer(), bad);
   launch(device_, elect_, bad_, kPhase);
   candidates_ = static_cast<std::size_t>(scan.exclusive_scan(keep_, offset_, bad_, kPhase));
-  if (CLM_SECOND_ROUND_SHARE * candidates_ < bad_) { // the second round (cl/election.h)
+  if (second_round_ && CLM_SECOND_ROUND_SHARE * candidates_ < bad_) { // cl/election.h
     set_args(settle_elected_, bad_list_.buffer(), keep_.buffer(), mesh_.tri_mark.buffer(), bad);
     launch(device_, settle_elected_, bad_, kPhase);
     const auto rings = static_cast<cl_int>(election_rings_);

@@ -159,6 +159,7 @@ private:
   double filter_near2_; // squared; infinite for any distance
   bool parallel_midpoints_;
   int election_rings_;
+  bool second_round_ = false; // may the election hold a second round (settle_elected)?
   bool carry_verdicts_;
   std::size_t group_step_limit_;
   bool conforming_;        // -D: triangles whose apex encroaches a subsegment are bad

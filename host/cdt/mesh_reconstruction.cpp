@@ -36,8 +36,11 @@ MeshReconstruction::MeshReconstruction(Device &device, DeviceMesh &mesh,
 
 long MeshReconstruction::label() {
   const std::size_t slots = mesh_.triangle_count;
+  // Slots that come into use later take their parents' labels (as the
+  // exterior removal's labels, fill_ahead): the pages past those in use stay
+  // untouched.
   label_ = DeviceArray<cl_int>(device_, mesh_.triangle_capacity);
-  label_.fill(device_, -1, mesh_.triangle_capacity);
+  label_.fill(device_, -1, fill_ahead(slots, mesh_.triangle_capacity));
   DeviceArray<cl_int> found(device_, triangle_count_), matched(device_, 1);
   found.fill(device_, 0, triangle_count_);
   matched.fill(device_, 0, 1);

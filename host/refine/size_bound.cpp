@@ -18,7 +18,9 @@ SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
       gather_(device.kernel(kFile, "gather_corners", kPhase)),
       scatter_(device.kernel(kFile, "scatter_bounds", kPhase)),
       bound_(device, mesh.triangle_capacity), no_list_(device, 1) {
-  bound_.fill(device_, -1, mesh.triangle_capacity);
+  // The bounds of the slots that come into use are set before any search
+  // reads them (update): the pages past those in use stay untouched.
+  bound_.fill(device_, -1, fill_ahead(mesh.triangle_count, mesh.triangle_capacity));
   if (field)
     backgrounds_.emplace_back(device_, *field, nullptr);
   if (areas)

@@ -758,6 +758,24 @@ static inline void prefetch_rings(__global const int *list, int k, int n,
   }
 }
 
+// Are the marks of the triangles within `rings` rings of t (1: its
+// neighbours; 2: and theirs), t itself left out, all at least `least`?
+static inline bool marks_around_at_least(__global const int *tri_neighbor,
+                                         volatile __global const uint *tri_mark, const int rings,
+                                         int t, uint least) {
+  for (int i = 0; i < 3; ++i) {
+    const int u = link_triangle(tri_neighbor[3 * t + i]);
+    if (tri_mark[u] < least)
+      return false;
+    for (int j = 0; j < 3 && rings > 1; ++j) {
+      const int w = link_triangle(tri_neighbor[3 * u + j]);
+      if (w != t && tri_mark[w] < least)
+        return false;
+    }
+  }
+  return true;
+}
+
 // The election (GPU-QM-V): bad triangle bad[k] sends a candidate in this
 // iteration only when no bad triangle within `rings` rings of it (1: its
 // neighbours; 2: and theirs) has a better priority (the marks of
@@ -776,17 +794,8 @@ static inline bool is_elected(__global const int *bad, __global const int *tri_n
                               volatile __global const uint *tri_mark, const int rings,
                               __global const int *notes, const int k) {
   const int t = bad[k];
-  const uint mine = tri_mark[t];
-  bool best = true;
-  for (int i = 0; i < 3 && best && !(notes[t] & CLM_NOTE_SPLITS_OWN_EDGE); ++i) {
-    const int u = link_triangle(tri_neighbor[3 * t + i]);
-    best = tri_mark[u] >= mine;
-    for (int j = 0; j < 3 && best && rings > 1; ++j) {
-      const int w = link_triangle(tri_neighbor[3 * u + j]);
-      best = w == t || tri_mark[w] >= mine;
-    }
-  }
-  return best;
+  return (notes[t] & CLM_NOTE_SPLITS_OWN_EDGE) ||
+         marks_around_at_least(tri_neighbor, tri_mark, rings, t, tri_mark[t]);
 }
 
 __kernel void elect_candidates(__global const int *bad, __global const int *tri_neighbor,
@@ -800,37 +809,20 @@ __kernel void elect_candidates(__global const int *bad, __global const int *tri_
 
 // A second round of the election (Luby's), when triangles may have an area
 // bound and the first round elected fewer than one bad triangle in
-// CLM_SECOND_ROUND_SHARE (cl/election.h): a
-// triangle bad by its area alone (CLM_NOTE_AREA_ONLY, set by
-// find_bad_triangles) that the first round left out, with no elected
-// triangle within `rings` rings, is elected when no such triangle within
-// them has a better priority. Where an area bound refines large triangles,
-// the first round elects about one bad triangle in seven and the second
-// about doubles that, with points the area bound mostly asks for anyway (for
-// the angle bound it would add points that later insertions make needless).
-// Three passes, each reading only marks the others do not write: the
-// elected triangles mark their slots 0, which no priority beats
-// (settle_elected); the others that take no part clear their marks
-// (retire_blocked); those left are elected as in the first round
-// (elect_again). gather_elected clears every mark after.
+// CLM_SECOND_ROUND_SHARE (cl/election.h): a triangle bad by its area alone
+// (CLM_NOTE_AREA_ONLY, set by find_bad_triangles) that the first round left
+// out, with no elected triangle within `rings` rings (no mark 0 there), is
+// elected when no such triangle within them has a better priority. Where an area bound refines
+// large triangles, the first round elects about one bad triangle in seven and the second about
+// doubles that, with points the area bound mostly asks for anyway (for the angle bound it would add
+// points that later insertions make needless). Three passes, each reading only marks the others do
+// not write: the elected triangles mark their slots 0, which no priority beats (settle_elected);
+// the others that take no part clear their marks (retire_blocked); those left are elected as in the
+// first round (elect_again). gather_elected clears every mark after.
 static inline void settle_elected_entry(__global const int *bad, __global const int *elected,
                                         volatile __global uint *tri_mark, const int k) {
   if (elected[k])
     tri_mark[bad[k]] = 0;
-}
-
-// Is a triangle within `rings` rings of t elected (mark 0)?
-static inline bool near_elected(__global const int *tri_neighbor,
-                                volatile __global const uint *tri_mark, const int rings, int t) {
-  for (int i = 0; i < 3; ++i) {
-    const int u = link_triangle(tri_neighbor[3 * t + i]);
-    if (tri_mark[u] == 0)
-      return true;
-    for (int j = 0; j < 3 && rings > 1; ++j)
-      if (tri_mark[link_triangle(tri_neighbor[3 * u + j])] == 0)
-        return true;
-  }
-  return false;
 }
 
 static inline void retire_blocked_entry(__global const int *bad, __global const int *tri_neighbor,
@@ -838,8 +830,8 @@ static inline void retire_blocked_entry(__global const int *bad, __global const 
                                         __global const int *notes, __global const int *elected,
                                         const int k) {
   const int t = bad[k];
-  if (!elected[k] &&
-      (!(notes[t] & CLM_NOTE_AREA_ONLY) || near_elected(tri_neighbor, tri_mark, rings, t)))
+  if (!elected[k] && (!(notes[t] & CLM_NOTE_AREA_ONLY) ||
+                      !marks_around_at_least(tri_neighbor, tri_mark, rings, t, 1)))
     tri_mark[t] = CLM_NO_MARK;
 }
 

@@ -347,12 +347,16 @@ void PhaseTimer::charge(const std::string &name) {
   const auto now = Clock::now();
   const double seconds = std::chrono::duration<double>(now - last_).count();
   last_ = now;
-  for (auto &phase : stats_.phases)
+  add_phase_time(stats_, name, seconds);
+}
+
+void add_phase_time(DelaunayStats &stats, const std::string &name, double seconds) {
+  for (auto &phase : stats.phases)
     if (phase.name == name) {
       phase.seconds += seconds;
       return;
     }
-  stats_.phases.push_back({name, seconds});
+  stats.phases.push_back({name, seconds});
 }
 
 DelaunayScheduler::DelaunayScheduler(Device &device, const std::vector<Point> &points,

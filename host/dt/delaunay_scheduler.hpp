@@ -27,6 +27,9 @@ inline double seconds_since(Clock::time_point start) {
 std::pair<Point, double> bounding_square(const std::vector<Point> &points);
 
 // Charges wall time to named phases, waiting for the device at each boundary.
+// Adds `seconds` to phase `name` of `stats` (a new phase at the end).
+void add_phase_time(DelaunayStats &stats, const std::string &name, double seconds);
+
 class PhaseTimer {
 public:
   PhaseTimer(Device &device, DelaunayStats &stats) : device_(device), stats_(stats) {}

@@ -854,18 +854,6 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
   return constraints;
 }
 
-// Host work before the device's timer started, added to the compute time
-// and to `phase`.
-void charge_host_phase(DelaunayStats &stats, const char *phase, double seconds) {
-  stats.compute_seconds += seconds;
-  for (PhaseTime &time : stats.phases)
-    if (time.name == phase) {
-      time.seconds += seconds;
-      return;
-    }
-  stats.phases.push_back({phase, seconds});
-}
-
 } // namespace
 
 RefineResult refine_delaunay(Device &device, const std::vector<Point> &points,
@@ -957,7 +945,8 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
     refinement.iterate();
     refinement.finish();
   }
-  charge_host_phase(result.mesh.stats, MeshReconstruction::kPhase, edges_seconds);
+  result.mesh.stats.compute_seconds += edges_seconds;
+  add_phase_time(result.mesh.stats, MeshReconstruction::kPhase, edges_seconds);
   if (every_point)
     return result;
   // Back to the input's numbering; the added points follow all its points.

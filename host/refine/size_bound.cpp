@@ -28,8 +28,8 @@ SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
 }
 
 SizeBound::Background::Background(Device &device, const SizeField &field,
-                                  const std::vector<cl_int> *across)
-    : per_triangle(across != nullptr) {
+                                  const std::vector<cl_int> *neighbours)
+    : per_triangle(neighbours != nullptr) {
   std::vector<cl_double2> points;
   double low_x = HUGE_VAL, low_y = HUGE_VAL, high_x = -HUGE_VAL, high_y = -HUGE_VAL;
   for (const Point &p : field.points) {
@@ -131,11 +131,11 @@ SizeBound::Background::Background(Device &device, const SizeField &field,
   triangles = DeviceArray<cl_int>(device, corners.size());
   triangles.upload(device, corners);
   std::vector<cl_int>().swap(corners);
-  if (across) { // a walk from the given triangle a slot descends from
-    this->across = DeviceArray<cl_int>(device, across->size());
-    this->across.upload(device, *across);
+  if (neighbours) { // a walk from the given triangle a slot descends from
+    across = DeviceArray<cl_int>(device, neighbours->size());
+    across.upload(device, *neighbours);
   } else {
-    this->across = DeviceArray<cl_int>(device, 1);
+    across = DeviceArray<cl_int>(device, 1);
   }
   cell_start = DeviceArray<cl_int>(device, start.size());
   cell_start.upload(device, start);

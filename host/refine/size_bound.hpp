@@ -39,8 +39,9 @@ private:
   // A background mesh on the device, with its grid of cells (see
   // cl/size_bound.cl): values per vertex (interpolated) or per triangle.
   struct Background {
-    // `across`: the neighbours of a mesh with values per triangle.
-    Background(Device &device, const SizeField &mesh, const std::vector<cl_int> *across);
+    // `neighbours` (a mesh with values per triangle): its triangles across
+    // their edges, as `across` holds them.
+    Background(Device &device, const SizeField &mesh, const std::vector<cl_int> *neighbours);
     bool per_triangle;
     DeviceArray<cl_double2> points;
     DeviceArray<cl_double> value;

@@ -1,6 +1,7 @@
-// clmesh — final stream compaction before download (thesis §3.6.1): ghost
-// triangles and empty slots are dropped, real triangles renumbered by a prefix
-// sum, and neighbour links rewritten to the new numbers (-1 on the hull).
+// clmesh — the mesh's last steps on the device before its download (thesis
+// §3.6.1): ghost triangles, removed ones and empty slots are dropped, the
+// real triangles sorted into a canonical order and numbered by it, and the
+// neighbour links rewritten to those numbers (-1 on the hull).
 #include "common.h"
 
 // Real triangles, less those flagged in removed[] when use_removed (the
@@ -11,25 +12,6 @@ __kernel void flag_real_triangles(__global const int *tri_vertex, __global const
   if (t < n)
     is_real[t] = tri_vertex[3 * t] >= 0 && tri_vertex[3 * t + 1] >= 0 &&
                  tri_vertex[3 * t + 2] >= 0 && !(use_removed && removed[t]);
-}
-
-// label: an optional per-triangle value carried along (regional attributes).
-__kernel void write_real_triangles(__global const int *tri_vertex, __global const int *tri_neighbor,
-                                   __global const int *is_real, __global const int *new_index,
-                                   __global const int *label, const int use_label,
-                                   __global int *out_vertex, __global int *out_neighbor,
-                                   __global int *out_label, const int n) {
-  const int t = get_global_id(0);
-  if (t >= n || !is_real[t])
-    return;
-  const int o = new_index[t];
-  if (use_label)
-    out_label[o] = label[t];
-  for (int i = 0; i < 3; ++i) {
-    const int x = link_triangle(tri_neighbor[3 * t + i]);
-    out_vertex[3 * o + i] = tri_vertex[3 * t + i];
-    out_neighbor[3 * o + i] = is_real[x] ? new_index[x] : -1;
-  }
 }
 
 __kernel void fill_identity(__global int *out, const int n) {
@@ -69,13 +51,6 @@ __kernel void redirect_duplicates(__global int *duplicate_of, __global const int
   duplicate_of[i] = smallest == i ? -1 : smallest;
 }
 
-__kernel void rename_vertices(__global int *out_vertex, __global const int *original_id,
-                              __global const int *representative, const int n) {
-  const int i = get_global_id(0);
-  if (i < n)
-    out_vertex[i] = representative[original_id[out_vertex[i]]];
-}
-
 // device_of_input[original_id[p]] = p: from input numbers back to slots.
 __kernel void invert_numbering(__global const int *original_id, __global int *device_of_input,
                                const int n) {
@@ -91,26 +66,51 @@ __kernel void invert_numbering(__global const int *original_id, __global int *de
 // together), and sorted inside a group by their second and third vertices: a
 // counting sort on the first vertex's slot (PrefixScan::bucket), then a sort
 // of each small bucket, which fixes the order the bucketing's atomic cursor left.
-// first_slot[t]: the device slot of t's first vertex.
-__kernel void rotate_to_smallest(__global int *out_vertex, __global int *out_neighbor,
-                                 __global const int *device_of_input, __global int *first_slot,
-                                 const int n) {
+//
+// Per device point p: its name in the output, the input index of the
+// smallest of its group of identical points (representative, by input
+// index), and home[p], the device slot of that point.
+__kernel void name_points(__global const int *original_id, __global const int *representative,
+                          __global const int *device_of_input, __global int *name,
+                          __global int *home, const int n) {
+  const int p = get_global_id(0);
+  if (p >= n)
+    return;
+  const int named = representative[original_id[p]];
+  name[p] = named;
+  home[p] = device_of_input[named];
+}
+
+// In place, per slot t: a real triangle's corners by their names
+// (name_points), rotated to start at the smallest, its links as the slots
+// of real neighbours (-1 for none), and first_slot[t] the home of its
+// first corner; first_slot[t] = -1 for the other slots, which the bucketing
+// leaves out.
+__kernel void canonical_triangles(__global int *tri_vertex, __global int *tri_neighbor,
+                                  __global const int *is_real, __global const int *name,
+                                  __global const int *home, __global int *first_slot, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
-  const VertexTriple tri = load_vertices(out_vertex, t);
-  const int r = canonical_start(tri);
-  first_slot[t] = device_of_input[r == 0 ? tri.v[0] : (r == 1 ? tri.v[1] : tri.v[2])];
-  if (r == 0)
+  if (!is_real[t]) {
+    first_slot[t] = -1;
     return;
-  int v[3], m[3];
-  for (int i = 0; i < 3; ++i) {
-    v[i] = out_vertex[3 * t + (i + r) % 3];
-    m[i] = out_neighbor[3 * t + (i + r) % 3];
   }
-  for (int i = 0; i < 3; ++i) {
-    out_vertex[3 * t + i] = v[i];
-    out_neighbor[3 * t + i] = m[i];
+  const int va = tri_vertex[3 * t], vb = tri_vertex[3 * t + 1], vc = tri_vertex[3 * t + 2];
+  const int a = name[va], b = name[vb], c = name[vc];
+  const int xa = link_triangle(tri_neighbor[3 * t]), xb = link_triangle(tri_neighbor[3 * t + 1]),
+            xc = link_triangle(tri_neighbor[3 * t + 2]);
+  const int na = is_real[xa] ? xa : -1, nb = is_real[xb] ? xb : -1, nc = is_real[xc] ? xc : -1;
+  // Rotated to start at the smallest corner, as canonical_start chooses.
+  if (a < b && a < c) {
+    first_slot[t] = home[va];
+    store_triangle(tri_vertex, tri_neighbor, t, a, b, c, na, nb, nc);
+  } else if (b < c) {
+    first_slot[t] = home[vb];
+    store_triangle(tri_vertex, tri_neighbor, t, b, c, a, nb, nc, na);
+  } else {
+    first_slot[t] = home[vc];
+    store_triangle(tri_vertex, tri_neighbor, t, c, a, b, nc, na, nb);
   }
 }
 
@@ -168,9 +168,11 @@ __kernel void sort_buckets(__global const int *out_vertex, __global const int *b
     position[bucket[i]] = start + i;
 }
 
+// Entry k of the output: the triangle in slot order[k], its neighbours
+// renumbered to their output positions (position: per slot).
 __kernel void write_sorted(__global const int *order, __global const int *position,
                            __global const int *out_vertex, __global const int *out_neighbor,
-                           __global const int *out_label, const int use_label,
+                           __global const int *label, const int use_label,
                            __global int *sorted_vertex, __global int *sorted_neighbor,
                            __global int *sorted_label, const int n) {
   const int k = get_global_id(0);
@@ -178,7 +180,7 @@ __kernel void write_sorted(__global const int *order, __global const int *positi
     return;
   const int t = order[k];
   if (use_label)
-    sorted_label[k] = out_label[t];
+    sorted_label[k] = label[t];
   for (int i = 0; i < 3; ++i) {
     const int m = out_neighbor[3 * t + i];
     sorted_vertex[3 * k + i] = out_vertex[3 * t + i];

@@ -1,4 +1,4 @@
-// clmesh — final compaction and download of the mesh (thesis §3.6.1).
+// clmesh — the mesh in canonical order, downloaded (thesis §3.6.1).
 // Kernels: cl/mesh_output.cl.
 #pragma once
 
@@ -31,9 +31,8 @@ private:
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
-  cl::Kernel flag_real_, write_real_, smallest_representative_, redirect_duplicates_,
-      rename_vertices_, fill_identity_, restore_numbering_, invert_numbering_, rotate_,
-      sort_buckets_, write_sorted_;
+  cl::Kernel flag_real_, smallest_representative_, redirect_duplicates_, fill_identity_,
+      restore_numbering_, invert_numbering_, name_points_, canonical_, sort_buckets_, write_sorted_;
 };
 
 } // namespace clmesh

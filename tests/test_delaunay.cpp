@@ -108,6 +108,14 @@ TEST_CASE("delaunay: thesis distributions equal CGAL") {
     fan.tuning.construction = clmesh::Construction::fan;
     CHECK(triangulate_and_check(points, fan).statistics.delaunay.construction == "hull_fan");
   }
+  SUBCASE("thin circle fanned, its hull found on two threads") {
+    // More than 2^16 points outside the hull's octagon: the octagon's test
+    // and the chords' take two threads (convex_hull), with the same hull.
+    clmesh::Options fan;
+    fan.tuning.construction = clmesh::Construction::fan;
+    CHECK(triangulate_and_check(fixtures::ring(70000, 1e-3, 6), fan)
+              .statistics.delaunay.construction == "hull_fan");
+  }
   SUBCASE("512x512 grid") { triangulate_and_check(fixtures::lattice(512)); }
 }
 

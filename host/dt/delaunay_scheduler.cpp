@@ -12,8 +12,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 namespace clmesh {
 
@@ -192,12 +194,41 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
   }
 }
 
+// work(0, 2) and work(1, 2) at once, on two threads, when there is much to
+// do and a second core; else work(0, 1). Each call does its own share of
+// the work, written where the other's does not go.
+template <class Work> void on_two_threads(bool much, const Work &work) {
+  if (!much || std::thread::hardware_concurrency() < 2) {
+    work(0, 1);
+    return;
+  }
+  std::exception_ptr failure;
+  std::thread helper([&] {
+    try {
+      work(1, 2);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  try {
+    work(0, 2);
+  } catch (...) {
+    helper.join();
+    throw;
+  }
+  helper.join();
+  if (failure)
+    std::rethrow_exception(failure);
+}
+
 // Vertices of the convex hull, counter-clockwise, without collinear points
 // (Andrew's monotone chain with the exact orientation predicate).
 // Points strictly inside the octagon of the extreme points in eight
 // directions are dropped first (Akl-Toussaint), which leaves few points to
 // sort (a quadrilateral of four keeps half a square's points), then those
-// inside chords of the hull (drop_inside_chords).
+// inside chords of the hull (drop_inside_chords). A thin ring keeps nearly
+// all its points through both: its halves and its octants go to two
+// threads.
 std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
   // Extremes counter-clockwise: min y, max x-y, max x, max x+y, max y,
   // max y-x, min x, min x+y (the first point on a tie). Rounded sums only
@@ -216,19 +247,37 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
       }
   }
   // Each point outside the octagon goes with the first side it is not
-  // strictly inside of.
-  std::array<std::vector<int32_t>, 8> outside;
-  for (int32_t i = 0; i < static_cast<int32_t>(points.size()); ++i)
-    for (int k = 0; k < 8; ++k) {
-      const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
-      if ((a.x != b.x || a.y != b.y) && !strictly_left(a, b, points[i])) { // corners may repeat
-        outside[k].push_back(i);
-        break;
+  // strictly inside of, in input order (each half of the input apart, then
+  // joined).
+  constexpr std::size_t kMuch = std::size_t{1} << 16;
+  const auto n = static_cast<int32_t>(points.size());
+  std::array<std::array<std::vector<int32_t>, 8>, 2> outside_of_half;
+  on_two_threads(points.size() > kMuch, [&](int half, int halves) {
+    std::array<std::vector<int32_t>, 8> &outside = outside_of_half[half];
+    const int32_t first = n / halves * half, end = half + 1 == halves ? n : first + n / halves;
+    for (int32_t i = first; i < end; ++i)
+      for (int k = 0; k < 8; ++k) {
+        const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
+        if ((a.x != b.x || a.y != b.y) && !strictly_left(a, b, points[i])) { // corners may repeat
+          outside[k].push_back(i);
+          break;
+        }
       }
-    }
+  });
+  std::array<std::vector<int32_t>, 8> outside, kept;
+  std::size_t outside_total = 0;
+  for (int k = 0; k < 8; ++k) {
+    outside[k] = std::move(outside_of_half[0][k]);
+    outside[k].insert(outside[k].end(), outside_of_half[1][k].begin(), outside_of_half[1][k].end());
+    outside_total += outside[k].size();
+  }
+  on_two_threads(outside_total > kMuch, [&](int share, int shares) {
+    for (int k = share; k < 8; k += shares)
+      drop_inside_chords(points, extreme[k], extreme[(k + 1) % 8], std::move(outside[k]), kept[k]);
+  });
   std::vector<int32_t> order;
-  for (int k = 0; k < 8; ++k)
-    drop_inside_chords(points, extreme[k], extreme[(k + 1) % 8], std::move(outside[k]), order);
+  for (const std::vector<int32_t> &part : kept)
+    order.insert(order.end(), part.begin(), part.end());
   std::sort(order.begin(), order.end(), [&](int32_t a, int32_t b) {
     return lexicographically_less(points[a], points[b]) ||
            (!lexicographically_less(points[b], points[a]) && a < b);

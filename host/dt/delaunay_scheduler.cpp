@@ -74,6 +74,47 @@ std::vector<int32_t> duplicates_on_host(const std::vector<Point> &points) {
   return duplicate_of;
 }
 
+// Host loops over many items (a large input's points) take two threads
+// where there is a second core: the device waits for them.
+constexpr std::size_t kManyItems = std::size_t{1} << 16;
+
+int host_threads(std::size_t items) {
+  return items > kManyItems && std::thread::hardware_concurrency() > 1 ? 2 : 1;
+}
+
+// work(part, parts) for part 0 .. parts - 1 at once, part 0 on this thread;
+// each part writes where the others do not.
+template <class Work> void run_parts(int parts, const Work &work) {
+  if (parts < 2) {
+    work(0, 1);
+    return;
+  }
+  std::exception_ptr failure;
+  std::thread helper([&] {
+    try {
+      work(1, 2);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  });
+  try {
+    work(0, 2);
+  } catch (...) {
+    helper.join();
+    throw;
+  }
+  helper.join();
+  if (failure)
+    std::rethrow_exception(failure);
+}
+
+// The items [first, end) of part `part` of n items cut in `parts`.
+std::pair<std::size_t, std::size_t> part_range(std::size_t n, int part, int parts) {
+  const std::size_t size = n / static_cast<std::size_t>(parts),
+                    first = size * static_cast<std::size_t>(part);
+  return {first, part + 1 == parts ? n : first + size};
+}
+
 // The Hilbert curve on a 2^16 x 2^16 grid, four bits of x and y at a time:
 // for each orientation of the curve (x and y swapped, both complemented) and
 // each 4x4-bit input, the eight bits of curve position it contributes and the
@@ -116,28 +157,50 @@ uint32_t hilbert_index(uint32_t x, uint32_t y) {
 std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   const auto [low, span] = bounding_square(points);
   const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
+  const std::size_t n = points.size();
+  const int parts = host_threads(n);
   // (key, index) pairs, sorted by three stable counting passes of 11 bits
   // over the key (the index in the low half keeps ties in input order).
-  std::vector<uint64_t> entry(points.size()), buffer(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - low.x) * scale));
-    const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - low.y) * scale));
-    entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
-  }
+  std::vector<uint64_t> entry(n), buffer(n);
+  run_parts(parts, [&](int part, int) {
+    const auto [first, end] = part_range(n, part, parts);
+    for (std::size_t i = first; i < end; ++i) {
+      const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - low.x) * scale));
+      const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - low.y) * scale));
+      entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
+    }
+  });
   constexpr int kDigitBits = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
   for (int shift = 32; shift < 64; shift += kDigitBits) {
-    std::vector<std::size_t> start(kBuckets + 1, 0);
-    for (const uint64_t e : entry)
-      ++start[((e >> shift) & (kBuckets - 1)) + 1];
-    for (std::size_t b = 1; b <= kBuckets; ++b)
-      start[b] += start[b - 1];
-    for (const uint64_t e : entry)
-      buffer[start[(e >> shift) & (kBuckets - 1)]++] = e;
+    // Each part counts its entries' digits; in each bucket, a part's
+    // entries follow those of the parts before it, as one pass would place them.
+    std::vector<std::array<std::size_t, kBuckets>> start(static_cast<std::size_t>(parts));
+    const auto digit = [shift](uint64_t e) { return (e >> shift) & (kBuckets - 1); };
+    run_parts(parts, [&](int part, int) {
+      std::array<std::size_t, kBuckets> &count = start[static_cast<std::size_t>(part)];
+      count.fill(0);
+      const auto [first, end] = part_range(n, part, parts);
+      for (std::size_t i = first; i < end; ++i)
+        ++count[digit(entry[i])];
+    });
+    std::size_t placed = 0;
+    for (std::size_t b = 0; b < kBuckets; ++b)
+      for (std::array<std::size_t, kBuckets> &count : start) {
+        const std::size_t here = count[b];
+        count[b] = placed;
+        placed += here;
+      }
+    run_parts(parts, [&](int part, int) {
+      std::array<std::size_t, kBuckets> &cursor = start[static_cast<std::size_t>(part)];
+      const auto [first, end] = part_range(n, part, parts);
+      for (std::size_t i = first; i < end; ++i)
+        buffer[cursor[digit(entry[i])]++] = entry[i];
+    });
     entry.swap(buffer);
   }
-  std::vector<int32_t> order(points.size());
-  for (std::size_t k = 0; k < points.size(); ++k)
+  std::vector<int32_t> order(n);
+  for (std::size_t k = 0; k < n; ++k)
     order[k] = static_cast<int32_t>(entry[k] & 0xffffffffu);
   return order;
 }
@@ -194,33 +257,6 @@ void drop_inside_chords(const std::vector<Point> &points, int32_t a, int32_t b,
   }
 }
 
-// work(0, 2) and work(1, 2) at once, on two threads, when there is much to
-// do and a second core; else work(0, 1). Each call does its own share of
-// the work, written where the other's does not go.
-template <class Work> void on_two_threads(bool much, const Work &work) {
-  if (!much || std::thread::hardware_concurrency() < 2) {
-    work(0, 1);
-    return;
-  }
-  std::exception_ptr failure;
-  std::thread helper([&] {
-    try {
-      work(1, 2);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-  });
-  try {
-    work(0, 2);
-  } catch (...) {
-    helper.join();
-    throw;
-  }
-  helper.join();
-  if (failure)
-    std::rethrow_exception(failure);
-}
-
 // Vertices of the convex hull, counter-clockwise, without collinear points
 // (Andrew's monotone chain with the exact orientation predicate).
 // Points strictly inside the octagon of the extreme points in eight
@@ -249,13 +285,11 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
   // Each point outside the octagon goes with the first side it is not
   // strictly inside of, in input order (each half of the input apart, then
   // joined).
-  constexpr std::size_t kMuch = std::size_t{1} << 16;
-  const auto n = static_cast<int32_t>(points.size());
   std::array<std::array<std::vector<int32_t>, 8>, 2> outside_of_half;
-  on_two_threads(points.size() > kMuch, [&](int half, int halves) {
-    std::array<std::vector<int32_t>, 8> &outside = outside_of_half[half];
-    const int32_t first = n / halves * half, end = half + 1 == halves ? n : first + n / halves;
-    for (int32_t i = first; i < end; ++i)
+  run_parts(host_threads(points.size()), [&](int half, int halves) {
+    std::array<std::vector<int32_t>, 8> &outside = outside_of_half[static_cast<std::size_t>(half)];
+    const auto [first, end] = part_range(points.size(), half, halves);
+    for (auto i = static_cast<int32_t>(first); i < static_cast<int32_t>(end); ++i)
       for (int k = 0; k < 8; ++k) {
         const Point &a = points[extreme[k]], &b = points[extreme[(k + 1) % 8]];
         if ((a.x != b.x || a.y != b.y) && !strictly_left(a, b, points[i])) { // corners may repeat
@@ -271,7 +305,7 @@ std::vector<int32_t> convex_hull(const std::vector<Point> &points) {
     outside[k].insert(outside[k].end(), outside_of_half[1][k].begin(), outside_of_half[1][k].end());
     outside_total += outside[k].size();
   }
-  on_two_threads(outside_total > kMuch, [&](int share, int shares) {
+  run_parts(host_threads(outside_total), [&](int share, int shares) {
     for (int k = share; k < 8; k += shares)
       drop_inside_chords(points, extreme[k], extreme[(k + 1) % 8], std::move(outside[k]), kept[k]);
   });
@@ -480,10 +514,14 @@ bool DelaunayScheduler::triangulate() {
   const std::vector<int32_t> &original_id = original_id_;
   device_id_.assign(n, 0);
   std::vector<cl_double2> coordinates(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    device_id_[original_id[k]] = static_cast<int32_t>(k);
-    coordinates[k] = {{points[original_id[k]].x, points[original_id[k]].y}};
-  }
+  const int parts = host_threads(n);
+  run_parts(parts, [&](int part, int) { // original_id is a permutation: no write meets another
+    const auto [first, end] = part_range(n, part, parts);
+    for (std::size_t k = first; k < end; ++k) {
+      device_id_[original_id[k]] = static_cast<int32_t>(k);
+      coordinates[k] = {{points[original_id[k]].x, points[original_id[k]].y}};
+    }
+  });
   mesh.points.upload(device, coordinates);
   std::vector<cl_double2>().swap(coordinates); // the host copy is not needed any more
   mesh.original_id.upload(device, original_id);

@@ -7,15 +7,14 @@
 #include "dt/triangulation_construction.hpp"
 #include "predicates.h"
 #include "runtime/host_memory.hpp"
+#include "runtime/host_threads.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <limits>
 #include <numeric>
-#include <thread>
 
 namespace clmesh {
 
@@ -72,47 +71,6 @@ std::vector<int32_t> duplicates_on_host(const std::vector<Point> &points) {
           duplicate_of[order[i - 1]] >= 0 ? duplicate_of[order[i - 1]] : order[i - 1];
   }
   return duplicate_of;
-}
-
-// Host loops over many items (a large input's points) take two threads
-// where there is a second core: the device waits for them.
-constexpr std::size_t kManyItems = std::size_t{1} << 16;
-
-int host_threads(std::size_t items) {
-  return items > kManyItems && std::thread::hardware_concurrency() > 1 ? 2 : 1;
-}
-
-// work(part, parts) for part 0 .. parts - 1 at once, part 0 on this thread;
-// each part writes where the others do not.
-template <class Work> void run_parts(int parts, const Work &work) {
-  if (parts < 2) {
-    work(0, 1);
-    return;
-  }
-  std::exception_ptr failure;
-  std::thread helper([&] {
-    try {
-      work(1, 2);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-  });
-  try {
-    work(0, 2);
-  } catch (...) {
-    helper.join();
-    throw;
-  }
-  helper.join();
-  if (failure)
-    std::rethrow_exception(failure);
-}
-
-// The items [first, end) of part `part` of n items cut in `parts`.
-std::pair<std::size_t, std::size_t> part_range(std::size_t n, int part, int parts) {
-  const std::size_t size = n / static_cast<std::size_t>(parts),
-                    first = size * static_cast<std::size_t>(part);
-  return {first, part + 1 == parts ? n : first + size};
 }
 
 // The Hilbert curve on a 2^16 x 2^16 grid, four bits of x and y at a time:

@@ -550,6 +550,10 @@ bool DelaunayScheduler::triangulate() {
     if (inserted == 0 && insertion.pending() > 0)
       throw InternalError("missing-point insertion made no progress");
     flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    // The first rounds' long lists give their pages back: the mesh grows
+    // into that memory in the rounds after.
+    insertion.trim_lists();
+    flipping().trim_lists();
     timer_->charge(Flipping::kPhase);
   }
   stats_.duplicates = static_cast<long>(insertion.duplicates());
@@ -688,6 +692,10 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
     if (inserted == 0 && insertion.pending() > 0)
       throw InternalError("point insertion made no progress");
     flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    // The first rounds' long lists give their pages back: the mesh grows
+    // into that memory in the rounds after.
+    insertion.trim_lists();
+    flipping().trim_lists();
     timer_->charge(Flipping::kPhase);
   }
   stats_.flips = flips_.flips;

@@ -47,6 +47,12 @@ void Flipping::propose(std::size_t n, cl_int *uncertain) {
   launch(device_, check_exact_, sharing_items(device_, n), kPhase);
 }
 
+void Flipping::trim_lists() {
+  for (const DeviceArray<cl_int> *list :
+       {&active_, &next_active_, &exact_list_, &proposal_, &flags_})
+    list->discard(device_, 0, kPhase);
+}
+
 bool Flipping::run(const DeviceArray<cl_int> &active, std::size_t n, int &stamp, FlipCounts &counts,
                    long max_passes) {
   if (n == 0)

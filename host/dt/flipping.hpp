@@ -29,6 +29,9 @@ public:
   // During refinement the boundary is fixed: split hull edges stay as they
   // are (a rounded midpoint may leave it a hair from convex), as in Triangle.
   void set_fixed_boundary(bool fixed) { fixed_boundary_ = fixed; }
+  // The lists' pages go back to the system between runs (a later run
+  // writes those it takes again).
+  void trim_lists();
   bool fixed_boundary() const { return fixed_boundary_; }
 
 private:

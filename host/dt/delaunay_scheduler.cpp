@@ -541,21 +541,7 @@ bool DelaunayScheduler::triangulate() {
   }
   stats_.missing_points = static_cast<long>(insertion.pending());
 
-  // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so that
-  // the next round's walks run in a Delaunay triangulation.
-  while (insertion.pending() > 0) {
-    const std::size_t inserted = insertion.run_round(stamp_++);
-    ++stats_.insertion_rounds;
-    timer_->charge(MissingPointInsertion::kPhase);
-    if (inserted == 0 && insertion.pending() > 0)
-      throw InternalError("missing-point insertion made no progress");
-    flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
-    // The first rounds' long lists give their pages back: the mesh grows
-    // into that memory in the rounds after.
-    insertion.trim_lists();
-    flipping().trim_lists();
-    timer_->charge(Flipping::kPhase);
-  }
+  stats_.insertion_rounds += insert_in_rounds(insertion);
   stats_.duplicates = static_cast<long>(insertion.duplicates());
   stats_.flips = flips_.flips;
   stats_.flip_passes = flips_.passes;
@@ -674,6 +660,24 @@ std::vector<int32_t> DelaunayScheduler::insert_points(const std::vector<Point> &
   return result;
 }
 
+long DelaunayScheduler::insert_in_rounds(MissingPointInsertion &insertion) {
+  long rounds = 0;
+  while (insertion.pending() > 0) {
+    const std::size_t inserted = insertion.run_round(stamp_++);
+    ++rounds;
+    timer_->charge(MissingPointInsertion::kPhase);
+    if (inserted == 0 && insertion.pending() > 0)
+      throw InternalError("point insertion made no progress");
+    flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
+    // The first rounds' long lists give their pages back: the mesh grows
+    // into that memory in the rounds after.
+    insertion.trim_lists();
+    flipping().trim_lists();
+    timer_->charge(Flipping::kPhase);
+  }
+  return rounds;
+}
+
 std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
   DeviceMesh &mesh = *mesh_;
   const auto first = static_cast<int32_t>(mesh.point_count);
@@ -686,18 +690,7 @@ std::size_t DelaunayScheduler::insert_appended(std::size_t count) {
   mesh.point_count += count;
   MissingPointInsertion insertion(device_, mesh, *scan_);
   insertion.set_points(ids);
-  while (insertion.pending() > 0) {
-    const std::size_t inserted = insertion.run_round(stamp_++);
-    timer_->charge(MissingPointInsertion::kPhase);
-    if (inserted == 0 && insertion.pending() > 0)
-      throw InternalError("point insertion made no progress");
-    flipping().run(insertion.changed(), 4 * inserted, stamp_, flips_);
-    // The first rounds' long lists give their pages back: the mesh grows
-    // into that memory in the rounds after.
-    insertion.trim_lists();
-    flipping().trim_lists();
-    timer_->charge(Flipping::kPhase);
-  }
+  insert_in_rounds(insertion);
   stats_.flips = flips_.flips;
   stats_.flip_passes = flips_.passes;
   stats_.exact_predicate_calls = flips_.exact_checks;

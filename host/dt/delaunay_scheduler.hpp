@@ -119,6 +119,10 @@ private:
   // flipped to Delaunay, and the missing points given to `insertion`. False
   // (the mesh to be rebuilt from the hull fan) when that did not succeed.
   bool construct_from_voronoi(MissingPointInsertion &insertion);
+  // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so
+  // that the next round's walks run in a Delaunay triangulation, until
+  // `insertion` has no point left. Returns the rounds.
+  long insert_in_rounds(MissingPointInsertion &insertion);
   // Phase 5, built on first use after the mesh was made or grew.
   Flipping &flipping();
   // Several point sets in one mesh: the hull fan builds the first

@@ -37,7 +37,8 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
            static_cast<cl_int>(removed != nullptr), is_real.buffer(), static_cast<cl_int>(slots));
   launch(device_, flag_real_, slots, kPhase);
 
-  // Identical points: each group stands for itself by its smallest input index.
+  // Identical points: each group is named by its smallest input index
+  // (representative, by input index); duplicate_of points the others to it.
   const std::size_t points = mesh_.point_count;
   const auto point_count = static_cast<cl_int>(points);
   const DeviceArray<cl_int> &representative = mesh_.location;
@@ -78,7 +79,7 @@ void MeshOutput::download(std::vector<Triangle> &triangles,
     set_args(canonical_, mesh_.tri_vertex.buffer(), mesh_.tri_neighbor.buffer(), is_real.buffer(),
              name.buffer(), home.buffer(), first_slot.buffer(), static_cast<cl_int>(slots));
     launch(device_, canonical_, slots, kPhase);
-    DeviceArray<cl_int> order(device_, slots);
+    DeviceArray<cl_int> order(device_, slots); // the real ones fill its first entries
     // representative is reused as the buckets' cursors.
     count = static_cast<std::size_t>(scan_.bucket(first_slot, slots, points, bucket_size,
                                                   bucket_start, representative, order, kPhase));

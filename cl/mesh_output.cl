@@ -97,15 +97,16 @@ __kernel void canonical_triangles(__global int *tri_vertex, __global int *tri_ne
     return;
   }
   const int va = tri_vertex[3 * t], vb = tri_vertex[3 * t + 1], vc = tri_vertex[3 * t + 2];
-  const int a = name[va], b = name[vb], c = name[vc];
+  const VertexTriple named = {{name[va], name[vb], name[vc]}};
   const int xa = link_triangle(tri_neighbor[3 * t]), xb = link_triangle(tri_neighbor[3 * t + 1]),
             xc = link_triangle(tri_neighbor[3 * t + 2]);
   const int na = is_real[xa] ? xa : -1, nb = is_real[xb] ? xb : -1, nc = is_real[xc] ? xc : -1;
-  // Rotated to start at the smallest corner, as canonical_start chooses.
-  if (a < b && a < c) {
+  const int a = named.v[0], b = named.v[1], c = named.v[2];
+  const int r = canonical_start(named); // the rotation, spelled out (no private array)
+  if (r == 0) {
     first_slot[t] = home[va];
     store_triangle(tri_vertex, tri_neighbor, t, a, b, c, na, nb, nc);
-  } else if (b < c) {
+  } else if (r == 1) {
     first_slot[t] = home[vb];
     store_triangle(tri_vertex, tri_neighbor, t, b, c, a, nb, nc, na);
   } else {

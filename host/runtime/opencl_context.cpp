@@ -674,7 +674,10 @@ namespace {
 // CLMESH_PROFILE=1 (development aid): per kernel its seconds (each launch
 // waited for), launches and work-items, and the host's calls into the driver
 // by cause (ProfiledCall) with their seconds, on stderr at exit.
-const bool profile = std::getenv("CLMESH_PROFILE") != nullptr;
+// CLMESH_PROFILE=phases counts each kernel apart in each phase (phase/kernel).
+const char *const profile_setting = std::getenv("CLMESH_PROFILE");
+const bool profile = profile_setting != nullptr;
+const bool profile_by_phase = profile && std::string(profile_setting) == "phases";
 
 struct ProfileTotal {
   double seconds = 0;
@@ -738,7 +741,8 @@ void launch(Device &device, cl::Kernel &kernel, std::size_t items, const std::st
   }
   if (profile) {
     const std::lock_guard<std::mutex> lock(profile_mutex());
-    ProfileTotal &total = profile_totals().kernels[kernel.getInfo<CL_KERNEL_FUNCTION_NAME>()];
+    const std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
+    ProfileTotal &total = profile_totals().kernels[profile_by_phase ? phase + "/" + name : name];
     total.seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++total.launches;

@@ -40,6 +40,17 @@ prefetch_container(__global const int *remaining, int gid, int n, __global const
     warm_corners(points, 0, tri_vertex, location[p_near]);
 }
 
+// A level of points inserted after coarser ones (DelaunayScheduler's levels):
+// each point level[k] starts its walk where anchor[k], the point of a coarser
+// level before it on the Hilbert curve, was located when it was inserted, a
+// triangle near it (slots are reused, never freed, while the DT is built).
+__kernel void start_at_anchors(__global const int *level, __global const int *anchor,
+                               __global int *location, const int n) {
+  const int k = get_global_id(0);
+  if (k < n)
+    location[level[k]] = location[anchor[k]];
+}
+
 // Walks from location[p] to the triangle holding p; a point whose triangle was
 // not rewritten since the last walk (stamp `since`) stays where it is.
 // Results: location[p], location_edge[p] (-1: interior or ghost region, i: on

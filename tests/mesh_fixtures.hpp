@@ -70,6 +70,24 @@ inline std::vector<Point> ring(int n, double thickness, unsigned seed) {
   return p;
 }
 
+// `clusters` Gaussian clusters of standard deviation `spread` around
+// uniform centres in the unit square, `n` points in all, dealt in turn: with
+// a tiny spread, each cluster lies in one cell of a fine grid over the square.
+inline std::vector<Point> clusters(int n, int clusters, double spread, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g(0, spread);
+  std::vector<Point> centre(static_cast<std::size_t>(clusters));
+  for (auto &c : centre)
+    c = {u(rng), u(rng)};
+  std::vector<Point> p(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Point &c = centre[i % centre.size()];
+    p[i] = {c.x + g(rng), c.y + g(rng)};
+  }
+  return p;
+}
+
 // Hard for the digital Voronoi construction: uniform points, a ring of
 // points on one circle, and a run along one line with every other point a
 // hair (1e-12) above it.

@@ -113,8 +113,22 @@ TEST_CASE("delaunay: thesis distributions equal CGAL") {
     // and the chords' take two threads (convex_hull), with the same hull.
     clmesh::Options fan;
     fan.tuning.construction = clmesh::Construction::fan;
-    CHECK(triangulate_and_check(fixtures::ring(70000, 1e-3, 6), fan)
-              .statistics.delaunay.construction == "hull_fan");
+    const auto result = triangulate_and_check(fixtures::ring(70000, 1e-3, 6), fan);
+    CHECK(result.statistics.delaunay.construction == "hull_fan");
+    // The fan's few triangles take the points in levels, each later one's
+    // points starting their walks at their anchors.
+    CHECK(result.statistics.delaunay.insertion_levels == 2);
+  }
+  SUBCASE("tight clusters: levels after few sites, crowded cells ordered again") {
+    // Each cluster lies in one cell of the 2^16 grid of the Hilbert order:
+    // its points are ordered again inside it, and the few sites (at most one
+    // a cluster) leave the rest to levels of insertion.
+    const auto result = triangulate_and_check(fixtures::clusters(90000, 30, 1e-9, 7));
+    CHECK(result.statistics.delaunay.insertion_levels > 1);
+  }
+  SUBCASE("uniform points go in one level") {
+    CHECK(triangulate_and_check(fixtures::uniform(70000, 8)).statistics.delaunay.insertion_levels ==
+          1);
   }
   SUBCASE("512x512 grid") { triangulate_and_check(fixtures::lattice(512)); }
 }

@@ -84,7 +84,7 @@ std::string format_statistics(const Mesh &mesh) {
     add("  Sites left out after shifting: %ld\n", s.dropped_sites);
   }
   add("  Vertices placed by missing-point insertion: %ld\n", s.missing_points);
-  add("  Insertion rounds: %ld\n", s.insertion_rounds);
+  add("  Insertion levels: %ld, rounds: %ld\n", s.insertion_levels, s.insertion_rounds);
   add("  Flip passes: %ld\n", s.flip_passes);
   add("  Flips: %ld\n", s.flips);
   add("  Exact predicate fallbacks: %ld\n\n", s.exact_predicate_calls);
@@ -145,6 +145,7 @@ std::string statistics_json(const Mesh &mesh, const RunSeconds &seconds) {
   json += count("dropped_sites", s.dropped_sites);
   json += count("untangling_flips", s.untangling_flips);
   json += count("pixel_collisions", s.pixel_collisions);
+  json += count("insertion_levels", s.insertion_levels);
   json += count("insertion_rounds", s.insertion_rounds);
   json += count("flip_passes", s.flip_passes);
   json += count("exact_predicate_calls", s.exact_predicate_calls, true);

@@ -111,7 +111,49 @@ uint32_t hilbert_index(uint32_t x, uint32_t y) {
   return d;
 }
 
-// Input indices sorted along a Hilbert curve (stable, so ties keep input order).
+// Runs of more than this many points in one cell of the 2^16 x 2^16 grid
+// (a cluster far smaller than the input's extent) are ordered again inside
+// the cell, to at most kMostRefinements levels of cells in cells.
+constexpr std::size_t kCrowdedCell = 32;
+constexpr int kMostRefinements = 4;
+
+// Orders again, along a Hilbert curve over their own bounding square, the
+// points of each crowded run of entry[first .. last) ((key << 32) | index,
+// sorted): a run of equal keys keeps the input's order, which inside a
+// cluster is no spatial order at all.
+void order_crowded_cells(const std::vector<Point> &points, std::vector<uint64_t> &entry,
+                         std::size_t first, std::size_t last, int depth) {
+  for (std::size_t i = first; i < last;) {
+    std::size_t j = i + 1;
+    while (j < last && entry[j] >> 32 == entry[i] >> 32)
+      ++j;
+    if (j - i > kCrowdedCell && depth < kMostRefinements) {
+      const auto point = [&](std::size_t k) { return points[entry[k] & 0xffffffffu]; };
+      Point low = point(i), high = point(i);
+      for (std::size_t k = i + 1; k < j; ++k) {
+        low = {std::min(low.x, point(k).x), std::min(low.y, point(k).y)};
+        high = {std::max(high.x, point(k).x), std::max(high.y, point(k).y)};
+      }
+      const double span = std::max(high.x - low.x, high.y - low.y);
+      if (span > 0 && std::isfinite(span)) { // else all one point
+        const double scale = 65535.0 / span;
+        for (std::size_t k = i; k < j; ++k) {
+          const auto qx = static_cast<uint32_t>(std::min(65535.0, (point(k).x - low.x) * scale));
+          const auto qy = static_cast<uint32_t>(std::min(65535.0, (point(k).y - low.y) * scale));
+          entry[k] =
+              (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | (entry[k] & 0xffffffffu);
+        }
+        std::sort(entry.begin() + static_cast<std::ptrdiff_t>(i),
+                  entry.begin() + static_cast<std::ptrdiff_t>(j));
+        order_crowded_cells(points, entry, i, j, depth + 1);
+      }
+    }
+    i = j;
+  }
+}
+
+// Input indices sorted along a Hilbert curve (stable, so ties keep input
+// order), crowded cells refined (order_crowded_cells).
 std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   const auto [low, span] = bounding_square(points);
   const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
@@ -157,6 +199,7 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
     });
     entry.swap(buffer);
   }
+  order_crowded_cells(points, entry, 0, n, 0);
   std::vector<int32_t> order(n);
   for (std::size_t k = 0; k < n; ++k)
     order[k] = static_cast<int32_t>(entry[k] & 0xffffffffu);
@@ -447,6 +490,34 @@ template <class Visit> void DelaunayScheduler::for_each_part(const Visit &visit)
   }
 }
 
+bool DelaunayScheduler::worth_levels(std::size_t points, std::size_t triangles) {
+  return points / kLevelRatio >= std::max(kCoarsestLevel, triangles);
+}
+
+DelaunayScheduler::PointLevels DelaunayScheduler::point_levels(std::vector<cl_int> points,
+                                                               std::size_t triangles) {
+  // Level j takes the points at the multiples of kLevelRatio^j in the list,
+  // but those of a coarser level; the coarsest, kLevelRatio^top, has as many
+  // points as the mesh has triangles, kCoarsestLevel at least.
+  const std::size_t m = points.size(), coarsest = std::max(kCoarsestLevel, triangles);
+  std::size_t top = 1;
+  while (top <= m / coarsest / kLevelRatio)
+    top *= kLevelRatio;
+  PointLevels levels;
+  for (std::size_t stride = top;; stride /= kLevelRatio) {
+    PointLevel level;
+    for (std::size_t i = 0; i < m; i += stride)
+      if (stride == top || i % (stride * kLevelRatio) != 0) {
+        level.points.push_back(points[i]);
+        if (stride != top) // the coarser point before it on the Hilbert curve
+          level.anchors.push_back(points[i - i % (stride * kLevelRatio)]);
+      }
+    levels.push_back(std::move(level));
+    if (stride == 1)
+      return levels;
+  }
+}
+
 bool DelaunayScheduler::triangulate() {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
@@ -499,7 +570,10 @@ bool DelaunayScheduler::triangulate() {
     voronoi_ = banding.download_image();
     timer_->charge(VoronoiBanding::kPhase);
   }
-  if (!from_voronoi || !construct_from_voronoi(insertion)) {
+  // The missing points when they go in levels (point_levels): the first in
+  // `insertion`, the others here.
+  PointLevels levels;
+  if (!from_voronoi || !construct_from_voronoi(insertion, levels)) {
     // The hull only now: the Voronoi construction does without it. Each
     // part's hull is fanned in slots of its own, and its points start their
     // walks in its first fan triangle: the parts never meet.
@@ -533,15 +607,30 @@ bool DelaunayScheduler::triangulate() {
     for (std::size_t i = 0; i < n; ++i)
       if (!in_mesh[i])
         missing.push_back(static_cast<cl_int>(i));
-    insertion.set_points(missing);
+    // A packed batch's small parts all at once (a level's anchors would
+    // cross from part to part).
+    if (!packed() && worth_levels(missing.size(), mesh.triangle_count)) {
+      levels = point_levels(std::move(missing), mesh.triangle_count);
+      insertion.set_points(levels.front().points);
+    } else {
+      insertion.set_points(missing);
+    }
     stats_.construction = "hull_fan";
     flips_ = FlipCounts{};
     // The fan is a triangulation, not yet a Delaunay one: flip it first.
     flip_all(flips_);
   }
   stats_.missing_points = static_cast<long>(insertion.pending());
+  for (std::size_t k = 1; k < levels.size(); ++k)
+    stats_.missing_points += static_cast<long>(levels[k].points.size());
 
+  stats_.insertion_levels = static_cast<long>(std::max<std::size_t>(1, levels.size()));
   stats_.insertion_rounds += insert_in_rounds(insertion);
+  for (std::size_t k = 1; k < levels.size(); ++k) {
+    insertion.set_points_near(levels[k].points, levels[k].anchors);
+    PointLevel().swap(levels[k]);
+    stats_.insertion_rounds += insert_in_rounds(insertion);
+  }
   stats_.duplicates = static_cast<long>(insertion.duplicates());
   stats_.flips = flips_.flips;
   stats_.flip_passes = flips_.passes;
@@ -554,7 +643,8 @@ int DelaunayScheduler::texture_side(Point low, double span) const {
                               : VoronoiBanding::choose_grid(points_, low, span);
 }
 
-bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion) {
+bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion,
+                                               PointLevels &levels) {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
   DeviceMesh &mesh = *mesh_;
@@ -628,7 +718,13 @@ bool DelaunayScheduler::construct_from_voronoi(MissingPointInsertion &insertion)
   DeviceArray<cl_int> missing(device_, n);
   const std::size_t count =
       shifting.collect_missing(banding.diagram(), banding.pixel_of(), missing);
-  insertion.set_points(missing, count);
+  // Few sites (a clustered input): the missing points in levels.
+  if (worth_levels(count, mesh.triangle_count)) {
+    levels = point_levels(missing.download(device_, count), mesh.triangle_count);
+    insertion.set_points(levels.front().points);
+  } else {
+    insertion.set_points(missing, count);
+  }
   timer_->charge(Shifting::kPhase);
   stats_.construction = "voronoi";
   return true;

@@ -115,10 +115,32 @@ private:
   // The Voronoi texture's side: --grid, else VoronoiBanding::choose_grid.
   int texture_side(Point low, double span) const;
 
+  // The missing points of a first triangulation with few triangles (a hull
+  // fan, a clustered input's few sites), inserted level after level, each
+  // about kLevelRatio times the points of the one before (a biased
+  // randomized insertion order, by their Hilbert order): a coarse level's
+  // points spread over the few large triangles, and each later point starts
+  // its walk near where a coarser one was inserted (its anchor). Inserted
+  // all at once, every round would move every point still waiting from the
+  // triangle just split to one of its children, round after round.
+  struct PointLevel {
+    std::vector<cl_int> points, anchors; // anchors: none in the first level
+    void swap(PointLevel &other) {
+      points.swap(other.points);
+      anchors.swap(other.anchors);
+    }
+  };
+  using PointLevels = std::vector<PointLevel>;
+  static constexpr std::size_t kLevelRatio = 16, kCoarsestLevel = 4096;
+  // Whether `points` missing from a mesh of `triangles` go in levels.
+  static bool worth_levels(std::size_t points, std::size_t triangles);
+  // `points` (ascending, so in Hilbert order) as levels, coarsest first.
+  static PointLevels point_levels(std::vector<cl_int> points, std::size_t triangles);
   // Phases 1-3: the first triangulation from the digital Voronoi diagram,
-  // flipped to Delaunay, and the missing points given to `insertion`. False
+  // flipped to Delaunay, and the missing points given to `insertion` (the
+  // first level; the others in `levels`, when worth_levels). False
   // (the mesh to be rebuilt from the hull fan) when that did not succeed.
-  bool construct_from_voronoi(MissingPointInsertion &insertion);
+  bool construct_from_voronoi(MissingPointInsertion &insertion, PointLevels &levels);
   // Phase 4 in conflict-free rounds, each followed by Phase 5 flipping so
   // that the next round's walks run in a Delaunay triangulation, until
   // `insertion` has no point left. Returns the rounds.

@@ -1,5 +1,7 @@
 #include "dt/missing_point_insertion.hpp"
 
+#include "clmesh/errors.hpp"
+
 #include <algorithm>
 #include <array>
 #include <utility>
@@ -33,6 +35,7 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
       relink_(device.kernel(kFile, "relink_split_children", kPhase)),
       count_remaining_(device.kernel(kFile, "count_remaining", kPhase)),
       round_in_group_(device.kernel(kFile, "insert_round_in_group", kPhase)),
+      start_at_anchors_(device.kernel(kFile, "start_at_anchors", kPhase)),
       remaining_(point_list(device, mesh, pool, kRemaining)),
       remaining_next_(point_list(device, mesh, pool, kRemainingNext)),
       status_(point_list(device, mesh, pool, kStatus)),
@@ -47,6 +50,19 @@ MissingPointInsertion::MissingPointInsertion(Device &device, DeviceMesh &mesh, P
 void MissingPointInsertion::set_points(const std::vector<cl_int> &points) {
   remaining_.upload(device_, points);
   pending_ = points.size();
+}
+
+void MissingPointInsertion::set_points_near(const std::vector<cl_int> &points,
+                                            const std::vector<cl_int> &anchors) {
+  if (pending_ > 0)
+    throw InternalError("missing-point insertion: a level set while points are pending");
+  set_points(points);
+  keep_.upload(device_, anchors); // free between rounds
+  set_args(start_at_anchors_, remaining_.buffer(), keep_.buffer(), mesh_.location.buffer(),
+           static_cast<cl_int>(pending_));
+  launch(device_, start_at_anchors_, pending_, kPhase);
+  // Their start triangles may be as old as any: every point walks.
+  located_since_ = 0;
 }
 
 void MissingPointInsertion::set_points(const DeviceArray<cl_int> &points, std::size_t count) {

@@ -26,6 +26,9 @@ public:
   void set_points(const std::vector<cl_int> &points);
   // The same from a list on the device (its first `count` entries).
   void set_points(const DeviceArray<cl_int> &points, std::size_t count);
+  // Points of a later level (none pending), each starting its walk where
+  // anchors[k], a point inserted before, was located (cl start_at_anchors).
+  void set_points_near(const std::vector<cl_int> &points, const std::vector<cl_int> &anchors);
   std::size_t pending() const { return pending_; }
 
   // One round: locate, mark, split the winners' triangles and relink.
@@ -52,7 +55,7 @@ private:
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel locate_, mark_, select_, clear_marks_, split_, relink_, count_remaining_,
-      round_in_group_;
+      round_in_group_, start_at_anchors_;
   // Rounds of at most this many points (with room for all to win) run by
   // one work-group in one launch, from the marks to the relinking
   // (insert_round_in_group).

@@ -27,6 +27,7 @@ struct DelaunayStats {
   long dropped_sites = 0;         // sites Phase 3 left out (their triangles turned over)
   long untangling_flips = 0;      // flips by which Phase 3 mended turned-over triangles
   long flips = 0;
+  long insertion_levels = 0; // Phase 4's levels (1, or more after a first mesh of few triangles)
   long insertion_rounds = 0;
   long flip_passes = 0;
   long exact_predicate_calls = 0; // items that needed the exact fallback

@@ -160,7 +160,7 @@ for p in s["phases"]:
 keys = {"input_points", "duplicates", "missing_points", "flips", "triangles",
         "construction_rounds", "constructed_triangles", "dropped_sites", "untangling_flips",
         "pixel_collisions",
-        "insertion_rounds", "flip_passes", "exact_predicate_calls"}
+        "insertion_levels", "insertion_rounds", "flip_passes", "exact_predicate_calls"}
 assert set(s["counts"]) == keys, sorted(s["counts"])
 assert all(isinstance(v, int) for v in s["counts"].values())
 assert s["counts"]["triangles"] == 10 and s["counts"]["input_points"] == 8

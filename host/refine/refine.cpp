@@ -292,9 +292,7 @@ public:
         std::vector<cl_int>().swap(given_->across);
       scheduler_.timer().charge(SizeBound::kPhase); // the background grids' set-up
     }
-    make_steps();
-    steps_->offcenter.flag_hull_vertices();
-    return true;
+    return true; // the steps are made by the first compaction (iterate)
   }
 
   // The iterations, until no triangle is bad or a limit is reached.
@@ -303,6 +301,8 @@ public:
     for (long iteration = 0;; ++iteration) {
       if (iteration == 0 || compaction_pays())
         compact();
+      if (iteration == 0)
+        steps_->offcenter.flag_hull_vertices();
       const std::size_t bad = find_bad_triangles(iteration != kMaxIterations);
       const std::size_t candidates = elect_candidates();
       // Step 1 is timed once, after place_candidates, on the way that goes on.
@@ -626,7 +626,8 @@ private:
 
   // Thesis §3.6.1: the live triangles and Steiner points move to the front,
   // in Z-order. Every slot number changes: the lists of triangles are void,
-  // and the steps start again with new arrays. Their pages go back to the
+  // and the steps start again with new arrays (the first compaction, before
+  // the first iteration, makes the first steps). Their pages go back to the
   // system for the move, and the long lists of the first iterations do not
   // hold pages while the mesh grows. After the first search, the triangles
   // that may be bad are flagged and move with their flags: the next search

@@ -125,15 +125,16 @@ __kernel void link_kept_triangles(CLM_TRIANGULATION_PARAMS, __global const int *
 }
 
 // The removed triangles and the old ghosts die (their slots are empty, as
-// those of refinement's deletions, thesis §3.6.1). owner[v] is set to the
+// those of refinement's deletions, thesis §3.6.1); with keep_ghosts (nothing
+// removed, DomainBoundary::keep_hull) the ghosts stay. owner[v] is set to the
 // smallest kept triangle at each vertex.
 __kernel void retire_exterior(CLM_TRIANGULATION_PARAMS, __global const int *removed,
-                              volatile __global int *owner, const int n) {
+                              const int keep_ghosts, volatile __global int *owner, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   const VertexTriple tri = load_vertices(tri_vertex, t);
-  if (is_dead(tri))
+  if (is_dead(tri) || (keep_ghosts && is_ghost(tri)))
     return;
   if (removed[t] || is_ghost(tri)) {
     store_triangle(tri_vertex, tri_neighbor, t, CLM_DEAD, CLM_DEAD, CLM_DEAD, -1, -1, -1);

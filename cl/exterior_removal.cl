@@ -48,13 +48,15 @@ __kernel void seed_from_hull(CLM_TRIANGULATION_PARAMS, __global int *removed,
 // (label -1, mesh_reconstruction.cl) are outside it and removed; the holes'
 // floods then stop at them.
 __kernel void remove_unlabelled(CLM_TRIANGULATION_PARAMS, __global const int *label,
-                                __global int *removed, const int n) {
+                                __global int *removed, volatile __global int *count, const int n) {
   const int t = get_global_id(0);
   if (t >= n)
     return;
   const VertexTriple tri = load_vertices(tri_vertex, t);
-  if (label[t] < 0 && !is_ghost(tri) && !is_dead(tri))
+  if (label[t] < 0 && !is_ghost(tri) && !is_dead(tri)) {
     removed[t] = 1;
+    atomic_inc(count);
+  }
 }
 
 #define CLM_SEED_OUTSIDE -1

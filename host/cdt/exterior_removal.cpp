@@ -49,7 +49,9 @@ long ExteriorRemoval::run(bool from_hull, const std::vector<Point> &holes) {
     launch(device_, seed_from_points_, seeds.size(), kPhase);
     count_seeds_on_segments(on_segment, seeds.size());
   }
-  return flood(-1);
+  const long removed = flood(-1);
+  removed_any_ = removed_any_ || removed > 0;
+  return removed;
 }
 
 void ExteriorRemoval::seed_from_hull(std::size_t slots) {
@@ -89,7 +91,9 @@ long ExteriorRemoval::remove_flat_pockets() {
   set_args(remove_flat_pockets_, pocket.array.buffer(), label_.buffer(), removed_.array.buffer(),
            count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, remove_flat_pockets_, slots, kPhase);
-  return count_.read(device_, 0);
+  const long removed = count_.read(device_, 0);
+  removed_any_ = removed_any_ || removed > 0;
+  return removed;
 }
 
 long ExteriorRemoval::count_flat(bool every) {
@@ -103,9 +107,11 @@ long ExteriorRemoval::count_flat(bool every) {
 
 void ExteriorRemoval::remove_unlabelled(const DeviceArray<cl_int> &label) {
   const std::size_t slots = this->slots();
+  count_.fill(device_, 0, 1);
   set_args_from(remove_unlabelled_, mesh_.bind_triangulation(remove_unlabelled_, 0), label.buffer(),
-                removed_.array.buffer(), static_cast<cl_int>(slots));
+                removed_.array.buffer(), count_.buffer(), static_cast<cl_int>(slots));
   launch(device_, remove_unlabelled_, slots, kPhase);
+  removed_any_ = removed_any_ || count_.read(device_, 0) > 0;
 }
 
 void ExteriorRemoval::count_seeds_on_segments(const DeviceArray<cl_int> &on_segment,

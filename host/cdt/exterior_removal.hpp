@@ -39,6 +39,10 @@ public:
   // without crossing a constraint (-1: none); later regions win.
   const DeviceArray<cl_int> &label_regions(const std::vector<Point> &seeds);
 
+  // Whether run(), remove_flat_pockets() or remove_unlabelled() removed any
+  // real triangle.
+  bool removed_any() const { return removed_any_; }
+
   // Seeds of the last run() or label_regions() ignored because they lie
   // exactly on a segment or at one of its vertices (on neither side of it).
   long seeds_on_segments() const { return seeds_on_segments_; }
@@ -55,6 +59,7 @@ private:
   void count_seeds_on_segments(const DeviceArray<cl_int> &on_segment, std::size_t count);
 
   long seeds_on_segments_ = 0;
+  bool removed_any_ = false;
 
   // The mesh's slots in use, removed_ covering them.
   std::size_t slots();

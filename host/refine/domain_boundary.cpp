@@ -10,7 +10,8 @@ namespace clmesh {
 
 namespace {
 const char *kFile = "domain_boundary.cl";
-}
+constexpr cl_int kInfinite = -1; // CLM_INFINITE (cl/common.h): a ghost's vertex
+} // namespace
 
 DomainBoundary::DomainBoundary(Device &device, DeviceMesh &mesh, PrefixScan &scan)
     : device_(device), mesh_(mesh), scan_(scan),
@@ -52,29 +53,53 @@ std::size_t DomainBoundary::close(const DeviceArray<cl_int> &removed) {
   set_args_from(link_kept_, mesh_.bind_triangulation(link_kept_, 0), removed.buffer(),
                 offset_.buffer(), first_ghost, static_cast<cl_int>(slots));
   launch(device_, link_kept_, slots, kPhase);
-  DeviceArray<cl_int> owner(device_, mesh_.point_count);
-  owner.fill(device_, 0x7fffffff, mesh_.point_count);
-  set_args_from(retire_, mesh_.bind_triangulation(retire_, 0), removed.buffer(), owner.buffer(),
-                static_cast<cl_int>(slots));
-  launch(device_, retire_, slots, kPhase);
-  set_args_from(point_at_, mesh_.bind_triangulation(point_at_, 0), owner.buffer(),
-                static_cast<cl_int>(mesh_.point_count));
-  launch(device_, point_at_, mesh_.point_count, kPhase);
+  retire(removed, false);
   mesh_.triangle_count = slots + ghosts;
   boundary_edges_ = {};
   offset_ = {};
   first_ghost_ = slots;
   ghosts_ = ghosts;
+  kept_hull_ = false;
   return ghosts;
 }
 
+void DomainBoundary::keep_hull(const DeviceArray<cl_int> &removed) {
+  retire(removed, true);
+  kept_hull_ = true;
+}
+
+void DomainBoundary::retire(const DeviceArray<cl_int> &removed, bool keep_ghosts) {
+  const std::size_t slots = mesh_.triangle_count;
+  DeviceArray<cl_int> owner(device_, mesh_.point_count);
+  owner.fill(device_, 0x7fffffff, mesh_.point_count);
+  set_args_from(retire_, mesh_.bind_triangulation(retire_, 0), removed.buffer(),
+                static_cast<cl_int>(keep_ghosts), owner.buffer(), static_cast<cl_int>(slots));
+  launch(device_, retire_, slots, kPhase);
+  set_args_from(point_at_, mesh_.bind_triangulation(point_at_, 0), owner.buffer(),
+                static_cast<cl_int>(mesh_.point_count));
+  launch(device_, point_at_, mesh_.point_count, kPhase);
+}
+
 std::vector<Segment> DomainBoundary::edges() const {
-  const std::vector<cl_int> corners =
-      mesh_.tri_vertex.download(device_, 3 * ghosts_, 3 * first_ghost_);
+  // The ghosts (infinity, q, p) on edges p -> q, in any rotation.
   std::vector<Segment> by_start;
-  by_start.reserve(ghosts_);
-  for (std::size_t g = 0; g < ghosts_; ++g) // ghost (infinity, q, p) on edge p -> q
-    by_start.push_back({corners[3 * g + 2], corners[3 * g + 1], 1});
+  const auto add_ghost = [&](const cl_int *corners) {
+    for (int k = 0; k < 3; ++k)
+      if (corners[k] == kInfinite)
+        by_start.push_back({corners[(k + 2) % 3], corners[(k + 1) % 3], 1});
+  };
+  if (kept_hull_) {
+    const std::vector<cl_int> corners =
+        mesh_.tri_vertex.download(device_, 3 * mesh_.triangle_count);
+    for (std::size_t t = 0; t < mesh_.triangle_count; ++t)
+      add_ghost(&corners[3 * t]);
+  } else {
+    const std::vector<cl_int> corners =
+        mesh_.tri_vertex.download(device_, 3 * ghosts_, 3 * first_ghost_);
+    by_start.reserve(ghosts_);
+    for (std::size_t g = 0; g < ghosts_; ++g)
+      add_ghost(&corners[3 * g]);
+  }
   // The ghosts' slots follow the triangulation's history; the loops, each
   // from its lowest vertex (the lowest edge out of a vertex the loop passes
   // twice), follow the input alone.

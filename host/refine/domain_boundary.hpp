@@ -24,8 +24,15 @@ public:
   // counts are kept for close(), which must follow with the same `removed`.
   std::size_t room_needed(const DeviceArray<cl_int> &removed);
 
-  // The boundary edges the last close() found, each with the domain on its
-  // left, marker 1 (read from its ghosts: one small download), loop after
+  // When `removed` flags no triangle (the domain is the convex hull): the
+  // hull's ghosts close the domain as they are, and close()'s new ghosts,
+  // the same triangles in other slots, are not made. Each vertex points at
+  // a kept triangle, as close() leaves it.
+  void keep_hull(const DeviceArray<cl_int> &removed);
+
+  // The boundary edges the last close() or keep_hull() found, each with the
+  // domain on its left, marker 1 (read from its ghosts: one small download
+  // after close(), the whole triangle list after keep_hull()), loop after
   // loop in an order that depends on the input alone.
   std::vector<Segment> edges() const;
 
@@ -36,7 +43,11 @@ private:
   cl::Kernel count_, make_ghosts_, link_kept_, retire_, point_at_;
   DeviceArray<cl_int> boundary_edges_, offset_; // per slot, from room_needed
   std::size_t counted_ = 0;                     // their total
-  std::size_t first_ghost_ = 0, ghosts_ = 0;    // the ghosts of the last close()
+  // The removed triangles (and the ghosts unless `keep_ghosts`) die; each
+  // vertex points at its smallest kept triangle.
+  void retire(const DeviceArray<cl_int> &removed, bool keep_ghosts);
+  std::size_t first_ghost_ = 0, ghosts_ = 0; // the ghosts of the last close()
+  bool kept_hull_ = false;                   // keep_hull() came last
 };
 
 } // namespace clmesh

@@ -399,6 +399,11 @@ private:
 
   // The domain left by `removal` closed by ghosts.
   void close_domain(DomainBoundary &boundary, ExteriorRemoval &removal) {
+    if (!removal.removed_any()) { // the hull's ghosts close the domain
+      boundary.keep_hull(removal.removed());
+      scheduler_.timer().charge(DomainBoundary::kPhase);
+      return;
+    }
     inward_ = removal.count_flat_removed() > 0;
     const std::size_t ghosts = boundary.room_needed(removal.removed());
     if (mesh().triangle_count + ghosts > mesh().triangle_capacity)

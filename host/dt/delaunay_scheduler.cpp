@@ -497,8 +497,9 @@ bool DelaunayScheduler::worth_levels(std::size_t points, std::size_t triangles) 
 DelaunayScheduler::PointLevels DelaunayScheduler::point_levels(std::vector<cl_int> points,
                                                                std::size_t triangles) {
   // Level j takes the points at the multiples of kLevelRatio^j in the list,
-  // but those of a coarser level; the coarsest, kLevelRatio^top, has as many
-  // points as the mesh has triangles, kCoarsestLevel at least.
+  // but those of a coarser level; the coarsest (the largest such stride,
+  // kLevelRatio^top) has at least as many points as the mesh has triangles,
+  // and kCoarsestLevel at least.
   const std::size_t m = points.size(), coarsest = std::max(kCoarsestLevel, triangles);
   std::size_t top = 1;
   while (top <= m / coarsest / kLevelRatio)

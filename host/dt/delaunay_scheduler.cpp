@@ -199,7 +199,26 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
     });
     entry.swap(buffer);
   }
-  order_crowded_cells(points, entry, 0, n, 0);
+  // The crowded cells, each ordered again on its own (on two threads when
+  // they hold many points: each writes its own runs).
+  std::vector<std::pair<std::size_t, std::size_t>> crowded;
+  std::size_t crowded_points = 0;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && entry[j] >> 32 == entry[i] >> 32)
+      ++j;
+    if (j - i > kCrowdedCell) {
+      crowded.emplace_back(i, j);
+      crowded_points += j - i;
+    }
+    i = j;
+  }
+  const int crowded_parts = host_threads(crowded_points);
+  run_parts(crowded_parts, [&](int part, int) {
+    const auto [first, end] = part_range(crowded.size(), part, crowded_parts);
+    for (std::size_t k = first; k < end; ++k)
+      order_crowded_cells(points, entry, crowded[k].first, crowded[k].second, 0);
+  });
   std::vector<int32_t> order(n);
   for (std::size_t k = 0; k < n; ++k)
     order[k] = static_cast<int32_t>(entry[k] & 0xffffffffu);

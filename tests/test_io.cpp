@@ -1549,6 +1549,10 @@ TEST_CASE("DirectedEdges::reverses finds each edge's other side as triangle_of d
     for (std::size_t a = 0; a < directed.vertices(); ++a)
       for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
         const int32_t b = edges[e].head;
+        // The edge a -> b leaves its triangle's corner `corner`.
+        const Triangle &own = triangles[edges[e].triangle];
+        CHECK(own[edges[e].corner] == static_cast<int32_t>(a));
+        CHECK(own[(edges[e].corner + 1) % 3] == b);
         const int64_t other = directed.triangle_of(b, static_cast<int32_t>(a));
         if (other < 0) {
           CHECK(reverse[e] == -1);

@@ -11,8 +11,8 @@ namespace clmesh {
 
 DirectedEdges::DirectedEdges(const std::vector<Triangle> &triangles, std::size_t vertices)
     : first_(vertices + 1, 0), edges_(3 * triangles.size()) {
-  if (triangles.size() > std::numeric_limits<uint32_t>::max())
-    throw InputError("input", 0, "more than 2^32 triangles");
+  if (triangles.size() >= std::size_t{1} << 30)
+    throw InputError("input", 0, "2^30 triangles or more");
   for (const Triangle &t : triangles)
     for (const int32_t corner : t)
       ++first_[static_cast<std::size_t>(corner) + 1];
@@ -20,8 +20,8 @@ DirectedEdges::DirectedEdges(const std::vector<Triangle> &triangles, std::size_t
   std::vector<std::size_t> next(first_.begin(), first_.end() - 1);
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
-      edges_[next[static_cast<std::size_t>(triangles[t][k])]++] = {triangles[t][(k + 1) % 3],
-                                                                   static_cast<uint32_t>(t)};
+      edges_[next[static_cast<std::size_t>(triangles[t][k])]++] = {
+          triangles[t][(k + 1) % 3], static_cast<uint32_t>(t), static_cast<uint32_t>(k)};
   const auto order = [](const Edge &p, const Edge &q) {
     return p.head != q.head ? p.head < q.head : p.triangle < q.triangle;
   };

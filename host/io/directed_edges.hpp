@@ -16,8 +16,9 @@ namespace clmesh {
 class DirectedEdges {
 public:
   struct Edge {
-    int32_t head;      // b of a -> b
-    uint32_t triangle; // the triangle it bounds (on its left)
+    int32_t head;           // b of a -> b
+    uint32_t triangle : 30; // the triangle it bounds (on its left)
+    uint32_t corner : 2;    // a's corner in that triangle (b is the next one)
   };
 
   // Every corner must lie in [0, vertices).

@@ -845,17 +845,10 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
   if (across) {
     // Edge a -> b of triangle t is the one opposite t's corner after b.
     across->assign(3 * triangles.size(), -1);
-    for (std::size_t a = 0; a < vertices; ++a)
-      for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
-        if (reverse[e] < 0)
-          continue;
-        const Triangle &t = triangles[edges[e].triangle];
-        std::size_t from = 0;
-        while (t[from] != static_cast<int32_t>(a) || t[(from + 1) % 3] != edges[e].head)
-          ++from;
-        (*across)[3 * std::size_t{edges[e].triangle} + (from + 2) % 3] =
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if (reverse[e] >= 0)
+        (*across)[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
             static_cast<cl_int>(edges[static_cast<std::size_t>(reverse[e])].triangle);
-      }
   }
   return constraints;
 }

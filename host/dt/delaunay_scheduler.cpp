@@ -111,49 +111,62 @@ uint32_t hilbert_index(uint32_t x, uint32_t y) {
   return d;
 }
 
+// (key << 32) | index of point p for the Hilbert curve over the square of
+// side 65535 / scale from `low`.
+uint64_t hilbert_entry(const Point &p, Point low, double scale, std::size_t index) {
+  const auto qx = static_cast<uint32_t>(std::min(65535.0, (p.x - low.x) * scale));
+  const auto qy = static_cast<uint32_t>(std::min(65535.0, (p.y - low.y) * scale));
+  return (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | index;
+}
+
 // Runs of more than this many points in one cell of the 2^16 x 2^16 grid
 // (a cluster far smaller than the input's extent) are ordered again inside
 // the cell, to at most kMostRefinements levels of cells in cells.
 constexpr std::size_t kCrowdedCell = 32;
 constexpr int kMostRefinements = 4;
 
-// Orders again, along a Hilbert curve over their own bounding square, the
-// points of each crowded run of entry[first .. last) ((key << 32) | index,
-// sorted): a run of equal keys keeps the input's order, which inside a
-// cluster is no spatial order at all.
-void order_crowded_cells(const std::vector<Point> &points, std::vector<uint64_t> &entry,
-                         std::size_t first, std::size_t last, int depth) {
+// The runs [i, j) of more than kCrowdedCell equal keys in the sorted
+// entry[first .. last).
+std::vector<std::pair<std::size_t, std::size_t>> crowded_runs(const std::vector<uint64_t> &entry,
+                                                              std::size_t first, std::size_t last) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
   for (std::size_t i = first; i < last;) {
     std::size_t j = i + 1;
     while (j < last && entry[j] >> 32 == entry[i] >> 32)
       ++j;
-    if (j - i > kCrowdedCell && depth < kMostRefinements) {
-      const auto point = [&](std::size_t k) { return points[entry[k] & 0xffffffffu]; };
-      Point low = point(i), high = point(i);
-      for (std::size_t k = i + 1; k < j; ++k) {
-        low = {std::min(low.x, point(k).x), std::min(low.y, point(k).y)};
-        high = {std::max(high.x, point(k).x), std::max(high.y, point(k).y)};
-      }
-      const double span = std::max(high.x - low.x, high.y - low.y);
-      if (span > 0 && std::isfinite(span)) { // else all one point
-        const double scale = 65535.0 / span;
-        for (std::size_t k = i; k < j; ++k) {
-          const auto qx = static_cast<uint32_t>(std::min(65535.0, (point(k).x - low.x) * scale));
-          const auto qy = static_cast<uint32_t>(std::min(65535.0, (point(k).y - low.y) * scale));
-          entry[k] =
-              (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | (entry[k] & 0xffffffffu);
-        }
-        std::sort(entry.begin() + static_cast<std::ptrdiff_t>(i),
-                  entry.begin() + static_cast<std::ptrdiff_t>(j));
-        order_crowded_cells(points, entry, i, j, depth + 1);
-      }
-    }
+    if (j - i > kCrowdedCell)
+      runs.emplace_back(i, j);
     i = j;
   }
+  return runs;
+}
+
+// Orders the crowded run entry[first .. last) ((key << 32) | index, of one
+// key: in the input's order, which inside a cluster is no spatial order at
+// all) again, along a Hilbert curve over its own points' bounding square;
+// then its own crowded runs likewise, `depth` counting the levels.
+void order_cell_again(const std::vector<Point> &points, std::vector<uint64_t> &entry,
+                      std::size_t first, std::size_t last, int depth) {
+  const auto point = [&](std::size_t k) { return points[entry[k] & 0xffffffffu]; };
+  Point low = point(first), high = point(first);
+  for (std::size_t k = first + 1; k < last; ++k) {
+    low = {std::min(low.x, point(k).x), std::min(low.y, point(k).y)};
+    high = {std::max(high.x, point(k).x), std::max(high.y, point(k).y)};
+  }
+  const double span = std::max(high.x - low.x, high.y - low.y);
+  if (!(span > 0 && std::isfinite(span)))
+    return; // all one point
+  for (std::size_t k = first; k < last; ++k)
+    entry[k] = hilbert_entry(point(k), low, 65535.0 / span, entry[k] & 0xffffffffu);
+  std::sort(entry.begin() + static_cast<std::ptrdiff_t>(first),
+            entry.begin() + static_cast<std::ptrdiff_t>(last));
+  if (depth + 1 < kMostRefinements)
+    for (const auto &[i, j] : crowded_runs(entry, first, last))
+      order_cell_again(points, entry, i, j, depth + 1);
 }
 
 // Input indices sorted along a Hilbert curve (stable, so ties keep input
-// order), crowded cells refined (order_crowded_cells).
+// order), crowded cells ordered again (order_cell_again).
 std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   const auto [low, span] = bounding_square(points);
   const double scale = span > 0 && std::isfinite(span) ? 65535.0 / span : 0.0;
@@ -164,11 +177,8 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   std::vector<uint64_t> entry(n), buffer(n);
   run_parts(parts, [&](int part, int) {
     const auto [first, end] = part_range(n, part, parts);
-    for (std::size_t i = first; i < end; ++i) {
-      const auto qx = static_cast<uint32_t>(std::min(65535.0, (points[i].x - low.x) * scale));
-      const auto qy = static_cast<uint32_t>(std::min(65535.0, (points[i].y - low.y) * scale));
-      entry[i] = (static_cast<uint64_t>(hilbert_index(qx, qy)) << 32) | i;
-    }
+    for (std::size_t i = first; i < end; ++i)
+      entry[i] = hilbert_entry(points[i], low, scale, i);
   });
   constexpr int kDigitBits = 11;
   constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
@@ -201,23 +211,15 @@ std::vector<int32_t> spatial_order(const std::vector<Point> &points) {
   }
   // The crowded cells, each ordered again on its own (on two threads when
   // they hold many points: each writes its own runs).
-  std::vector<std::pair<std::size_t, std::size_t>> crowded;
+  const auto crowded = crowded_runs(entry, 0, n);
   std::size_t crowded_points = 0;
-  for (std::size_t i = 0; i < n;) {
-    std::size_t j = i + 1;
-    while (j < n && entry[j] >> 32 == entry[i] >> 32)
-      ++j;
-    if (j - i > kCrowdedCell) {
-      crowded.emplace_back(i, j);
-      crowded_points += j - i;
-    }
-    i = j;
-  }
+  for (const auto &[i, j] : crowded)
+    crowded_points += j - i;
   const int crowded_parts = host_threads(crowded_points);
   run_parts(crowded_parts, [&](int part, int) {
     const auto [first, end] = part_range(crowded.size(), part, crowded_parts);
     for (std::size_t k = first; k < end; ++k)
-      order_crowded_cells(points, entry, crowded[k].first, crowded[k].second, 0);
+      order_cell_again(points, entry, crowded[k].first, crowded[k].second, 0);
   });
   std::vector<int32_t> order(n);
   for (std::size_t k = 0; k < n; ++k)

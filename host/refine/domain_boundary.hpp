@@ -37,17 +37,18 @@ public:
   std::vector<Segment> edges() const;
 
 private:
+  // The removed triangles (and the ghosts unless `keep_ghosts`) die; each
+  // vertex points at its smallest kept triangle.
+  void retire(const DeviceArray<cl_int> &removed, bool keep_ghosts);
+
   Device &device_;
   DeviceMesh &mesh_;
   PrefixScan &scan_;
   cl::Kernel count_, make_ghosts_, link_kept_, retire_, point_at_;
   DeviceArray<cl_int> boundary_edges_, offset_; // per slot, from room_needed
   std::size_t counted_ = 0;                     // their total
-  // The removed triangles (and the ghosts unless `keep_ghosts`) die; each
-  // vertex points at its smallest kept triangle.
-  void retire(const DeviceArray<cl_int> &removed, bool keep_ghosts);
-  std::size_t first_ghost_ = 0, ghosts_ = 0; // the ghosts of the last close()
-  bool kept_hull_ = false;                   // keep_hull() came last
+  std::size_t first_ghost_ = 0, ghosts_ = 0;    // the ghosts of the last close()
+  bool kept_hull_ = false;                      // keep_hull() came last
 };
 
 } // namespace clmesh

@@ -7,6 +7,7 @@
 // on a segment or at one of its vertices (exact orientation tests) starts on
 // neither side of it: it is ignored, and reported.
 #include "common.h"
+#include "group_scan.h"
 #include "mesh_params.h"
 
 static inline void claim(__global int *removed, __global int *frontier,
@@ -164,7 +165,7 @@ __kernel void flood_in_group(CLM_TRIANGULATION_PARAMS, __global int *frontier,
     __global int *to = waves % 2 ? frontier : next_frontier;
     if (lid == 0)
       next_n[0] = 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
+    group_barrier(CLK_LOCAL_MEM_FENCE);
     for (int i = lid; i < front; i += size) {
       const int t = from[i];
       for (int e = 0; e < 3; ++e) {
@@ -174,11 +175,11 @@ __kernel void flood_in_group(CLM_TRIANGULATION_PARAMS, __global int *frontier,
           to[atomic_inc(&next_n[0])] = u;
       }
     }
-    barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+    group_barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
     reached += front;
     front = next_n[0];
     ++waves;
-    barrier(CLK_LOCAL_MEM_FENCE); // every work-item has read the length
+    group_barrier(CLK_LOCAL_MEM_FENCE); // every work-item has read the length
   }
   if (lid == 0) {
     result[0] = front;

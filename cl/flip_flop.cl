@@ -601,7 +601,7 @@ static inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int
   const int lid = get_local_id(0), size = get_local_size(0);
   if (lid == 0)
     marked_count[0] = 0;
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   int exact = 0;
   for (int k = lid; k < n; k += size) {
     operation[k] = CLM_OP_NONE;
@@ -613,7 +613,7 @@ static inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int
   }
   if (exact > 0)
     atomic_add(exact_total, exact);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   // The counts are added before the next barrier: PoCL's CPU device
   // miscompiles a private array that lives across barriers in a loop
   // (flipflop_passes_in_group's).
@@ -623,35 +623,35 @@ static inline int4 pass_in_group(CLM_MESH_PARAMS, CLM_FLIPFLOP_PARAMS, const int
   for (int j = 0; j < 3; ++j)
     if (done[j] > 0)
       atomic_add(&totals[j], done[j]);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     relink_results(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int next = group_exclusive_scan(count, offset, n, scratch);
   for (int k = lid; k < n; k += size)
     gather_results(k, CLM_FLIPFLOP_ARGS);
   const int marked = marked_count[0];
   // The pass's entries (results and losers) appended to `rewritten`.
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < next; k += size)
     rewritten[rewritten_size + k] = next_active[k];
   int stars = -1, length = next;
   if (marked > 0 || find_stars) {
-    barrier(CLK_GLOBAL_MEM_FENCE);
+    group_barrier(CLK_GLOBAL_MEM_FENCE);
     for (int k = lid; k < m; k += size)
       track_point(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, stamp);
-    barrier(CLK_GLOBAL_MEM_FENCE);
+    group_barrier(CLK_GLOBAL_MEM_FENCE);
     stars = group_exclusive_scan(star_size, star_offset, m, scratch);
     if (next + stars > next_capacity) {
       stars = -2;
     } else {
       for (int k = lid; k < m; k += size)
         emit_star(k, CLM_MESH_ARGS, CLM_FLIPFLOP_ARGS, next);
-      barrier(CLK_GLOBAL_MEM_FENCE);
+      group_barrier(CLK_GLOBAL_MEM_FENCE);
       length = group_unique(next_active, next + stars, tri_mark, count, offset, active, scratch);
     }
   }
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   return (int4)(next, marked, stars, length);
 }
 
@@ -757,14 +757,14 @@ __kernel void flipflop_passes_in_group(
     const bool stalled = status == 0 && pass.s2 > 0 && pass.s0 == 0 && pass.s1 == 0;
     for (int k = lid; stalled && k < m; k += size)
       keep_stuck_point(tracked, point_state, totals, k);
-    barrier(CLK_GLOBAL_MEM_FENCE);
+    group_barrier(CLK_GLOBAL_MEM_FENCE);
     if (stalled)
       redundant_left = 0;
   }
   const bool finished = status == 0 && n == 0;
   for (int k = lid; finished && k < new_count; k += size)
     finish_point(new_points, point_state, totals, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   if (lid == 0) {
     result[8] = finished;
     for (int j = 0; finished && j < CLM_TOTALS; ++j)

@@ -4,6 +4,19 @@
 #ifndef CLMESH_GROUP_SCAN_H
 #define CLMESH_GROUP_SCAN_H
 
+// The barrier of a kernel that runs as one work-group (host:
+// Device::single_group; step_one_in_group, flipflop_passes_in_group, ...)
+// and of the helpers below that only such kernels call. On the CPU paths
+// (CLM_ITEMS_IN_TURN) that group is one work-item, which has nothing to
+// wait for: the barrier is left out. With it, PoCL compiled those kernels
+// for every group size when clmesh's program cache asked for the program's
+// binary, about 40 s of a machine's first run for the two named above.
+#ifdef CLM_ITEMS_IN_TURN
+#define group_barrier(flags) ((void)0)
+#else
+#define group_barrier(flags) barrier(flags)
+#endif
+
 // Hillis-Steele inclusive scan of scratch[0 .. size), one entry per work-item.
 static inline void local_inclusive_scan(__local int *scratch, int lid, int size) {
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -39,6 +52,9 @@ static inline int scan_run(__global const int *in, __global int *out, int first,
 // work-item a run of consecutive entries); returns the total to all.
 static inline int group_exclusive_scan(__global const int *in, __global int *out, int n,
                                        __local int *scratch) {
+#ifdef CLM_ITEMS_IN_TURN // one work-item (group_barrier): its run is the scan
+  return scan_run(in, out, 0, n, 0);
+#else
   const int lid = get_local_id(0), size = get_local_size(0);
   const int run = (n + size - 1) / size;
   const int first = min(lid * run, n), end = min(first + run, n);
@@ -49,6 +65,7 @@ static inline int group_exclusive_scan(__global const int *in, __global int *out
   scan_run(in, out, first, end, scratch[lid] - sum);
   barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE); // scratch free, out visible
   return total;
+#endif
 }
 
 // Duplicate removal (PrefixScan::unique): the first entry of each slot
@@ -78,15 +95,15 @@ static inline int group_unique(__global const int *list, int n, volatile __globa
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int i = lid; i < n; i += size)
     mark_first_entry(list, marks, i);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int i = lid; i < n; i += size)
     keep[i] = is_first_entry(list, (__global const uint *)marks, i);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int kept = group_exclusive_scan(keep, offset, n, scratch);
   for (int i = lid; i < n; i += size)
     if (keep[i])
       move_first_entry(list, offset, (__global uint *)marks, out, i);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   return kept;
 }
 

@@ -164,14 +164,14 @@ __kernel void mark_encroaching_in_group(CLM_MESH_PARAMS, __global const int *new
     tracked[k] = new_points[k];
     mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_CLAIM));
   }
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_COUNT));
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int old = group_exclusive_scan(owned, offset, n, scratch);
   for (int k = lid; old > 0 && k < n; k += size)
     mark_encroaching(k, CLM_MESH_ARGS, CLM_ENCROACH_ARGS(CLM_ENCROACH_WRITE));
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n + old; k += size)
     claim[tracked[k]] = 0x7fffffff;
   if (lid == 0)

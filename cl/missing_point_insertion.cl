@@ -366,10 +366,10 @@ __kernel void insert_round_in_group(CLM_TRIANGULATION_PARAMS, __global const int
   const int lid = get_local_id(0), size = get_local_size(0);
   for (int k = lid; k < n; k += size)
     mark_container(k, CLM_TRIANGULATION_ARGS, remaining, status, placed, index_bits);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     select_winner(k, CLM_TRIANGULATION_ARGS, remaining, status, winner, index_bits);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   int waiting = 0;
   for (int k = lid; k < n; k += size) {
     clear_container_mark(k, CLM_TRIANGULATION_ARGS, remaining, status);
@@ -377,12 +377,12 @@ __kernel void insert_round_in_group(CLM_TRIANGULATION_PARAMS, __global const int
   }
   if (waiting > 0)
     atomic_add(&counters[1], waiting);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int winners = group_exclusive_scan(winner, winner_offset, n, scratch);
   for (int k = lid; k < n; k += size)
     if (winner[k])
       split_winner(k, CLM_TRIANGULATION_ARGS, CLM_SPLIT_ARGS);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < 4 * winners; k += size)
     if (changed[k] >= 0)
       relink_edge(tri_vertex, tri_neighbor, modified_stamp, children, stamp, changed[k], 2);

@@ -916,35 +916,35 @@ static inline int2 search_in_group(CLM_MESH_PARAMS, CLM_SEARCH_PARAMS, CLM_SEARC
     search[i] = bad[i];
   for (int i = lid; i < changed_count; i += size)
     search[last_bad + i] = changed[i];
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int listed = group_unique(search, last_bad + changed_count, tri_mark, unique_keep,
                                   unique_offset, list, scratch);
   const int n = use_list ? listed : slots;
   for (int k = lid; k < n; k += size)
     search_entry(CLM_MESH_ARGS, CLM_SEARCH_ARGS, k, n);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int bad_count = group_exclusive_scan(is_bad, offset, n, scratch);
   for (int k = lid; k < n; k += size)
     gather_bad_entry(is_bad, offset, list, use_list, tri_mark, election, bad, carried_mark, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int electing = rings > 0 ? bad_count : 0;
   for (int k = lid; k < electing; k += size) {
     prefetch_rings(bad, k, electing, tri_mark, notes, tri_neighbor, 2);
     is_bad[k] = is_elected(bad, tri_neighbor, tri_mark, rings, notes, k);
   }
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int first_round = group_exclusive_scan(is_bad, offset, electing, scratch);
   // The second round (settle_elected), its passes empty when it does not run.
   const int again = second_round && CLM_SECOND_ROUND_SHARE * first_round < electing ? electing : 0;
   for (int k = lid; k < again; k += size)
     settle_elected_entry(bad, is_bad, tri_mark, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < again; k += size)
     retire_blocked_entry(bad, tri_neighbor, tri_mark, rings, notes, is_bad, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < again; k += size)
     elect_again_entry(bad, tri_neighbor, tri_mark, rings, notes, is_bad, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int elected = group_exclusive_scan(is_bad, offset, electing, scratch);
   for (int k = lid; k < electing; k += size)
     gather_elected_entry(bad, is_bad, offset, tri_mark, last_container, origin, k);
@@ -1390,17 +1390,17 @@ static inline void place_in_group(CLM_MESH_PARAMS, CLM_LOCATE_PARAMS, CLM_PLACE_
                         tri_vertex, tri_neighbor, modified_stamp, last_container);
     locate_entry(CLM_MESH_ARGS, CLM_LOCATE_ARGS, k);
   }
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     mark_container_of(container, split_edge, tri_neighbor, priority, tri_mark, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     mark_tie_of(container, split_edge, tri_neighbor, priority, tri_mark, tie_mark, k);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   for (int k = lid; k < n; k += size)
     filter_entry(CLM_MESH_ARGS, container, split_edge, priority, tie_mark, candidate, radius2,
                  rings, distance_rings, near2, parallel_midpoints, survive, k, n);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int survivors = group_exclusive_scan(survive, offset, n, scratch);
   const int count = min(survivors, room);
   for (int k = lid; k < n; k += size)
@@ -1434,7 +1434,7 @@ __kernel void step_one_in_group(
     __global const int *free_points, const int free_first, const int free_count,
     const int first_new, __global int *new_points, const int room, const int place_room) {
   const int2 found = search_in_group(CLM_MESH_ARGS, CLM_SEARCH_ARGS, CLM_SEARCH_GROUP_ARGS);
-  barrier(CLK_GLOBAL_MEM_FENCE);
+  group_barrier(CLK_GLOBAL_MEM_FENCE);
   const int n = found.x > 0 && found.y <= place_room ? found.y : 0;
   place_in_group(CLM_MESH_ARGS, last_container, located_stamp, ratio_bound_squared, max_area,
                  region_area, size_bound, sized, offconstant, conforming, protect, candidate,

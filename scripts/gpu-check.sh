@@ -19,7 +19,7 @@
 # with --jobs 1 in the clmesh process), --streams 16, --jobs 8 (and --pack
 # for the point sets), the files of the default and of --streams 1 compared;
 # then with no device named (PoCL's CPU device takes them; the files
-# compared), without slabs (CLMESH_SLABS=off), and the single-group kernels
+# compared), with slabs (CLMESH_SLABS=on), and the single-group kernels
 # of small meshes at work-groups of 64 (the default), 128 and 256
 # (CLMESH_WORK_GROUP); against the native Triangle once per file when
 # tools/build-triangle.sh's binary is at BUILD_DIR/triangle-native.
@@ -173,7 +173,7 @@ if part batch; then
       line+=" no device named (small inputs on PoCL's CPU device) $(unset CLMESH_DEVICE; seconds "$clmesh" $switches --batch list.txt) s"
       cmp -s streams.md5 <(cat ./*.1.* | md5sum) && line+=" (the same files);" ||
         line+=" (OTHER FILES than the default's);"
-      line+=" CLMESH_SLABS=off $(CLMESH_DEVICE="$gpu" CLMESH_SLABS=off seconds "$clmesh" $switches --batch list.txt) s;"
+      line+=" CLMESH_SLABS=on $(CLMESH_DEVICE="$gpu" CLMESH_SLABS=on seconds "$clmesh" $switches --batch list.txt) s;"
       for group in 128 256; do
         line+=" CLMESH_WORK_GROUP=$group $(CLMESH_DEVICE="$gpu" CLMESH_WORK_GROUP=$group seconds "$clmesh" $switches --batch list.txt) s;"
       done

@@ -319,9 +319,11 @@ Device::Device(cl::Device device, DeviceDescription description, DevicePaths pat
   if (const char *env = std::getenv("CLMESH_WORK_GROUP"); env && *env)
     set_work_group(std::strtoul(env, nullptr, 10));
   default_work_group_ = work_group_;
-  // CLMESH_SLABS=off (for comparison): every array from the driver.
+  // Slabs only with CLMESH_SLABS=on (for comparison): on an H100, NVIDIA's
+  // driver meshed a batch of small inputs faster with every array a buffer
+  // of its own (docs/algorithm.md).
   const char *slabs = std::getenv("CLMESH_SLABS");
-  if (!cpu_paths_ && !(slabs && std::strcmp(slabs, "off") == 0)) {
+  if (!cpu_paths_ && slabs && std::strcmp(slabs, "on") == 0) {
     const auto align_bits = guarded("setup", "querying the device", [&] {
       return device_.getInfo<CL_DEVICE_MEM_BASE_ADDR_ALIGN>();
     });

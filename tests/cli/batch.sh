@@ -273,12 +273,12 @@ printf '%s\n' "${all[@]}" > list.txt
 CLMESH_DEVICE_PATHS=gpu run -en -q30 --batch list.txt
 rm list.txt stdout.txt stderr.txt
 same_outputs "CLMESH_DEVICE_PATHS=gpu" "$work/jobs.1" "$work/jobs.turns"
-# Without slabs (every array the driver's own buffer): the same files.
-fresh jobs.noslabs
+# With slabs (small arrays pieces of larger buffers): the same files.
+fresh jobs.slabs
 printf '%s\n' "${all[@]}" > list.txt
-CLMESH_DEVICE_PATHS=gpu CLMESH_SLABS=off run -en -q30 --batch list.txt
+CLMESH_DEVICE_PATHS=gpu CLMESH_SLABS=on run -en -q30 --batch list.txt
 rm list.txt stdout.txt stderr.txt
-same_outputs "CLMESH_SLABS=off" "$work/jobs.1" "$work/jobs.noslabs"
+same_outputs "CLMESH_SLABS=on" "$work/jobs.1" "$work/jobs.slabs"
 printf '%s\n' "${all[@]}" > list.txt
 # -V counts the workers that meshed.
 CLMESH_DEVICE_PATHS=gpu run -V -en -q30 --batch list.txt

@@ -154,8 +154,10 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
                              __global const int *tri_vertex, __global const int *tri_neighbor,
                              __global const int *tri_region, const int regional,
                              __global const int *slot_flag, const int flagged,
+                             __global const double *slot_value, const int valued,
                              __global int *moved_vertex, __global int *moved_neighbor,
-                             __global int *moved_region, __global int *moved_flag, const int n) {
+                             __global int *moved_region, __global int *moved_flag,
+                             __global double *moved_value, const int n) {
   const int k = get_global_id(0);
   if (k >= n)
     return;
@@ -164,6 +166,8 @@ __kernel void move_triangles(__global const int *order, __global const int *new_
     moved_region[k] = tri_region[t];
   if (flagged)
     moved_flag[k] = slot_flag[t];
+  if (valued)
+    moved_value[k] = slot_value[t];
   const int r = link_edge(new_slot[t]);
   for (int i = 0; i < 3; ++i) { // new index i, old index (i + r) % 3
     const int link = tri_neighbor[3 * t + (i + r) % 3];

@@ -649,8 +649,13 @@ private:
     }
     steps_.reset();
     changed_ = DeviceList<cl_int>{};
+    // The size bounds move with the triangles when the slots rewritten since
+    // they were set (changed_) are flagged and listed again after the move;
+    // else every slot's is set again.
+    const bool move_bounds = size_bound_ && searched && !sizes_stale_;
     ZOrderCompaction(device_, mesh(), scheduler_.scan())
-        .compact(low_, side_, first_steiner_, searched ? &unsettled : nullptr);
+        .compact(low_, side_, first_steiner_, searched ? &unsettled : nullptr,
+                 move_bounds ? &size_bound_->bounds_to_move() : nullptr);
     make_steps();
     if (searched) {
       const std::size_t slots = mesh().triangle_count;
@@ -660,7 +665,7 @@ private:
           unsettled, offsets, changed_.items, slots, FlipFlop::kPhase));
       steps_->offcenter.skip_sweep();
     }
-    sizes_stale_ = true;
+    sizes_stale_ = !move_bounds;
     deleted_since_collection_ = false;
     compacted_slots_ = mesh().triangle_count;
     ++stats_.compactions;

@@ -34,6 +34,9 @@ public:
   void update(const DeviceList<cl_int> *changed);
   // Per triangle slot: its area bound (<= 0: none).
   const DeviceArray<cl_double> &bounds() const { return bound_; }
+  // The same, for a compaction to move with the slots (ZOrderCompaction):
+  // each slot's bound stays right for its triangle.
+  DeviceArray<cl_double> &bounds_to_move() { return bound_; }
 
 private:
   // A background mesh on the device, with its grid of cells (see

@@ -44,12 +44,14 @@ std::size_t ZOrderCompaction::z_order(const ZGrid &grid, const DeviceArray<cl_in
 }
 
 void ZOrderCompaction::compact(Point low, double side, std::size_t first,
-                               DeviceArray<cl_int> *slot_flags) {
-  compact_triangles(low, side, slot_flags);
+                               DeviceArray<cl_int> *slot_flags,
+                               DeviceArray<cl_double> *slot_values) {
+  compact_triangles(low, side, slot_flags, slot_values);
   compact_steiner_points(low, side, first);
 }
 
-void ZOrderCompaction::compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags) {
+void ZOrderCompaction::compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags,
+                                         DeviceArray<cl_double> *slot_values) {
   const std::size_t slots = mesh_.triangle_count;
   const ZGrid grid = z_grid(low, side, slots, 8);
   // The marks (none are set between iterations) hold the cells, the stamps
@@ -73,15 +75,20 @@ void ZOrderCompaction::compact_triangles(Point low, double side, DeviceArray<cl_
                                      DeviceMesh::kHugePages);
     DeviceArray<cl_int> moved_flags(device_, slot_flags ? live : 1);
     const DeviceArray<cl_int> &flags = slot_flags ? *slot_flags : moved_flags;
+    DeviceArray<cl_double> moved_values(device_, slot_values ? slot_values->size() : 1);
+    const DeviceArray<cl_double> &values = slot_values ? *slot_values : moved_values;
     set_args(move_triangles_, order.buffer(), new_slot.buffer(), mesh_.tri_vertex.buffer(),
              mesh_.tri_neighbor.buffer(), mesh_.tri_region.buffer(),
              static_cast<cl_int>(mesh_.has_regions), flags.buffer(),
-             static_cast<cl_int>(slot_flags != nullptr), mesh_.children.buffer(),
+             static_cast<cl_int>(slot_flags != nullptr), values.buffer(),
+             static_cast<cl_int>(slot_values != nullptr), mesh_.children.buffer(),
              moved_neighbor.buffer(), moved_region.buffer(), moved_flags.buffer(),
-             static_cast<cl_int>(live));
+             moved_values.buffer(), static_cast<cl_int>(live));
     launch(device_, move_triangles_, live, kPhase);
     if (slot_flags)
       *slot_flags = std::move(moved_flags);
+    if (slot_values)
+      *slot_values = std::move(moved_values);
     std::swap(mesh_.tri_vertex, mesh_.children);
     std::swap(mesh_.tri_neighbor, moved_neighbor);
     if (mesh_.has_regions) // the slots past the live ones get theirs when filled

@@ -22,8 +22,11 @@ public:
   // both free lists. Every triangle and Steiner slot number changes: lists
   // of them kept elsewhere are void. With slot_flags (one per triangle slot),
   // each triangle's flag moves with it: the array then holds one per new slot.
+  // With slot_values (one per triangle slot), each triangle's value moves
+  // with it, the array keeping its length.
   void compact(Point low, double side, std::size_t first,
-               DeviceArray<cl_int> *slot_flags = nullptr);
+               DeviceArray<cl_int> *slot_flags = nullptr,
+               DeviceArray<cl_double> *slot_values = nullptr);
 
 private:
   // A Z-order grid over the bounding box with about `per_cell` of `items`
@@ -42,7 +45,8 @@ private:
   std::size_t z_order(const ZGrid &grid, const DeviceArray<cl_int> &cell,
                       const DeviceArray<cl_ulong> &key, bool rotated, std::size_t items,
                       const DeviceArray<cl_int> &order, const DeviceArray<cl_int> &new_slot);
-  void compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags);
+  void compact_triangles(Point low, double side, DeviceArray<cl_int> *slot_flags,
+                         DeviceArray<cl_double> *slot_values);
   void compact_steiner_points(Point low, double side, std::size_t first);
 
   Device &device_;

@@ -24,8 +24,7 @@ public:
   // each triangle's flag moves with it: the array then holds one per new slot.
   // With slot_values (one per triangle slot), each triangle's value moves
   // with it, the array keeping its length.
-  void compact(Point low, double side, std::size_t first,
-               DeviceArray<cl_int> *slot_flags = nullptr,
+  void compact(Point low, double side, std::size_t first, DeviceArray<cl_int> *slot_flags = nullptr,
                DeviceArray<cl_double> *slot_values = nullptr);
 
 private:

@@ -157,7 +157,12 @@ if part batch; then
     done
     switches=-Q
     [[ $kind == pslgs ]] && switches=-Qpq30
+    # Untimed first runs build the programs on the GPU and on PoCL (with no
+    # device named, small inputs go to PoCL): a machine's first build takes
+    # minutes, which the timings below leave out.
     (cd "$dir" && ls in* > list.txt && CLMESH_DEVICE="$gpu" "$clmesh" $switches in1.* > /dev/null
+      (unset CLMESH_DEVICE; "$clmesh" $switches --batch list.txt > /dev/null 2>&1)
+      rm -f ./*.1.*
       line="batch of 200 $kind $switches on '$gpu':"
       packs=""
       [[ $kind == points ]] && packs="--pack"

@@ -10,8 +10,10 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
+#include <random>
 #include <set>
 #include <string>
 
@@ -112,7 +114,51 @@ clmesh::Input skewed_grid(int rows, int columns, double width) {
   return input;
 }
 
+// The mesh's triangles, each from its smallest corner on (corners in order).
+std::set<std::array<int32_t, 3>> triangle_set(const clmesh::Mesh &mesh) {
+  std::set<std::array<int32_t, 3>> triangles;
+  for (const clmesh::Triangle &t : mesh.triangles) {
+    const int first = static_cast<int>(std::min_element(t.begin(), t.end()) - t.begin());
+    triangles.insert({t[first], t[(first + 1) % 3], t[(first + 2) % 3]});
+  }
+  return triangles;
+}
+
 } // namespace
+
+TEST_CASE("refine mesh: a convex mesh is the first mesh itself, a concave one is found in the "
+          "Delaunay triangulation of its points") {
+  // The skewed grid's inner points moved a little: general position.
+  clmesh::Input grid = skewed_grid(6, 8, 8);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  for (int r = 1; r < 6; ++r)
+    for (int c = 1; c < 8; ++c) {
+      Point &p = grid.points[static_cast<std::size_t>(r * 9 + c)];
+      p.x += jitter(random);
+      p.y += jitter(random) / 8;
+    }
+  const clmesh::Mesh taken = refine_checked(grid, "r");
+  CHECK(taken.statistics.delaunay.construction == "given_mesh");
+  CHECK(taken.statistics.constraints.delaunay_flips > 0);
+  // Flipped to the Delaunay triangulation of its points (its outline is
+  // their hull).
+  CHECK(triangle_set(taken) == triangle_set(test_support::triangulate_points(grid.points)));
+  const clmesh::Mesh refined = refine_checked(grid, "rq30a0.01");
+  CHECK(refined.statistics.delaunay.construction == "given_mesh");
+  // Without the upper right block of rectangles: an L, concave.
+  clmesh::Input ell = grid;
+  ell.triangles.clear();
+  for (std::size_t t = 0; t < grid.triangles.size(); ++t) {
+    const std::size_t r = t / 16, c = t % 16 / 2;
+    if (r < 3 || c < 4)
+      ell.triangles.push_back(grid.triangles[t]);
+  }
+  const clmesh::Mesh found = refine_checked(ell, "r");
+  CHECK(found.statistics.delaunay.construction != "given_mesh");
+  CHECK(found.triangles.size() == ell.triangles.size());
+  refine_checked(ell, "rq30");
+}
 
 TEST_CASE("refine mesh: a mesh clmesh wrote, refined twice (-pq then -rpq30a, -rpq30a)") {
   for (const char *name : {"A", "face", "square_circle_hole", "la"}) {

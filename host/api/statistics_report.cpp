@@ -75,8 +75,10 @@ std::string format_statistics(const Mesh &mesh) {
   };
   add("  Device: %s\n", s.device.c_str());
   add("  Duplicate vertices: %ld\n", s.duplicates);
-  add("  First triangulation: %s\n",
-      s.construction == "voronoi" ? "from the digital Voronoi diagram" : "fan of the convex hull");
+  add("  First triangulation: %s\n", s.construction == "voronoi"
+                                         ? "from the digital Voronoi diagram"
+                                     : s.construction == "given_mesh" ? "the given mesh (-r)"
+                                                                      : "fan of the convex hull");
   if (s.grid > 0) {
     add("  Voronoi grid: %d x %d, %ld diagram(s)\n", s.grid, s.grid, s.construction_rounds);
     add("  Triangles from Voronoi vertices: %ld\n", s.constructed_triangles);

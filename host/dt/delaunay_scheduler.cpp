@@ -540,19 +540,13 @@ DelaunayScheduler::PointLevels DelaunayScheduler::point_levels(std::vector<cl_in
   }
 }
 
-bool DelaunayScheduler::triangulate() {
+void DelaunayScheduler::upload_points() {
   const std::vector<Point> &points = points_;
   const std::size_t n = points.size();
-  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
-  if (all_collinear(points))
-    return false; // no triangle
-
   mesh_ = std::make_unique<DeviceMesh>(device_, n, extra_points_);
   scan_ = std::make_unique<PrefixScan>(device_);
-  MissingPointInsertion insertion(device_, *mesh_, *scan_);
   Device &device = device_;
   DeviceMesh &mesh = *mesh_;
-
   // Device points follow a Hilbert curve (each part's its own, in the part's
   // range), so that neighbouring work-items touch neighbouring memory; the
   // output goes back to the input numbering.
@@ -580,6 +574,119 @@ bool DelaunayScheduler::triangulate() {
   mesh.fill_point_slots(device, mesh.point_count);
   mesh.location.fill(device, 0, mesh.point_count); // added points come with theirs
   timer_->charge("upload");
+}
+
+bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
+                                       const std::vector<cl_int> &links) {
+  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
+  const std::size_t real = triangles.size();
+  // Ghost g stands on boundary edge a -> b of real triangle t (the edge
+  // opposite its corner i): vertices (b, a, infinite), as the hull fan's;
+  // its edge 2 faces t, edge 0 the ghost of the boundary edge that ends at
+  // a, edge 1 the ghost of the one that starts at b.
+  struct Ghost {
+    int32_t a, b, t, i;
+  };
+  std::vector<Ghost> ghosts;
+  std::vector<cl_int> ghost_from(points_.size(), -1), ghost_to(points_.size(), -1);
+  for (std::size_t t = 0; t < real; ++t)
+    for (int i = 0; i < 3; ++i)
+      if (links[3 * t + static_cast<std::size_t>(i)] < 0) {
+        const int32_t a = triangles[t][(i + 1) % 3], b = triangles[t][(i + 2) % 3];
+        const auto g = static_cast<cl_int>(real + ghosts.size());
+        cl_int &from = ghost_from[static_cast<std::size_t>(a)];
+        cl_int &to = ghost_to[static_cast<std::size_t>(b)];
+        if (from >= 0 || to >= 0)
+          return false; // two boundary edges leave a vertex (or reach it)
+        from = to = g;
+        ghosts.push_back({a, b, static_cast<int32_t>(t), i});
+      }
+  // The triangles (counter-clockwise, no edge twice in one direction:
+  // validate) must tile a region of the plane, as the Delaunay
+  // triangulation's triangles found by matching do. Enough for that: 2 n - 2
+  // slots with the ghosts (a disk: one piece, no hole; this also fits the
+  // mesh's room), and one boundary loop that turns left or goes straight at
+  // every vertex and winds once (convex). Every point inside is then
+  // covered by exactly one triangle: each covers it positively, and the
+  // boundary winds once around it. Anything else (holes, concave outlines,
+  // overlaps) is triangulated (false).
+  const std::size_t slots = real + ghosts.size();
+  if (ghosts.empty() || points_.size() < 3 || slots != 2 * points_.size() - 2)
+    return false;
+  std::size_t loop = 0;
+  int windings = 0;
+  for (cl_int g = 0;;) {
+    const Ghost &edge = ghosts[static_cast<std::size_t>(g)];
+    const cl_int next = ghost_from[static_cast<std::size_t>(edge.b)];
+    if (next < 0)
+      return false;
+    const Ghost &then = ghosts[static_cast<std::size_t>(next) - real];
+    const Point &a = points_[static_cast<std::size_t>(edge.a)],
+                &b = points_[static_cast<std::size_t>(edge.b)],
+                &c = points_[static_cast<std::size_t>(then.b)];
+    const int turn = clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - b.x, vy = c.y - b.y;
+    if (turn < 0 || (turn == 0 && ux * vx + uy * vy <= 0))
+      return false;
+    // A winding: the direction passes from the lower half-turn to the upper.
+    const bool lower = uy < 0 || (uy == 0 && ux < 0), upper = vy > 0 || (vy == 0 && vx > 0);
+    windings += lower && upper;
+    ++loop;
+    g = next - static_cast<cl_int>(real);
+    if (g == 0)
+      break;
+    if (loop > ghosts.size())
+      return false;
+  }
+  if (loop != ghosts.size() || windings != 1)
+    return false;
+  std::vector<cl_int> vertices(3 * slots), neighbors(3 * slots);
+  for (std::size_t t = 0; t < real; ++t)
+    for (std::size_t i = 0; i < 3; ++i) {
+      vertices[3 * t + i] = triangles[t][i];
+      neighbors[3 * t + i] = links[3 * t + i];
+    }
+  for (std::size_t k = 0; k < ghosts.size(); ++k) {
+    const Ghost &g = ghosts[k];
+    const std::size_t slot = real + k;
+    const cl_int before = ghost_to[static_cast<std::size_t>(g.a)],
+                 after = ghost_from[static_cast<std::size_t>(g.b)];
+    if (before < 0 || after < 0)
+      return false; // a boundary that does not close
+    vertices[3 * slot] = g.b;
+    vertices[3 * slot + 1] = g.a;
+    vertices[3 * slot + 2] = -1; // CLM_INFINITE
+    neighbors[3 * slot] = (before << 2) | 1;
+    neighbors[3 * slot + 1] = (after << 2) | 0;
+    neighbors[3 * slot + 2] = (g.t << 2) | 2;
+    neighbors[3 * static_cast<std::size_t>(g.t) + static_cast<std::size_t>(g.i)] =
+        static_cast<cl_int>((slot << 2) | 2);
+  }
+  upload_points();
+  for (cl_int &v : vertices)
+    if (v >= 0)
+      v = device_id_[static_cast<std::size_t>(v)];
+  DeviceMesh &mesh = *mesh_;
+  mesh.tri_vertex.upload(device_, vertices);
+  mesh.tri_neighbor.upload(device_, neighbors);
+  mesh.triangle_count = slots;
+  mesh.fill_triangle_slots(device_, slots);
+  stats_.construction = "given_mesh";
+  timer_->charge("upload");
+  return true;
+}
+
+bool DelaunayScheduler::triangulate() {
+  const std::vector<Point> &points = points_;
+  const std::size_t n = points.size();
+  timer_ = std::make_unique<PhaseTimer>(device_, stats_);
+  if (all_collinear(points))
+    return false; // no triangle
+
+  upload_points();
+  MissingPointInsertion insertion(device_, *mesh_, *scan_);
+  Device &device = device_;
+  DeviceMesh &mesh = *mesh_;
 
   // Phases 1-3 build the first triangulation and list the missing points;
   // when their result cannot be used, the hull is fanned instead.

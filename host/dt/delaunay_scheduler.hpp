@@ -56,6 +56,14 @@ public:
 
   // Phases 1-5; false when all points are collinear (no triangle).
   bool triangulate();
+  // In place of triangulate(), for a given mesh (-r) whose triangles use
+  // every point: its triangles (input numbering, counter-clockwise) as the
+  // first mesh, `links[3 t + i]` the link ((triangle << 2) | edge) across
+  // the edge opposite corner i of triangle t, -1 on the boundary, where a
+  // ghost closes each boundary edge. No flip: the mesh need not be
+  // Delaunay. False, with nothing on the device, when its boundary meets
+  // itself at a vertex or it has holes (the caller then triangulates).
+  bool take_triangles(const std::vector<Triangle> &triangles, const std::vector<cl_int> &links);
   // Inserts new points (numbered after every earlier one, in the device and
   // in the output), each walking from the given triangle, and restores the
   // (constrained) Delaunay property; the mesh grows when its room runs short.
@@ -153,6 +161,9 @@ private:
   // visit(first, points) for each set: its first input index and a copy of
   // its points (the whole input once when not packed).
   template <class Visit> void for_each_part(const Visit &visit) const;
+  // The device mesh with the points in Hilbert order (device_id_,
+  // original_id_), no triangle yet.
+  void upload_points();
 
   Device &device_;
   const std::vector<Point> &points_;

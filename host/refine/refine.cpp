@@ -229,6 +229,10 @@ struct GivenMesh {
   const std::vector<Triangle> &triangles;
   const std::vector<double> &max_area;
   std::vector<cl_int> &across;
+  // When the mesh can be the first mesh as it is (no segments or holes of a
+  // .poly): each triangle's links across its edges (mesh_constraints),
+  // else empty.
+  std::vector<cl_int> &links;
 };
 
 // The marker that tells a given mesh's inner edges among the constraints of
@@ -263,7 +267,15 @@ public:
       for (const char *file : {"constraint_marking.cl", "exterior_removal.cl", "domain_boundary.cl",
                                "mesh_reconstruction.cl"})
         device_.program(file, "setup");
-    if (!scheduler_.triangulate()) {
+    // A given mesh is the first mesh itself when it can be (its triangles
+    // then need no Delaunay triangulation of its points to be found in).
+    given_taken_ = given_ && !given_->links.empty() &&
+                   scheduler_.take_triangles(given_->triangles, given_->links);
+    if (given_)
+      std::vector<cl_int>().swap(given_->links);
+    if (given_taken_) // its boundary is the domain's: no flip may leave it
+      scheduler_.fix_boundary();
+    if (!given_taken_ && !scheduler_.triangulate()) {
       scheduler_.download_collinear(result_.mesh);
       if (pslg_)
         result_.segments = distinct_segments(pslg_->segments, result_.constraints);
@@ -419,7 +431,8 @@ private:
   // make the mesh constrained Delaunay. The boundary and segments go in
   // first: a mesh that is constrained Delaunay already (as a mesh of clmesh
   // or Triangle is) then has all its triangles, and only another one needs
-  // its inner edges inserted too.
+  // its inner edges inserted too. A mesh taken as the first mesh itself
+  // (take_triangles) has them all, and only its flips are left.
   void reconstruct() {
     std::vector<Triangle> corners = given_->triangles;
     for (Triangle &t : corners)
@@ -451,11 +464,13 @@ private:
         constraints_.push_back(s);
     result_.constraints.segments = static_cast<long>(constraints_.size());
     DeviceMesh &m = mesh();
-    if (inner_edges) {
-      // They cease to be constraints; the flips that they blocked go ahead.
-      // (Otherwise the insertion's own flips left the mesh constrained
-      // Delaunay with these very constraints.)
+    // With inner edges, they cease to be constraints; the flips that they
+    // blocked go ahead. (Otherwise the insertion's own flips left the mesh
+    // constrained Delaunay with these very constraints.) A mesh taken as it
+    // is may not be Delaunay at all.
+    if (inner_edges)
       m.set_constraint_rows(device_, constraints_);
+    if (inner_edges || given_taken_) {
       DeviceArray<cl_int> every_slot(device_, m.triangle_count);
       every_slot.fill(device_, 1, m.triangle_count);
       FlipCounts flips;
@@ -807,6 +822,7 @@ private:
   std::unique_ptr<SizeField> triangle_areas_;
   std::unique_ptr<SizeBound> size_bound_; // with a sizing field, .area bounds or callback
   bool sizes_stale_ = true;               // every slot's size bound is to be set again
+  bool given_taken_ = false;              // the given mesh is the first mesh (take_triangles)
   std::unique_ptr<RefinementSteps> steps_;
   const std::size_t limit_; // Steiner points at most (-S)
   Point low_{};
@@ -829,7 +845,7 @@ private:
 // boundary.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
                                       const std::vector<Segment> &segments, std::size_t vertices,
-                                      std::vector<cl_int> *across) {
+                                      std::vector<cl_int> *across, std::vector<cl_int> *links) {
   const DirectedEdges directed(triangles, vertices);
   auto on_boundary = [&](int32_t a, int32_t b) { return directed.has(a, b) != directed.has(b, a); };
   std::vector<Segment> constraints = segments;
@@ -847,14 +863,20 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
           continue;
         constraints.push_back({from, to, inner ? kInnerEdge : 1});
       }
-  if (across) {
-    // Edge a -> b of triangle t is the one opposite t's corner after b.
+  // Edge a -> b of triangle t is the one opposite t's corner after b.
+  if (across)
     across->assign(3 * triangles.size(), -1);
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      if (reverse[e] >= 0)
-        (*across)[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
-            static_cast<cl_int>(edges[static_cast<std::size_t>(reverse[e])].triangle);
-  }
+  if (links)
+    links->assign(3 * triangles.size(), -1);
+  for (std::size_t e = 0; (across || links) && e < edges.size(); ++e)
+    if (reverse[e] >= 0) {
+      const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
+      const std::size_t at = 3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3;
+      if (across)
+        (*across)[at] = static_cast<cl_int>(back.triangle);
+      if (links)
+        (*links)[at] = static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
+    }
   return constraints;
 }
 
@@ -930,15 +952,17 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   const std::vector<Triangle> &corners = every_point ? triangles : renumbered_triangles;
   const std::vector<Segment> &segments = every_point ? pslg.segments : renumbered_segments;
   std::vector<cl_int> across; // the .area bounds' walks take it
+  std::vector<cl_int> links;  // the first mesh's links, when the mesh can be it
   const bool areas = options.regional_areas && !max_area.empty();
-  const std::vector<Segment> constraints =
-      mesh_constraints(corners, segments, points.size(), areas ? &across : nullptr);
+  const bool as_it_is = segments.empty() && pslg.holes.empty();
+  const std::vector<Segment> constraints = mesh_constraints(
+      corners, segments, points.size(), areas ? &across : nullptr, as_it_is ? &links : nullptr);
   const std::vector<Region> no_regions;
   const Pslg subset{points, constraints, pslg.holes, no_regions};
 
   RefineResult result;
   check_area_bound(device, subset.points, options, result.stats);
-  const GivenMesh given{corners, max_area, across};
+  const GivenMesh given{corners, max_area, across, links};
   release_free_heap(); // the edge lists' pages, before the device's arrays
   // The given mesh's edges, found on the host, are part of its
   // reconstruction's time (the device's starts with the Refinement).

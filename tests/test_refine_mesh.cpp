@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include "clmesh/clmesh.hpp"
+#include "dt/simple_loop.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -126,8 +127,25 @@ std::set<std::array<int32_t, 3>> triangle_set(const clmesh::Mesh &mesh) {
 
 } // namespace
 
-TEST_CASE("refine mesh: a convex mesh is the first mesh itself, a concave one is found in the "
-          "Delaunay triangulation of its points") {
+TEST_CASE("refine mesh: a simple polygon is told from loops that meet themselves, exactly") {
+  // 0-3 a unit square, 4 its right edge's midpoint, 5 the square's centre,
+  // 6 the double just to the left of that midpoint, 7 the top left again.
+  const std::vector<Point> p = {
+      {0, 0}, {1, 0}, {1, 1}, {0, 1}, {1, 0.5}, {0.5, 0.5}, {0x1.fffffffffffffp-1, 0.5}, {0, 1}};
+  using Loop = std::vector<int32_t>;
+  CHECK(clmesh::is_simple_loop(p, Loop{0, 1, 2, 3}));
+  CHECK(clmesh::is_simple_loop(p, Loop{0, 1, 4, 2, 3}));     // a straight corner
+  CHECK(clmesh::is_simple_loop(p, Loop{0, 1, 2, 5, 3}));     // concave
+  CHECK(!clmesh::is_simple_loop(p, Loop{0, 2, 1, 3}));       // a figure eight
+  CHECK(!clmesh::is_simple_loop(p, Loop{0, 1, 2, 4, 3}));    // a spike back along an edge
+  CHECK(!clmesh::is_simple_loop(p, Loop{0, 1, 2, 7, 5, 3})); // two corners at one place
+  CHECK(!clmesh::is_simple_loop(p, Loop{0, 1, 2, 3, 5, 4})); // a corner on another edge
+  CHECK(clmesh::is_simple_loop(p, Loop{0, 1, 2, 3, 5, 6}));  // a hair off it
+  CHECK(!clmesh::is_simple_loop(p, Loop{0, 1}));
+}
+
+TEST_CASE("refine mesh: a mesh that is a disk is the first mesh itself, others are found in the "
+          "Delaunay triangulation of their points") {
   // The skewed grid's inner points moved a little: general position.
   clmesh::Input grid = skewed_grid(6, 8, 8);
   std::mt19937 random(7);
@@ -144,20 +162,33 @@ TEST_CASE("refine mesh: a convex mesh is the first mesh itself, a concave one is
   // Flipped to the Delaunay triangulation of its points (its outline is
   // their hull).
   CHECK(triangle_set(taken) == triangle_set(test_support::triangulate_points(grid.points)));
-  const clmesh::Mesh refined = refine_checked(grid, "rq30a0.01");
-  CHECK(refined.statistics.delaunay.construction == "given_mesh");
-  // Without the upper right block of rectangles: an L, concave.
-  clmesh::Input ell = grid;
-  ell.triangles.clear();
-  for (std::size_t t = 0; t < grid.triangles.size(); ++t) {
-    const std::size_t r = t / 16, c = t % 16 / 2;
-    if (r < 3 || c < 4)
-      ell.triangles.push_back(grid.triangles[t]);
-  }
-  const clmesh::Mesh found = refine_checked(ell, "r");
-  CHECK(found.statistics.delaunay.construction != "given_mesh");
-  CHECK(found.triangles.size() == ell.triangles.size());
+  CHECK(refine_checked(grid, "rq30a0.01").statistics.delaunay.construction == "given_mesh");
+  // The grid's rectangles (row r, column c: triangles 16 r + 2 c and the
+  // next) but some.
+  auto without = [&](auto left_out) {
+    clmesh::Input mesh = grid;
+    mesh.triangles.clear();
+    for (std::size_t t = 0; t < grid.triangles.size(); ++t)
+      if (!left_out(t / 16, t % 16 / 2))
+        mesh.triangles.push_back(grid.triangles[t]);
+    return mesh;
+  };
+  // An L (concave): taken as it is.
+  const clmesh::Input ell = without([](std::size_t r, std::size_t c) { return r >= 3 && c >= 4; });
+  const clmesh::Mesh ell_taken = refine_checked(ell, "r");
+  CHECK(ell_taken.statistics.delaunay.construction == "given_mesh");
+  CHECK(ell_taken.triangles.size() == ell.triangles.size());
   refine_checked(ell, "rq30");
+  // A hole, and two blocks that meet at one corner: found in the Delaunay
+  // triangulation, the same domains.
+  for (const clmesh::Input &other :
+       {without([](std::size_t r, std::size_t c) { return r >= 2 && r < 4 && c >= 3 && c < 5; }),
+        without([](std::size_t r, std::size_t c) { return (r < 3) != (c < 4); })}) {
+    const clmesh::Mesh found = refine_checked(other, "r");
+    CHECK(found.statistics.delaunay.construction != "given_mesh");
+    CHECK(found.triangles.size() == other.triangles.size());
+    refine_checked(other, "rq30");
+  }
 }
 
 TEST_CASE("refine mesh: a mesh clmesh wrote, refined twice (-pq then -rpq30a, -rpq30a)") {

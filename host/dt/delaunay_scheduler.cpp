@@ -4,6 +4,7 @@
 #include "dt/delaunay_scheduler.hpp"
 
 #include "dt/shifting.hpp"
+#include "dt/simple_loop.hpp"
 #include "dt/triangulation_construction.hpp"
 #include "predicates.h"
 #include "runtime/host_memory.hpp"
@@ -605,40 +606,26 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
   // validate) must tile a region of the plane, as the Delaunay
   // triangulation's triangles found by matching do. Enough for that: 2 n - 2
   // slots with the ghosts (a disk: one piece, no hole; this also fits the
-  // mesh's room), and one boundary loop that turns left or goes straight at
-  // every vertex and winds once (convex). Every point inside is then
-  // covered by exactly one triangle: each covers it positively, and the
-  // boundary winds once around it. Anything else (holes, concave outlines,
-  // overlaps) is triangulated (false).
+  // mesh's room), and one boundary loop that is a simple polygon. Every
+  // point inside is then covered by exactly one triangle: each covers it
+  // positively, and the boundary (counter-clockwise, as the triangles' areas
+  // sum to its own) winds once around it. Anything else (holes, a boundary
+  // that touches itself, overlaps) is triangulated (false).
   const std::size_t slots = real + ghosts.size();
   if (ghosts.empty() || points_.size() < 3 || slots != 2 * points_.size() - 2)
     return false;
-  std::size_t loop = 0;
-  int windings = 0;
-  for (cl_int g = 0;;) {
+  std::vector<int32_t> loop;
+  for (cl_int g = 0; loop.size() <= ghosts.size();) {
     const Ghost &edge = ghosts[static_cast<std::size_t>(g)];
+    loop.push_back(edge.a);
     const cl_int next = ghost_from[static_cast<std::size_t>(edge.b)];
     if (next < 0)
       return false;
-    const Ghost &then = ghosts[static_cast<std::size_t>(next) - real];
-    const Point &a = points_[static_cast<std::size_t>(edge.a)],
-                &b = points_[static_cast<std::size_t>(edge.b)],
-                &c = points_[static_cast<std::size_t>(then.b)];
-    const int turn = clm_orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
-    const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - b.x, vy = c.y - b.y;
-    if (turn < 0 || (turn == 0 && ux * vx + uy * vy <= 0))
-      return false;
-    // A winding: the direction passes from the lower half-turn to the upper.
-    const bool lower = uy < 0 || (uy == 0 && ux < 0), upper = vy > 0 || (vy == 0 && vx > 0);
-    windings += lower && upper;
-    ++loop;
     g = next - static_cast<cl_int>(real);
     if (g == 0)
       break;
-    if (loop > ghosts.size())
-      return false;
   }
-  if (loop != ghosts.size() || windings != 1)
+  if (loop.size() != ghosts.size() || !is_simple_loop(points_, loop))
     return false;
   std::vector<cl_int> vertices(3 * slots), neighbors(3 * slots);
   for (std::size_t t = 0; t < real; ++t)

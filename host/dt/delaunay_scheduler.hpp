@@ -61,8 +61,8 @@ public:
   // first mesh, `links[3 t + i]` the link ((triangle << 2) | edge) across
   // the edge opposite corner i of triangle t, -1 on the boundary, where a
   // ghost closes each boundary edge. No flip: the mesh need not be
-  // Delaunay. False, with nothing on the device, when its boundary meets
-  // itself at a vertex or it has holes (the caller then triangulates).
+  // Delaunay. False, with nothing on the device, unless the mesh is a disk
+  // whose outline is a simple polygon (the caller then triangulates).
   bool take_triangles(const std::vector<Triangle> &triangles, const std::vector<cl_int> &links);
   // Inserts new points (numbered after every earlier one, in the device and
   // in the output), each walking from the given triangle, and restores the

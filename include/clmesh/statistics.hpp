@@ -21,7 +21,7 @@ struct DelaunayStats {
   long missing_points = 0;   // points inserted by Phase 4
   long pixel_collisions = 0; // points that lost their Voronoi pixel to another (Phase 1)
   // "voronoi" (Phases 1-3 built the first triangulation), "hull_fan", or
-  // "given_mesh" (-r: the given triangles, a convex mesh, were the first mesh).
+  // "given_mesh" (-r: the given triangles, a disk, were the first mesh).
   std::string construction;
   long construction_rounds = 0;   // diagrams built by Phases 1-3
   long constructed_triangles = 0; // triangles of the last Phase 2 (ghosts excluded)

@@ -581,26 +581,22 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
                                        const std::vector<cl_int> &links) {
   timer_ = std::make_unique<PhaseTimer>(device_, stats_);
   const std::size_t real = triangles.size();
-  // Ghost g stands on boundary edge a -> b of real triangle t (the edge
-  // opposite its corner i): vertices (b, a, infinite), as the hull fan's;
-  // its edge 2 faces t, edge 0 the ghost of the boundary edge that ends at
-  // a, edge 1 the ghost of the one that starts at b.
-  struct Ghost {
+  // The boundary edges a -> b, each of real triangle t opposite its corner
+  // i, and which one leaves each vertex.
+  struct BoundaryEdge {
     int32_t a, b, t, i;
   };
-  std::vector<Ghost> ghosts;
-  std::vector<cl_int> ghost_from(points_.size(), -1), ghost_to(points_.size(), -1);
+  std::vector<BoundaryEdge> boundary;
+  std::vector<cl_int> leaving(points_.size(), -1);
   for (std::size_t t = 0; t < real; ++t)
     for (int i = 0; i < 3; ++i)
       if (links[3 * t + static_cast<std::size_t>(i)] < 0) {
         const int32_t a = triangles[t][(i + 1) % 3], b = triangles[t][(i + 2) % 3];
-        const auto g = static_cast<cl_int>(real + ghosts.size());
-        cl_int &from = ghost_from[static_cast<std::size_t>(a)];
-        cl_int &to = ghost_to[static_cast<std::size_t>(b)];
-        if (from >= 0 || to >= 0)
-          return false; // two boundary edges leave a vertex (or reach it)
-        from = to = g;
-        ghosts.push_back({a, b, static_cast<int32_t>(t), i});
+        cl_int &from_a = leaving[static_cast<std::size_t>(a)];
+        if (from_a >= 0)
+          return false; // two boundary edges leave a vertex
+        from_a = static_cast<cl_int>(boundary.size());
+        boundary.push_back({a, b, static_cast<int32_t>(t), i});
       }
   // The triangles (counter-clockwise, no edge twice in one direction:
   // validate) must tile a region of the plane, as the Delaunay
@@ -611,43 +607,43 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
   // positively, and the boundary (counter-clockwise, as the triangles' areas
   // sum to its own) winds once around it. Anything else (holes, a boundary
   // that touches itself, overlaps) is triangulated (false).
-  const std::size_t slots = real + ghosts.size();
-  if (ghosts.empty() || points_.size() < 3 || slots != 2 * points_.size() - 2)
+  const std::size_t m = boundary.size(), slots = real + m;
+  if (m == 0 || points_.size() < 3 || slots != 2 * points_.size() - 2)
     return false;
-  std::vector<int32_t> loop;
-  for (cl_int g = 0; loop.size() <= ghosts.size();) {
-    const Ghost &edge = ghosts[static_cast<std::size_t>(g)];
-    loop.push_back(edge.a);
-    const cl_int next = ghost_from[static_cast<std::size_t>(edge.b)];
-    if (next < 0)
-      return false;
-    g = next - static_cast<cl_int>(real);
-    if (g == 0)
-      break;
-  }
-  if (loop.size() != ghosts.size() || !is_simple_loop(points_, loop))
+  // The boundary edges along the loop from the first: all of them, once.
+  std::vector<cl_int> order;
+  std::vector<int32_t> corners;
+  cl_int e = 0;
+  do {
+    order.push_back(e);
+    corners.push_back(boundary[static_cast<std::size_t>(e)].a);
+    e = leaving[static_cast<std::size_t>(boundary[static_cast<std::size_t>(e)].b)];
+  } while (e > 0 && order.size() < m);
+  if (e != 0 || order.size() != m || !is_simple_loop(points_, corners))
     return false;
+  // Ghost e (slot real + e) stands on boundary edge e, a -> b: vertices
+  // (b, a, infinite), as the hull fan's; its edge 2 faces the real triangle,
+  // edge 0 the ghost before it on the loop, edge 1 the ghost after it.
   std::vector<cl_int> vertices(3 * slots), neighbors(3 * slots);
   for (std::size_t t = 0; t < real; ++t)
     for (std::size_t i = 0; i < 3; ++i) {
       vertices[3 * t + i] = triangles[t][i];
       neighbors[3 * t + i] = links[3 * t + i];
     }
-  for (std::size_t k = 0; k < ghosts.size(); ++k) {
-    const Ghost &g = ghosts[k];
-    const std::size_t slot = real + k;
-    const cl_int before = ghost_to[static_cast<std::size_t>(g.a)],
-                 after = ghost_from[static_cast<std::size_t>(g.b)];
-    if (before < 0 || after < 0)
-      return false; // a boundary that does not close
-    vertices[3 * slot] = g.b;
-    vertices[3 * slot + 1] = g.a;
-    vertices[3 * slot + 2] = -1; // CLM_INFINITE
-    neighbors[3 * slot] = (before << 2) | 1;
-    neighbors[3 * slot + 1] = (after << 2) | 0;
-    neighbors[3 * slot + 2] = (g.t << 2) | 2;
-    neighbors[3 * static_cast<std::size_t>(g.t) + static_cast<std::size_t>(g.i)] =
-        static_cast<cl_int>((slot << 2) | 2);
+  const auto ghost = [&](std::size_t at) { return static_cast<cl_int>(real) + order[at % m]; };
+  for (std::size_t k = 0; k < m; ++k) {
+    const BoundaryEdge &edge = boundary[static_cast<std::size_t>(order[k])];
+    const cl_int slot = ghost(k), before = ghost(k + m - 1), after = ghost(k + 1);
+    cl_int *vertex = &vertices[3 * static_cast<std::size_t>(slot)];
+    cl_int *link = &neighbors[3 * static_cast<std::size_t>(slot)];
+    vertex[0] = edge.b;
+    vertex[1] = edge.a;
+    vertex[2] = -1; // CLM_INFINITE
+    link[0] = (before << 2) | 1;
+    link[1] = (after << 2) | 0;
+    link[2] = (edge.t << 2) | 2;
+    neighbors[3 * static_cast<std::size_t>(edge.t) + static_cast<std::size_t>(edge.i)] =
+        (slot << 2) | 2;
   }
   upload_points();
   for (cl_int &v : vertices)

@@ -839,13 +839,12 @@ private:
 // The constraints of a given mesh's CDT: the segments (marker 0 turned to 1
 // on the mesh's boundary, as Triangle marks boundary edges), the boundary
 // edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
-// later, keeping the first. With `across`, each triangle's neighbours there:
-// across[3 t + i] the triangle across the edge opposite corner i of
-// triangle t (the first by number where an edge has several), -1 on the
-// boundary.
+// later, keeping the first. With `links`, each triangle's neighbours there:
+// links[3 t + i] the link ((triangle << 2) | edge) across the edge opposite
+// corner i of triangle t, -1 on the boundary.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
                                       const std::vector<Segment> &segments, std::size_t vertices,
-                                      std::vector<cl_int> *across, std::vector<cl_int> *links) {
+                                      std::vector<cl_int> *links) {
   const DirectedEdges directed(triangles, vertices);
   auto on_boundary = [&](int32_t a, int32_t b) { return directed.has(a, b) != directed.has(b, a); };
   std::vector<Segment> constraints = segments;
@@ -864,19 +863,15 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
         constraints.push_back({from, to, inner ? kInnerEdge : 1});
       }
   // Edge a -> b of triangle t is the one opposite t's corner after b.
-  if (across)
-    across->assign(3 * triangles.size(), -1);
-  if (links)
+  if (links) {
     links->assign(3 * triangles.size(), -1);
-  for (std::size_t e = 0; (across || links) && e < edges.size(); ++e)
-    if (reverse[e] >= 0) {
-      const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
-      const std::size_t at = 3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3;
-      if (across)
-        (*across)[at] = static_cast<cl_int>(back.triangle);
-      if (links)
-        (*links)[at] = static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
-    }
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if (reverse[e] >= 0) {
+        const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
+        (*links)[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
+            static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
+      }
+  }
   return constraints;
 }
 
@@ -951,12 +946,19 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   const std::vector<Point> &points = every_point ? pslg.points : kept_points;
   const std::vector<Triangle> &corners = every_point ? triangles : renumbered_triangles;
   const std::vector<Segment> &segments = every_point ? pslg.segments : renumbered_segments;
-  std::vector<cl_int> across; // the .area bounds' walks take it
-  std::vector<cl_int> links;  // the first mesh's links, when the mesh can be it
   const bool areas = options.regional_areas && !max_area.empty();
   const bool as_it_is = segments.empty() && pslg.holes.empty();
-  const std::vector<Segment> constraints = mesh_constraints(
-      corners, segments, points.size(), areas ? &across : nullptr, as_it_is ? &links : nullptr);
+  std::vector<cl_int> links; // the first mesh's, when the mesh can be it
+  const std::vector<Segment> constraints =
+      mesh_constraints(corners, segments, points.size(), areas || as_it_is ? &links : nullptr);
+  std::vector<cl_int> across; // the .area bounds' walks take the triangles
+  if (areas) {
+    across.resize(links.size());
+    std::transform(links.begin(), links.end(), across.begin(),
+                   [](cl_int link) { return link < 0 ? -1 : link >> 2; });
+  }
+  if (!as_it_is)
+    std::vector<cl_int>().swap(links);
   const std::vector<Region> no_regions;
   const Pslg subset{points, constraints, pslg.holes, no_regions};
 

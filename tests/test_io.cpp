@@ -1531,12 +1531,13 @@ TEST_CASE("voronoi_pgm writes a binary grey map") {
 
 TEST_CASE("DirectedEdges::reverses finds each edge's other side as triangle_of does") {
   // Random triangles over a few vertices: edges taken once, twice or more,
-  // in one direction or both, some vertices with no edge at all.
+  // in one direction or both, some vertices with no edge at all. The last
+  // set has edges enough for the work to run in two parts (host_threads).
   std::mt19937 random(7);
-  for (const int vertices : {3, 10, 60}) {
+  for (const auto &[vertices, count] : {std::pair{3, 200}, {10, 200}, {60, 200}, {2000, 40000}}) {
     std::uniform_int_distribution<int32_t> corner(0, vertices - 1);
     std::vector<Triangle> triangles;
-    while (triangles.size() < 200) {
+    while (triangles.size() < static_cast<std::size_t>(count)) {
       const Triangle t{corner(random), corner(random), corner(random)};
       if (t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
         triangles.push_back(t);
@@ -1549,6 +1550,11 @@ TEST_CASE("DirectedEdges::reverses finds each edge's other side as triangle_of d
     for (std::size_t a = 0; a < directed.vertices(); ++a)
       for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
         const int32_t b = edges[e].head;
+        // In increasing b, then increasing triangle.
+        if (e > directed.first(a)) {
+          const DirectedEdges::Edge &before = edges[e - 1];
+          CHECK((before.head < b || (before.head == b && before.triangle < edges[e].triangle)));
+        }
         // The edge a -> b leaves its triangle's corner `corner`.
         const Triangle &own = triangles[edges[e].triangle];
         CHECK(own[edges[e].corner] == static_cast<int32_t>(a));

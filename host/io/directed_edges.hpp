@@ -21,6 +21,10 @@ public:
     uint32_t corner : 2;    // a's corner in that triangle (b is the next one)
   };
 
+  // How many edges ahead a loop over the edges in random order of memory
+  // (reverses()) prefetches what a later edge reads.
+  static constexpr std::size_t kPrefetchAhead = 8;
+
   // Every corner must lie in [0, vertices).
   DirectedEdges(const std::vector<Triangle> &triangles, std::size_t vertices);
 

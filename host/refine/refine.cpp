@@ -29,6 +29,7 @@
 #include "refine/steiner_renumbering.hpp"
 #include "refine/zorder_compaction.hpp"
 #include "runtime/host_memory.hpp"
+#include "runtime/host_threads.hpp"
 
 #include "clmesh/errors.hpp"
 
@@ -854,6 +855,11 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
   // The edges in the order of (from, to): the boundary's, then the inner ones.
   const std::vector<DirectedEdges::Edge> &edges = directed.edges();
   const std::vector<int64_t> reverse = directed.reverses();
+  // Room for them all: an edge without a reverse, or each pair once.
+  std::size_t pairs = 0;
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    pairs += reverse[e] < 0 ? 2 : 1;
+  constraints.reserve(constraints.size() + pairs / 2 + 1);
   for (const bool inner : {false, true})
     for (std::size_t a = 0; a < vertices; ++a)
       for (std::size_t e = directed.first(a); e < directed.first(a + 1); ++e) {
@@ -863,14 +869,22 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
         constraints.push_back({from, to, inner ? kInnerEdge : 1});
       }
   // Edge a -> b of triangle t is the one opposite t's corner after b.
+  // Each edge writes its own triangle's link: the parts write apart.
   if (links) {
     links->assign(3 * triangles.size(), -1);
-    for (std::size_t e = 0; e < edges.size(); ++e)
-      if (reverse[e] >= 0) {
+    constexpr std::size_t ahead = DirectedEdges::kPrefetchAhead;
+    run_parts(host_threads(edges.size()), [&](int part, int parts) {
+      const auto [first, end] = part_range(edges.size(), part, parts);
+      for (std::size_t e = first; e < end; ++e) {
+        if (e + ahead < end && reverse[e + ahead] >= 0)
+          __builtin_prefetch(&edges[static_cast<std::size_t>(reverse[e + ahead])]);
+        if (reverse[e] < 0)
+          continue;
         const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
         (*links)[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
             static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
       }
+    });
   }
   return constraints;
 }

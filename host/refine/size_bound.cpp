@@ -8,7 +8,11 @@ namespace clmesh {
 
 namespace {
 const char *kFile = "size_bound.cl";
-}
+// Background triangles per cell of a grid that only the walks' misses read
+// (-r's .area): a coarser grid costs less to build (each triangle is listed
+// in fewer cells) and finds the same triangle, the one holding the point.
+constexpr double kTrianglesPerWalkedCell = 4;
+} // namespace
 
 SizeBound::SizeBound(Device &device, DeviceMesh &mesh, const SizeField *field,
                      const SizeField *areas, const std::vector<cl_int> *areas_across,
@@ -39,9 +43,11 @@ SizeBound::Background::Background(Device &device, const SizeField &field,
     high_x = std::max(high_x, p.x);
     high_y = std::max(high_y, p.y);
   }
-  // About one cell per background triangle.
-  const auto side = static_cast<int>(
-      std::clamp(std::ceil(std::sqrt(static_cast<double>(field.triangles.size()))), 1.0, 2048.0));
+  // About one cell per background triangle; with walks, which find most
+  // triangles before any cell is read, one per kTrianglesPerWalkedCell.
+  const double per_cell = neighbours ? kTrianglesPerWalkedCell : 1.0;
+  const auto side = static_cast<int>(std::clamp(
+      std::ceil(std::sqrt(static_cast<double>(field.triangles.size()) / per_cell)), 1.0, 2048.0));
   columns = rows = side;
   const double width = high_x > low_x ? high_x - low_x : 1,
                height = high_y > low_y ? high_y - low_y : 1;

@@ -142,6 +142,21 @@ TEST_CASE("refine mesh: a simple polygon is told from loops that meet themselves
   CHECK(!clmesh::is_simple_loop(p, Loop{0, 1, 2, 3, 5, 4})); // a corner on another edge
   CHECK(clmesh::is_simple_loop(p, Loop{0, 1, 2, 3, 5, 6}));  // a hair off it
   CHECK(!clmesh::is_simple_loop(p, Loop{0, 1}));
+  // Several loops: each simple and none meeting another; which way one turns.
+  const std::vector<Point> q = {{0, 0},   {4, 0},   {4, 4}, {0, 4},     {1, 1},   {1, 2},
+                                {2, 2},   {2, 1},   {3, 1}, {3, 3},     {2.5, 3}, {4, 2},
+                                {1.5, 1}, {1.5, 0}, {2, 0}, {1.5, 0.5}, {3, 1.5}, {1.5, 1.5}};
+  using Starts = std::vector<std::size_t>;
+  CHECK(clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 4, 5, 6, 7}, Starts{0, 4, 8}));
+  CHECK(clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}, Starts{0, 4, 8, 11}));
+  CHECK(!clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 8, 11, 9}, Starts{0, 4, 7}));   // touching
+  CHECK(!clmesh::are_simple_loops(q, Loop{4, 5, 6, 7, 15, 16, 17}, Starts{0, 4, 7})); // crossing
+  CHECK(!clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 4, 5, 7, 6}, Starts{0, 4, 8})); // a knot
+  CHECK(!clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 4, 5}, Starts{0, 4, 6}));       // too short
+  CHECK(!clmesh::are_simple_loops(q, Loop{0, 1, 2, 3, 12, 13, 14}, Starts{0, 4, 7})); // through
+  CHECK(clmesh::loop_turn(q, Loop{0, 1, 2, 3}, 0, 4) == 1);
+  CHECK(clmesh::loop_turn(q, Loop{0, 1, 2, 3, 4, 5, 6, 7}, 4, 8) == -1);
+  CHECK(clmesh::loop_turn(q, Loop{3, 0, 13, 1, 2}, 0, 5) == 1); // a straight corner at the lowest
 }
 
 TEST_CASE("refine mesh: a mesh that is a disk is the first mesh itself, others are found in the "
@@ -179,11 +194,31 @@ TEST_CASE("refine mesh: a mesh that is a disk is the first mesh itself, others a
   CHECK(ell_taken.statistics.delaunay.construction == "given_mesh");
   CHECK(ell_taken.triangles.size() == ell.triangles.size());
   refine_checked(ell, "rq30");
-  // A hole, and two blocks that meet at one corner: found in the Delaunay
-  // triangulation, the same domains.
-  for (const clmesh::Input &other :
+  // One hole, two holes, a hole in a corner of the rectangle (touching the
+  // outline along two edges): taken as they are, the holes kept.
+  for (const auto &holed :
        {without([](std::size_t r, std::size_t c) { return r >= 2 && r < 4 && c >= 3 && c < 5; }),
-        without([](std::size_t r, std::size_t c) { return (r < 3) != (c < 4); })}) {
+        without([](std::size_t r, std::size_t c) {
+          return r >= 1 && r < 5 && (c == 1 || c == 2 || c == 5 || c == 6) && !(r == 3 && c == 2);
+        }),
+        without([](std::size_t r, std::size_t c) { return r >= 4 && c < 2; })}) {
+    const clmesh::Mesh holed_taken = refine_checked(holed, "r");
+    CHECK(holed_taken.statistics.delaunay.construction == "given_mesh");
+    CHECK(holed_taken.triangles.size() == holed.triangles.size());
+    CHECK(refine_checked(holed, "rq30").statistics.delaunay.construction == "given_mesh");
+  }
+  // A hole whose corner is a corner of a notch in the outline, two blocks
+  // that meet at one corner, two blocks apart, a block in the hole of a
+  // ring: found in the Delaunay triangulation, the same domains.
+  for (const clmesh::Input &other :
+       {without([](std::size_t r, std::size_t c) {
+          return (r >= 1 && r < 3 && c >= 1 && c < 3) || (r == 0 && c == 0);
+        }),
+        without([](std::size_t r, std::size_t c) { return (r < 3) != (c < 4); }),
+        without([](std::size_t, std::size_t c) { return c == 4; }),
+        without([](std::size_t r, std::size_t c) {
+          return r >= 1 && r < 5 && c >= 1 && c < 7 && !(r >= 2 && r < 4 && c >= 3 && c < 5);
+        })}) {
     const clmesh::Mesh found = refine_checked(other, "r");
     CHECK(found.statistics.delaunay.construction != "given_mesh");
     CHECK(found.triangles.size() == other.triangles.size());

@@ -600,50 +600,77 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
       }
   // The triangles (counter-clockwise, no edge twice in one direction:
   // validate) must tile a region of the plane, as the Delaunay
-  // triangulation's triangles found by matching do. Enough for that: 2 n - 2
-  // slots with the ghosts (a disk: one piece, no hole; this also fits the
-  // mesh's room), and one boundary loop that is a simple polygon. Every
-  // point inside is then covered by exactly one triangle: each covers it
-  // positively, and the boundary (counter-clockwise, as the triangles' areas
-  // sum to its own) winds once around it. Anything else (holes, a boundary
-  // that touches itself, overlaps) is triangulated (false).
+  // triangulation's triangles found by matching do. Enough for that: the
+  // boundary edges form loops that are simple polygons, none meeting
+  // another, one turning counter-clockwise and the others clockwise. The
+  // triangles covering a point (each covers it positively) are as many as
+  // the loops wind around it: at most one, the outer loop's turn less those
+  // of the holes it lies in (and never fewer than none). The slots with the
+  // ghosts are then 2 n - 2 + 2 h for h holes; they must fit the mesh's
+  // room (DeviceMesh: 2 slots a point and 2 more). Anything else (a
+  // boundary that touches itself or another loop, pieces apart, overlaps)
+  // is triangulated (false).
   const std::size_t m = boundary.size(), slots = real + m;
-  if (m == 0 || points_.size() < 3 || slots != 2 * points_.size() - 2)
+  if (m == 0 || points_.size() < 3 || slots > 2 * (points_.size() + extra_points_) + 2)
     return false;
-  // The boundary edges along the loop from the first: all of them, once.
+  // The boundary edges loop by loop (order; the loops start at
+  // loop_start), each loop from its first edge in the order found.
   std::vector<cl_int> order;
   std::vector<int32_t> corners;
-  cl_int e = 0;
-  do {
-    order.push_back(e);
-    corners.push_back(boundary[static_cast<std::size_t>(e)].a);
-    e = leaving[static_cast<std::size_t>(boundary[static_cast<std::size_t>(e)].b)];
-  } while (e > 0 && order.size() < m);
-  if (e != 0 || order.size() != m || !is_simple_loop(points_, corners))
+  std::vector<std::size_t> loop_start;
+  std::vector<char> taken(m, 0);
+  for (std::size_t first = 0; first < m; ++first) {
+    if (taken[first])
+      continue;
+    loop_start.push_back(order.size());
+    auto e = static_cast<cl_int>(first);
+    do {
+      if (e < 0 || taken[static_cast<std::size_t>(e)])
+        return false; // a chain that ends, or joins another loop midway
+      taken[static_cast<std::size_t>(e)] = 1;
+      order.push_back(e);
+      corners.push_back(boundary[static_cast<std::size_t>(e)].a);
+      e = leaving[static_cast<std::size_t>(boundary[static_cast<std::size_t>(e)].b)];
+    } while (e != static_cast<cl_int>(first));
+  }
+  const std::size_t loops = loop_start.size();
+  loop_start.push_back(m);
+  if (slots != 2 * points_.size() - 2 + 2 * (loops - 1) ||
+      !are_simple_loops(points_, corners, loop_start))
+    return false;
+  std::size_t outer = 0;
+  for (std::size_t l = 0; l < loops; ++l)
+    outer += loop_turn(points_, corners, loop_start[l], loop_start[l + 1]) > 0;
+  if (outer != 1)
     return false;
   // Ghost e (slot real + e) stands on boundary edge e, a -> b: vertices
   // (b, a, infinite), as the hull fan's; its edge 2 faces the real triangle,
-  // edge 0 the ghost before it on the loop, edge 1 the ghost after it.
+  // edge 0 the ghost before it on its loop, edge 1 the ghost after it.
   std::vector<cl_int> vertices(3 * slots), neighbors(3 * slots);
   for (std::size_t t = 0; t < real; ++t)
     for (std::size_t i = 0; i < 3; ++i) {
       vertices[3 * t + i] = triangles[t][i];
       neighbors[3 * t + i] = links[3 * t + i];
     }
-  const auto ghost = [&](std::size_t at) { return static_cast<cl_int>(real) + order[at % m]; };
-  for (std::size_t k = 0; k < m; ++k) {
-    const BoundaryEdge &edge = boundary[static_cast<std::size_t>(order[k])];
-    const cl_int slot = ghost(k), before = ghost(k + m - 1), after = ghost(k + 1);
-    cl_int *vertex = &vertices[3 * static_cast<std::size_t>(slot)];
-    cl_int *link = &neighbors[3 * static_cast<std::size_t>(slot)];
-    vertex[0] = edge.b;
-    vertex[1] = edge.a;
-    vertex[2] = -1; // CLM_INFINITE
-    link[0] = (before << 2) | 1;
-    link[1] = (after << 2) | 0;
-    link[2] = (edge.t << 2) | 2;
-    neighbors[3 * static_cast<std::size_t>(edge.t) + static_cast<std::size_t>(edge.i)] =
-        (slot << 2) | 2;
+  for (std::size_t l = 0; l < loops; ++l) {
+    const std::size_t first = loop_start[l], size = loop_start[l + 1] - first;
+    const auto ghost = [&](std::size_t at) {
+      return static_cast<cl_int>(real) + order[first + at % size];
+    };
+    for (std::size_t k = 0; k < size; ++k) {
+      const BoundaryEdge &edge = boundary[static_cast<std::size_t>(order[first + k])];
+      const cl_int slot = ghost(k), before = ghost(k + size - 1), after = ghost(k + 1);
+      cl_int *vertex = &vertices[3 * static_cast<std::size_t>(slot)];
+      cl_int *link = &neighbors[3 * static_cast<std::size_t>(slot)];
+      vertex[0] = edge.b;
+      vertex[1] = edge.a;
+      vertex[2] = -1; // CLM_INFINITE
+      link[0] = (before << 2) | 1;
+      link[1] = (after << 2) | 0;
+      link[2] = (edge.t << 2) | 2;
+      neighbors[3 * static_cast<std::size_t>(edge.t) + static_cast<std::size_t>(edge.i)] =
+          (slot << 2) | 2;
+    }
   }
   upload_points();
   for (cl_int &v : vertices)

@@ -34,16 +34,30 @@ bool segments_meet(const Point &p, const Point &q, const Point &r, const Point &
 } // namespace
 
 bool is_simple_loop(const std::vector<Point> &points, const std::vector<int32_t> &loop) {
-  const std::size_t m = loop.size();
-  if (m < 3)
+  return are_simple_loops(points, loop, {0, loop.size()});
+}
+
+bool are_simple_loops(const std::vector<Point> &points, const std::vector<int32_t> &corners,
+                      const std::vector<std::size_t> &starts) {
+  const std::size_t m = corners.size();
+  // Edge k of all goes from corner k to the next of its loop, next[k].
+  std::vector<std::size_t> next(m);
+  for (std::size_t l = 0; l + 1 < starts.size(); ++l) {
+    const std::size_t first = starts[l], end = starts[l + 1];
+    if (end < first + 3)
+      return false;
+    for (std::size_t k = first; k < end; ++k)
+      next[k] = k + 1 < end ? k + 1 : first;
+  }
+  if (m == 0)
     return false;
   auto corner = [&](std::size_t k) -> const Point & {
-    return points[static_cast<std::size_t>(loop[k % m])];
+    return points[static_cast<std::size_t>(corners[k])];
   };
   // Consecutive edges meet at their corner alone: no spike back along the
   // edge before (a straight corner goes on forward).
   for (std::size_t k = 0; k < m; ++k) {
-    const Point &a = corner(k), &b = corner(k + 1), &c = corner(k + 2);
+    const Point &a = corner(k), &b = corner(next[k]), &c = corner(next[next[k]]);
     if (orient(a, b, c) == 0 && (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y) <= 0)
       return false;
   }
@@ -70,7 +84,7 @@ bool is_simple_loop(const std::vector<Point> &points, const std::vector<int32_t>
   std::vector<std::vector<std::uint32_t>> cells(side * side);
   std::size_t entries = 0;
   for (std::size_t k = 0; k < m; ++k) {
-    const Point &a = corner(k), &b = corner(k + 1);
+    const Point &a = corner(k), &b = corner(next[k]);
     const std::size_t x0 = cell_of(std::min(a.x, b.x), low_x, width),
                       x1 = cell_of(std::max(a.x, b.x), low_x, width),
                       y0 = cell_of(std::min(a.y, b.y), low_y, height),
@@ -87,14 +101,28 @@ bool is_simple_loop(const std::vector<Point> &points, const std::vector<int32_t>
     for (std::size_t i = 0; i < cell.size(); ++i)
       for (std::size_t j = i + 1; j < cell.size(); ++j) {
         const std::size_t e = cell[i], f = cell[j];
-        if ((e + 1) % m == f || (f + 1) % m == e)
+        if (next[e] == f || next[f] == e)
           continue; // consecutive: checked above
         if (++tests > 4 * budget)
           return false;
-        if (segments_meet(corner(e), corner(e + 1), corner(f), corner(f + 1)))
+        if (segments_meet(corner(e), corner(next[e]), corner(f), corner(next[f])))
           return false;
       }
   return true;
+}
+
+int loop_turn(const std::vector<Point> &points, const std::vector<int32_t> &corners,
+              std::size_t first, std::size_t end) {
+  auto at = [&](std::size_t k) -> const Point & {
+    return points[static_cast<std::size_t>(corners[k])];
+  };
+  std::size_t lowest = first;
+  for (std::size_t k = first + 1; k < end; ++k)
+    if (at(k).y < at(lowest).y || (at(k).y == at(lowest).y && at(k).x < at(lowest).x))
+      lowest = k;
+  const std::size_t before = lowest > first ? lowest - 1 : end - 1,
+                    after = lowest + 1 < end ? lowest + 1 : first;
+  return orient(at(before), at(lowest), at(after)) > 0 ? 1 : -1;
 }
 
 } // namespace clmesh

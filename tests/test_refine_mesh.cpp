@@ -60,10 +60,11 @@ bool segments_kept(const clmesh::Input &given, const clmesh::Mesh &refined) {
       const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
       const double length2 = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
       const double along = (p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y);
+      // An input vertex on it only when exactly so (it splits the segment).
       if (std::fabs(cross) <= 1e-9 * length2 && along >= 0 && along <= length2 &&
-          (v < given.points.size()
-               ? v == static_cast<std::size_t>(s.a) || v == static_cast<std::size_t>(s.b)
-               : true))
+          (v < given.points.size() ? v == static_cast<std::size_t>(s.a) ||
+                                         v == static_cast<std::size_t>(s.b) || cross == 0
+                                   : true))
         on.emplace_back(along, static_cast<int32_t>(v));
     }
     std::sort(on.begin(), on.end());
@@ -178,6 +179,13 @@ TEST_CASE("refine mesh: a mesh that is a disk is the first mesh itself, others a
   // their hull).
   CHECK(triangle_set(taken) == triangle_set(test_support::triangulate_points(grid.points)));
   CHECK(refine_checked(grid, "rq30a0.01").statistics.delaunay.construction == "given_mesh");
+  // A segment on an edge: taken as it is; one along two edges (through a
+  // vertex, no edge itself): found, the segment kept as two.
+  clmesh::Input segmented = grid;
+  segmented.segments = {{0, 1, 5}, {10, 20, 6}};
+  CHECK(refine_checked(segmented, "rpq30").statistics.delaunay.construction == "given_mesh");
+  segmented.segments = {{0, 2, 5}};
+  CHECK(refine_checked(segmented, "rpq30").statistics.delaunay.construction != "given_mesh");
   // The grid's rectangles (row r, column c: triangles 16 r + 2 c and the
   // next) but some.
   auto without = [&](auto left_out) {

@@ -842,16 +842,20 @@ private:
 // edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
 // later, keeping the first. With `links`, each triangle's neighbours there:
 // links[3 t + i] the link ((triangle << 2) | edge) across the edge opposite
-// corner i of triangle t, -1 on the boundary.
+// corner i of triangle t, -1 on the boundary. *segments_on_edges: whether
+// every segment is an edge of the mesh.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
                                       const std::vector<Segment> &segments, std::size_t vertices,
-                                      std::vector<cl_int> *links) {
+                                      std::vector<cl_int> *links, bool *segments_on_edges) {
   const DirectedEdges directed(triangles, vertices);
-  auto on_boundary = [&](int32_t a, int32_t b) { return directed.has(a, b) != directed.has(b, a); };
   std::vector<Segment> constraints = segments;
-  for (Segment &s : constraints)
-    if (s.marker == 0 && on_boundary(s.a, s.b))
-      s.marker = 1;
+  *segments_on_edges = true;
+  for (Segment &s : constraints) {
+    const bool forward = directed.has(s.a, s.b), backward = directed.has(s.b, s.a);
+    *segments_on_edges = *segments_on_edges && (forward || backward);
+    if (s.marker == 0 && forward != backward)
+      s.marker = 1; // on the boundary
+  }
   // The edges in the order of (from, to): the boundary's, then the inner ones.
   const std::vector<DirectedEdges::Edge> &edges = directed.edges();
   const std::vector<int64_t> reverse = directed.reverses();
@@ -961,10 +965,13 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   const std::vector<Triangle> &corners = every_point ? triangles : renumbered_triangles;
   const std::vector<Segment> &segments = every_point ? pslg.segments : renumbered_segments;
   const bool areas = options.regional_areas && !max_area.empty();
-  const bool as_it_is = segments.empty() && pslg.holes.empty();
+  // The mesh may be the first mesh itself when its segments are its edges
+  // (as those of a mesh Triangle or clmesh wrote are): each is then one
+  // already.
   std::vector<cl_int> links; // the first mesh's, when the mesh can be it
+  bool as_it_is = false;
   const std::vector<Segment> constraints =
-      mesh_constraints(corners, segments, points.size(), areas || as_it_is ? &links : nullptr);
+      mesh_constraints(corners, segments, points.size(), &links, &as_it_is);
   std::vector<cl_int> across; // the .area bounds' walks take the triangles
   if (areas) {
     across.resize(links.size());

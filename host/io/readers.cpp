@@ -207,13 +207,21 @@ bool parse_long(std::string_view token, long &value) {
 }
 
 // A finite number; `what` and `owner` name it ("x coordinate", "of hole 3").
+// What a number belongs to, named in messages ("of triangle 7"): built only
+// when one is written, not for every line read.
+struct Owner {
+  const char *kind;
+  long id;
+  std::string text() const { return std::string("of ") + kind + " " + std::to_string(id); }
+};
+
 double read_number(FieldReader &reader, std::string_view token, const char *what,
-                   const std::string &owner) {
+                   const Owner &owner) {
   double value = 0;
   if (!parse_double(token, value))
-    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not a number");
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner.text() + " is not a number");
   if (!std::isfinite(value))
-    reader.fail(std::string(what) + " " + quote(token) + " " + owner + " is not finite");
+    reader.fail(std::string(what) + " " + quote(token) + " " + owner.text() + " is not finite");
   return value;
 }
 
@@ -307,7 +315,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
     // Finite, as the attributes of regions are.
     for (long a = 0; a < attributes; ++a)
       set.attributes.push_back(read_number(reader, fields[3 + static_cast<std::size_t>(a)],
-                                           "attribute", "of vertex " + std::to_string(id)));
+                                           "attribute", Owner{"vertex", id}));
     if (set.has_markers) {
       long marker = 0;
       std::string_view token = fields[wanted - 1];
@@ -336,9 +344,14 @@ void next_line(FieldReader &reader, const std::string &path, std::vector<std::st
     throw InputError(path, reader.eof_line(), "file ends " + missing);
 }
 
-// "n of m <items>" for premature ends of file.
-std::string progress(long done, long count, const char *items) {
-  return "after " + std::to_string(done) + " of " + std::to_string(count) + " " + items;
+// Next line of a section's `count` items, `done` read: at the end of the
+// file an InputError "file ends after n of m <items>".
+void next_item(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
+               long done, long count, const char *items) {
+  if (!reader.next(fields))
+    throw InputError(path, reader.eof_line(),
+                     "file ends after " + std::to_string(done) + " of " + std::to_string(count) +
+                         " " + items);
 }
 
 } // namespace
@@ -390,7 +403,7 @@ PolyFile read_poly(const std::string &path) {
   poly.segments.reserve(reserve);
   poly.segment_lines.reserve(reserve);
   for (long i = 0; i < segment_count; ++i) {
-    next_line(reader, path, fields, progress(i, segment_count, "segments"));
+    next_item(reader, path, fields, i, segment_count, "segments");
     long id = 0;
     if (!parse_long(fields[0], id))
       reader.fail("segment id " + quote(fields[0]) + " is not an integer");
@@ -433,7 +446,7 @@ PolyFile read_poly(const std::string &path) {
   next_line(reader, path, fields, "before the hole section (expected '<#holes>')");
   const long hole_count = read_count(reader, fields[0], "<#holes>");
   for (long i = 0; i < hole_count; ++i) {
-    next_line(reader, path, fields, progress(i, hole_count, "holes"));
+    next_item(reader, path, fields, i, hole_count, "holes");
     long id = 0;
     if (!parse_long(fields[0], id))
       reader.fail("hole id " + quote(fields[0]) + " is not an integer");
@@ -441,7 +454,7 @@ PolyFile read_poly(const std::string &path) {
       reader.fail("hole " + std::to_string(id) + " has " +
                   (fields.size() == 1 ? "no coordinates" : "no y coordinate") +
                   " (expected id, x, y)");
-    const std::string name = "of hole " + std::to_string(id);
+    const Owner name{"hole", id};
     const double x = read_number(reader, fields[1], "x coordinate", name);
     const double y = read_number(reader, fields[2], "y coordinate", name);
     poly.holes.push_back(Point{x, y});
@@ -452,14 +465,14 @@ PolyFile read_poly(const std::string &path) {
     return poly;
   const long region_count = read_count(reader, fields[0], "<#regions>");
   for (long i = 0; i < region_count; ++i) {
-    next_line(reader, path, fields, progress(i, region_count, "regions"));
+    next_item(reader, path, fields, i, region_count, "regions");
     long id = 0;
     if (!parse_long(fields[0], id))
       reader.fail("region id " + quote(fields[0]) + " is not an integer");
     if (fields.size() < 4)
       reader.fail("region " + std::to_string(id) + " has " + std::to_string(fields.size() - 1) +
                   " number(s), expected at least 3 (x, y, attribute[, maximum area])");
-    const std::string name = "of region " + std::to_string(id);
+    const Owner name{"region", id};
     Region region;
     region.seed.x = read_number(reader, fields[1], "x coordinate", name);
     region.seed.y = read_number(reader, fields[2], "y coordinate", name);
@@ -532,9 +545,9 @@ EleFile read_ele(const std::string &path, long vertex_count, int first_vertex) {
   reader.expect_fields(wanted);
   long first = 0;
   for (long i = 0; i < count; ++i) {
-    next_line(reader, path, fields, progress(i, count, "triangles"));
+    next_item(reader, path, fields, i, count, "triangles");
     check_id(reader, fields[0], i, &first, "triangle");
-    const std::string name = "of triangle " + std::to_string(first + i);
+    const Owner name{"triangle", first + i};
     if (fields.size() < wanted)
       reader.fail("triangle line has " + std::to_string(fields.size()) + " field(s), expected " +
                   std::to_string(wanted) + " (id, " + std::to_string(nodes) + " nodes" +
@@ -543,9 +556,9 @@ EleFile read_ele(const std::string &path, long vertex_count, int first_vertex) {
     for (int k = 0; k < 3; ++k) {
       long corner = 0;
       if (!parse_long(fields[1 + k], corner))
-        reader.fail("corner " + quote(fields[1 + k]) + " " + name + " is not an integer");
+        reader.fail("corner " + quote(fields[1 + k]) + " " + name.text() + " is not an integer");
       if (corner < first_vertex || corner >= first_vertex + vertex_count)
-        reader.fail("corner " + std::to_string(corner) + " " + name +
+        reader.fail("corner " + std::to_string(corner) + " " + name.text() +
                     " is not a vertex (vertices are numbered " + std::to_string(first_vertex) +
                     " to " + std::to_string(first_vertex + vertex_count - 1) + ")");
       triangle[k] = static_cast<int32_t>(corner - first_vertex);
@@ -572,13 +585,12 @@ std::vector<double> read_area(const std::string &path, std::size_t triangle_coun
   areas.reserve(triangle_count);
   long first = 0;
   for (long i = 0; i < count; ++i) {
-    next_line(reader, path, fields, progress(i, count, "triangles"));
+    next_item(reader, path, fields, i, count, "triangles");
     check_id(reader, fields[0], i, &first, "triangle");
     if (fields.size() < 2)
       reader.fail("triangle " + std::to_string(first + i) +
                   " has no maximum area (expected id, maximum area)");
-    areas.push_back(
-        read_number(reader, fields[1], "maximum area", "of triangle " + std::to_string(first + i)));
+    areas.push_back(read_number(reader, fields[1], "maximum area", Owner{"triangle", first + i}));
   }
   return areas;
 }

@@ -18,9 +18,13 @@ fresh process:
             reconstruction" + "Quality" milliseconds (file reading and
             writing excluded)
 
-Cases: -ra (the .area bounds), -rq30 (quality only), -rq30a (both). Peak
-memory is each process's maximum resident set size (GNU time's %M). CGAL has
-no refinement of a given mesh by per-triangle areas, so it is not run.
+Cases: -ra (the .area bounds), -rq30 (quality only), -rq30a (both); and
+-rpq30 of a mesh with holes: Triangle's -pq25 mesh of the coastline of
+100000 vertices of scripts/gen_pslg.py (an outline around islands that are
+holes), cached in BUILD/bench/refine-coast/, its .poly's segments and holes
+read with -p. Peak memory is each process's maximum resident set size (GNU
+time's %M). CGAL has no refinement of a given mesh by per-triangle areas, so
+it is not run.
 
 Usage: python3 scripts/bench_refine.py [--points 500000] [--build-dir build]
            [--triangle PATH] [--clmesh PATH] [--repeat K] [--markdown FILE.md]
@@ -40,6 +44,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench import ROOT, ToolFailure, machine_line, run_measured, write_markdown  # noqa: E402
 
 CASES = ("ra", "rq30", "rq30a")
+COAST_VERTICES = 100000
 
 
 def read_rows(path):
@@ -89,6 +94,22 @@ def make_input(directory, points, triangle, clmesh):
     tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
     subprocess.run([tool, "-Q", node], check=True)
     write_area_file(stem)
+    return stem
+
+
+def make_coast_input(directory, triangle, clmesh):
+    """c.1.node, c.1.ele and c.1.poly: a quality mesh (-pq25) of a coastline
+    with islands as holes, by Triangle (or clmesh when no Triangle binary
+    exists)."""
+    stem = os.path.join(directory, "c.1")
+    if os.path.exists(stem + ".poly"):
+        return stem
+    os.makedirs(directory, exist_ok=True)
+    poly = os.path.join(directory, "c.poly")
+    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "gen_pslg.py"), "coast",
+                    str(COAST_VERTICES), poly], check=True)
+    tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
+    subprocess.run([tool, "-Qpq25", poly], check=True)
     return stem
 
 
@@ -158,17 +179,20 @@ def main():
                "Triangle vertices", "vertex ratio", "clmesh MB", "Triangle MB", "memory ratio"]
     print("  ".join(f"{c:>12}" for c in columns))
     table = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
-    for case in CASES:
+    coast = make_coast_input(os.path.join(a.build_dir, "bench", "refine-coast"), triangle, clmesh)
+    coast_triangles = int(read_rows(coast + ".ele")[0][0])
+    for stem_of_case, case in [(stem, case) for case in CASES] + [(coast, "rpq30")]:
         row = {}
         for name, fn, exe in (("clmesh", run_clmesh, clmesh), ("triangle", run_triangle, triangle)):
             try:
-                row[name] = best(a.repeat, fn, exe, stem, case, a.timeout)
+                row[name] = best(a.repeat, fn, exe, stem_of_case, case, a.timeout)
             except ToolFailure as e:
                 print(f"  {name} -{case}: {e}")
         c, t = row.get("clmesh"), row.get("triangle")
         if not c or not t:
             continue
-        cells = [f"-{case}", f"{c['seconds']:.2f}", f"{t['seconds']:.2f}",
+        label = f"-{case}" if stem_of_case == stem else f"-{case} (coastline, holes)"
+        cells = [label, f"{c['seconds']:.2f}", f"{t['seconds']:.2f}",
                  f"{c['seconds'] / t['seconds']:.2f}", str(c["vertices"]), str(t["vertices"]),
                  f"{c['vertices'] / t['vertices']:.3f}", f"{c['peak_mb']:.0f}",
                  f"{t['peak_mb']:.0f}", f"{c['peak_mb'] / t['peak_mb']:.2f}"]
@@ -179,7 +203,10 @@ def main():
                  f"Input: a Delaunay mesh of {a.points} uniform points in the unit square "
                  f"({triangles} triangles, made by Triangle -Q), and an .area file asking for a "
                  "quarter of the mean triangle area in the lower-left quarter of the domain "
-                 "(four times the density), no bound elsewhere.",
+                 "(four times the density), no bound elsewhere.  The coastline: Triangle's "
+                 f"-pq25 mesh ({coast_triangles} triangles) of scripts/gen_pslg.py coast "
+                 f"{COAST_VERTICES} (seed 1: an outline around islands that are holes), "
+                 "refined with its .poly's segments and holes (-rpq30).",
                  "clmesh: build/clmesh -Q --stats-json -rSWITCHES u.1, time = seconds.compute "
                  "(the mesh's reconstruction and its refinement; no file reading or writing); "
                  "an untimed run comes first.  Triangle: the native binary (-O3 -march=native, "

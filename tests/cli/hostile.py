@@ -7,7 +7,8 @@ to 1e-13, vertices on segments and duplicates, rings with holes and a sliver
 spike, cocircular rings around a lattice, and combs of teeth down to 1e-7
 wide; each at a scale from 1e-9 to 1e7 and an offset up to 1e7. Each is
 meshed with -pq30, -pcq25, -pq33, -pYq30, -pq30S50 and -pq25a (a twentieth
-of its bounding box's area). (-D is left out: at 1e-9 around 12345 the
+of its bounding box's area), and the -pq30 mesh refined again with -rpq33
+(its segments and holes from its .poly). (-D is left out: at 1e-9 around 12345 the
 rounding of split points can leave a triangle that no split mends, which
 clmesh reports and -C then refuses.)
 
@@ -198,7 +199,12 @@ def main():
         for switches in PSLG_SWITCHES:
             if switches.endswith("a"):
                 switches += repr(area) if area > 0 else "1"
-            runs.run([switches, name + ".poly"], name + ".1.")
+            meshed = runs.run([switches, name + ".poly"], name + ".1.", keep=switches == "-pq30")
+            if meshed and switches == "-pq30":
+                runs.run(["-rpq33", name + ".1"], name + ".2.")
+                for f in os.listdir(work):
+                    if f.startswith(name + ".1."):
+                        os.unlink(os.path.join(work, f))
     for seed in range(1, seeds + 1):
         name = f"p{seed}"
         write_node(os.path.join(work, name + ".node"), generate_points(seed))

@@ -230,9 +230,9 @@ struct GivenMesh {
   const std::vector<Triangle> &triangles;
   const std::vector<double> &max_area;
   std::vector<cl_int> &across;
-  // When the mesh can be the first mesh as it is (no segments or holes of a
-  // .poly): each triangle's links across its edges (mesh_constraints),
-  // else empty.
+  // When the mesh can be the first mesh as it is (every segment of the
+  // .poly an edge of it): each triangle's links across its edges
+  // (mesh_constraints), else empty.
   std::vector<cl_int> &links;
 };
 
@@ -840,13 +840,13 @@ private:
 // The constraints of a given mesh's CDT: the segments (marker 0 turned to 1
 // on the mesh's boundary, as Triangle marks boundary edges), the boundary
 // edges (marker 1), then the inner edges (kInnerEdge). Repeats are dropped
-// later, keeping the first. With `links`, each triangle's neighbours there:
+// later, keeping the first. `links`: each triangle's neighbours there,
 // links[3 t + i] the link ((triangle << 2) | edge) across the edge opposite
 // corner i of triangle t, -1 on the boundary. *segments_on_edges: whether
 // every segment is an edge of the mesh.
 std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
                                       const std::vector<Segment> &segments, std::size_t vertices,
-                                      std::vector<cl_int> *links, bool *segments_on_edges) {
+                                      std::vector<cl_int> &links, bool *segments_on_edges) {
   const DirectedEdges directed(triangles, vertices);
   std::vector<Segment> constraints = segments;
   *segments_on_edges = true;
@@ -874,22 +874,20 @@ std::vector<Segment> mesh_constraints(const std::vector<Triangle> &triangles,
       }
   // Edge a -> b of triangle t is the one opposite t's corner after b.
   // Each edge writes its own triangle's link: the parts write apart.
-  if (links) {
-    links->assign(3 * triangles.size(), -1);
-    constexpr std::size_t ahead = DirectedEdges::kPrefetchAhead;
-    run_parts(host_threads(edges.size()), [&](int part, int parts) {
-      const auto [first, end] = part_range(edges.size(), part, parts);
-      for (std::size_t e = first; e < end; ++e) {
-        if (e + ahead < end && reverse[e + ahead] >= 0)
-          __builtin_prefetch(&edges[static_cast<std::size_t>(reverse[e + ahead])]);
-        if (reverse[e] < 0)
-          continue;
-        const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
-        (*links)[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
-            static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
-      }
-    });
-  }
+  links.assign(3 * triangles.size(), -1);
+  constexpr std::size_t ahead = DirectedEdges::kPrefetchAhead;
+  run_parts(host_threads(edges.size()), [&](int part, int parts) {
+    const auto [first, end] = part_range(edges.size(), part, parts);
+    for (std::size_t e = first; e < end; ++e) {
+      if (e + ahead < end && reverse[e + ahead] >= 0)
+        __builtin_prefetch(&edges[static_cast<std::size_t>(reverse[e + ahead])]);
+      if (reverse[e] < 0)
+        continue;
+      const DirectedEdges::Edge &back = edges[static_cast<std::size_t>(reverse[e])];
+      links[3 * std::size_t{edges[e].triangle} + (edges[e].corner + 2) % 3] =
+          static_cast<cl_int>((back.triangle << 2) | ((back.corner + 2) % 3));
+    }
+  });
   return constraints;
 }
 
@@ -971,7 +969,7 @@ RefineResult refine_mesh(Device &device, const Pslg &pslg, const std::vector<Tri
   std::vector<cl_int> links; // the first mesh's, when the mesh can be it
   bool as_it_is = false;
   const std::vector<Segment> constraints =
-      mesh_constraints(corners, segments, points.size(), &links, &as_it_is);
+      mesh_constraints(corners, segments, points.size(), links, &as_it_is);
   std::vector<cl_int> across; // the .area bounds' walks take the triangles
   if (areas) {
     across.resize(links.size());

@@ -121,7 +121,11 @@ static inline void prefetch_slot(__global const int *list, int use_list, int i, 
 // for a ghost or a dead slot); with combine, the tighter of that and the
 // bound already there. hint (hinted): per slot, a background triangle to
 // try first (-1: none); with relabel, replaced by the triangle a walk from it
-// found, so that the slot's next triangles start there.
+// found, so that the slot's next triangles start there. least (> 0): the
+// background's smallest value; a triangle smaller than it by a margin far
+// beyond rounding is within its bound wherever it lies, and gets `least`
+// without a lookup (the bound is read only to tell whether this very
+// triangle is too large, which it is under neither).
 __kernel void evaluate_size_field(__global const double2 *points, __global const int *tri_vertex,
                                   __global const int *list, const int use_list,
                                   __global const double2 *field_points,
@@ -130,7 +134,8 @@ __kernel void evaluate_size_field(__global const double2 *points, __global const
                                   __global const int *cell_start, __global const int *cell_entry,
                                   const double4 grid, const int columns, const int rows,
                                   __global int *hint, const int hinted, const int relabel,
-                                  const int combine, __global double *bound, const int n) {
+                                  const int combine, const double least, __global double *bound,
+                                  const int n) {
   const int i = get_global_id(0);
   if (i >= n)
     return;
@@ -144,6 +149,11 @@ __kernel void evaluate_size_field(__global const double2 *points, __global const
     return;
   }
   const double2 a = points[tri.v[0]], b = points[tri.v[1]], c = points[tri.v[2]];
+  const double twice_area = fabs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  if (least > 0 && twice_area <= 2 * least * (1 - 1e-9)) {
+    bound[t] = combine ? tighter(bound[t], least) : least;
+    return;
+  }
   const double2 centroid = (double2)((a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3);
   int walked;
   const double value =

@@ -130,6 +130,9 @@ SizeBound::Background::Background(Device &device, const SizeField &field,
     start[c + 1] = static_cast<cl_int>(entries.size());
   }
   const std::vector<double> &values = field.area;
+  for (const double v : values)
+    if (v > 0 && (least == 0 || v < least))
+      least = v;
   this->points = DeviceArray<cl_double2>(device, points.size());
   this->points.upload(device, points);
   value = DeviceArray<cl_double>(device, values.size());
@@ -196,7 +199,7 @@ void SizeBound::evaluate(const Background &background, const cl::Buffer &list, b
            background.cell_entry.buffer(), background.grid, static_cast<cl_int>(background.columns),
            static_cast<cl_int>(background.rows), mesh_.tri_region.buffer(),
            static_cast<cl_int>(hinted), static_cast<cl_int>(hinted && !keep_regions_),
-           static_cast<cl_int>(combine), bound_.buffer(), static_cast<cl_int>(n));
+           static_cast<cl_int>(combine), background.least, bound_.buffer(), static_cast<cl_int>(n));
   launch(device_, evaluate_, n, kPhase);
 }
 

@@ -54,6 +54,9 @@ private:
     DeviceArray<cl_int> across;
     cl_double4 grid{};
     int columns = 1, rows = 1;
+    // The smallest positive value (0: none): a triangle smaller than it is
+    // within its bound wherever it lies, and is not looked up.
+    double least = 0;
   };
   // bound[t] of the listed slots from `background`, the tighter of it and
   // the bound already there when `combine`.

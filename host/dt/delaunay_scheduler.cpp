@@ -643,15 +643,23 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
     outer += loop_turn(points_, corners, loop_start[l], loop_start[l + 1]) > 0;
   if (outer != 1)
     return false;
-  // Ghost e (slot real + e) stands on boundary edge e, a -> b: vertices
-  // (b, a, infinite), as the hull fan's; its edge 2 faces the real triangle,
-  // edge 0 the ghost before it on its loop, edge 1 the ghost after it.
+  // The points first: the arrays take their device numbers. Ghost e (slot
+  // real + e) stands on boundary edge e, a -> b: vertices (b, a, infinite),
+  // as the hull fan's; its edge 2 faces the real triangle, edge 0 the ghost
+  // before it on its loop, edge 1 the ghost after it. The real triangles in
+  // two parts (each writes its own slots).
+  upload_points();
+  const std::vector<int32_t> &device_id = device_id_;
   std::vector<cl_int> vertices(3 * slots), neighbors(3 * slots);
-  for (std::size_t t = 0; t < real; ++t)
-    for (std::size_t i = 0; i < 3; ++i) {
-      vertices[3 * t + i] = triangles[t][i];
-      neighbors[3 * t + i] = links[3 * t + i];
-    }
+  const int parts = host_threads(3 * real);
+  run_parts(parts, [&](int part, int) {
+    const auto [first, end] = part_range(real, part, parts);
+    for (std::size_t t = first; t < end; ++t)
+      for (std::size_t i = 0; i < 3; ++i) {
+        vertices[3 * t + i] = device_id[static_cast<std::size_t>(triangles[t][i])];
+        neighbors[3 * t + i] = links[3 * t + i];
+      }
+  });
   for (std::size_t l = 0; l < loops; ++l) {
     const std::size_t first = loop_start[l], size = loop_start[l + 1] - first;
     const auto ghost = [&](std::size_t at) {
@@ -662,8 +670,8 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
       const cl_int slot = ghost(k), before = ghost(k + size - 1), after = ghost(k + 1);
       cl_int *vertex = &vertices[3 * static_cast<std::size_t>(slot)];
       cl_int *link = &neighbors[3 * static_cast<std::size_t>(slot)];
-      vertex[0] = edge.b;
-      vertex[1] = edge.a;
+      vertex[0] = device_id[static_cast<std::size_t>(edge.b)];
+      vertex[1] = device_id[static_cast<std::size_t>(edge.a)];
       vertex[2] = -1; // CLM_INFINITE
       link[0] = (before << 2) | 1;
       link[1] = (after << 2) | 0;
@@ -672,10 +680,6 @@ bool DelaunayScheduler::take_triangles(const std::vector<Triangle> &triangles,
           (slot << 2) | 2;
     }
   }
-  upload_points();
-  for (cl_int &v : vertices)
-    if (v >= 0)
-      v = device_id_[static_cast<std::size_t>(v)];
   DeviceMesh &mesh = *mesh_;
   mesh.tri_vertex.upload(device_, vertices);
   mesh.tri_neighbor.upload(device_, neighbors);

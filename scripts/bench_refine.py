@@ -83,33 +83,33 @@ def write_area_file(stem):
     return len(triangles)
 
 
+def generate_and_mesh(directory, generator, arguments, source, switches, triangle, clmesh):
+    """Runs scripts/GENERATOR ARGUMENTS SOURCE in DIRECTORY, then meshes SOURCE
+    with SWITCHES by Triangle (or clmesh when no Triangle binary exists)."""
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, source)
+    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", generator)] + arguments + [path],
+                   check=True)
+    tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
+    subprocess.run([tool, switches, path], check=True)
+
+
 def make_input(directory, points, triangle, clmesh):
     stem = os.path.join(directory, "u.1")
-    if os.path.exists(stem + ".area"):
-        return stem
-    os.makedirs(directory, exist_ok=True)
-    node = os.path.join(directory, "u.node")
-    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "gen_points.py"), "uniform",
-                    str(points), node], check=True)
-    tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
-    subprocess.run([tool, "-Q", node], check=True)
-    write_area_file(stem)
+    if not os.path.exists(stem + ".area"):
+        generate_and_mesh(directory, "gen_points.py", ["uniform", str(points)], "u.node", "-Q",
+                          triangle, clmesh)
+        write_area_file(stem)
     return stem
 
 
 def make_coast_input(directory, triangle, clmesh):
     """c.1.node, c.1.ele and c.1.poly: a quality mesh (-pq25) of a coastline
-    with islands as holes, by Triangle (or clmesh when no Triangle binary
-    exists)."""
+    with islands as holes."""
     stem = os.path.join(directory, "c.1")
-    if os.path.exists(stem + ".poly"):
-        return stem
-    os.makedirs(directory, exist_ok=True)
-    poly = os.path.join(directory, "c.poly")
-    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "gen_pslg.py"), "coast",
-                    str(COAST_VERTICES), poly], check=True)
-    tool = triangle if triangle and os.access(triangle, os.X_OK) else clmesh
-    subprocess.run([tool, "-Qpq25", poly], check=True)
+    if not os.path.exists(stem + ".poly"):
+        generate_and_mesh(directory, "gen_pslg.py", ["coast", str(COAST_VERTICES)], "c.poly",
+                          "-Qpq25", triangle, clmesh)
     return stem
 
 

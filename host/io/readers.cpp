@@ -241,6 +241,23 @@ void check_id(FieldReader &reader, std::string_view token, long i, long *first, 
   }
 }
 
+// Next line of a section, or an InputError at the end of the file.
+void next_line(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
+               const std::string &missing) {
+  if (!reader.next(fields))
+    throw InputError(path, reader.eof_line(), "file ends " + missing);
+}
+
+// Next line of a section's `count` items, `done` read: at the end of the
+// file an InputError "file ends after n of m <items>".
+void next_item(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
+               long done, long count, const char *items) {
+  if (!reader.next(fields))
+    throw InputError(path, reader.eof_line(),
+                     "file ends after " + std::to_string(done) + " of " + std::to_string(count) +
+                         " " + items);
+}
+
 // The vertex section of a .node or .poly file: header, then the vertices.
 PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   std::vector<std::string_view> fields;
@@ -278,10 +295,7 @@ PointSet read_vertex_section(FieldReader &reader, const std::string &path) {
   const std::size_t wanted = 3 + static_cast<std::size_t>(attributes) + (set.has_markers ? 1 : 0);
   reader.expect_fields(wanted);
   for (long i = 0; i < count; ++i) {
-    if (!reader.next(fields))
-      throw InputError(path, reader.eof_line(),
-                       "file ends after " + std::to_string(i) + " of " + std::to_string(count) +
-                           " vertices");
+    next_item(reader, path, fields, i, count, "vertices");
     if (fields.size() < wanted) {
       std::string shape = "id, x, y";
       if (attributes > 0)
@@ -335,23 +349,6 @@ long read_count(FieldReader &reader, std::string_view token, const std::string &
   if (!parse_long(token, count) || count < 0 || count > INT32_MAX)
     reader.fail("malformed header: " + quote(token) + " is not a count (expected '" + shape + "')");
   return count;
-}
-
-// Next line of a section, or an InputError at the end of the file.
-void next_line(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
-               const std::string &missing) {
-  if (!reader.next(fields))
-    throw InputError(path, reader.eof_line(), "file ends " + missing);
-}
-
-// Next line of a section's `count` items, `done` read: at the end of the
-// file an InputError "file ends after n of m <items>".
-void next_item(FieldReader &reader, const std::string &path, std::vector<std::string_view> &fields,
-               long done, long count, const char *items) {
-  if (!reader.next(fields))
-    throw InputError(path, reader.eof_line(),
-                     "file ends after " + std::to_string(done) + " of " + std::to_string(count) +
-                         " " + items);
 }
 
 } // namespace

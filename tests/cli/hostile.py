@@ -186,6 +186,15 @@ class Runs:
         return status == 0
 
 
+def refine_again(runs, work, name, switches):
+    """Refines the kept mesh NAME.1 with SWITCHES (which hold -r), then
+    removes it."""
+    runs.run([switches, name + ".1"], name + ".2.")
+    for f in os.listdir(work):
+        if f.startswith(name + ".1."):
+            os.unlink(os.path.join(work, f))
+
+
 def main():
     clmesh, work = sys.argv[1], sys.argv[2]
     seeds = int(os.environ.get("CLMESH_HOSTILE_SEEDS", "14"))
@@ -201,20 +210,14 @@ def main():
                 switches += repr(area) if area > 0 else "1"
             meshed = runs.run([switches, name + ".poly"], name + ".1.", keep=switches == "-pq30")
             if meshed and switches == "-pq30":
-                runs.run(["-rpq33", name + ".1"], name + ".2.")
-                for f in os.listdir(work):
-                    if f.startswith(name + ".1."):
-                        os.unlink(os.path.join(work, f))
+                refine_again(runs, work, name, "-rpq33")
     for seed in range(1, seeds + 1):
         name = f"p{seed}"
         write_node(os.path.join(work, name + ".node"), generate_points(seed))
         for switches in POINT_SWITCHES:
             meshed = runs.run(switches + [name + ".node"], name + ".1.", keep=switches == ["-q30"])
             if meshed and switches == ["-q30"]:
-                runs.run(["-rq33", name + ".1"], name + ".2.")
-                for f in os.listdir(work):
-                    if f.startswith(name + ".1."):
-                        os.unlink(os.path.join(work, f))
+                refine_again(runs, work, name, "-rq33")
     print(f"hostile inputs: {runs.runs} runs, {runs.failures} failed")
     sys.exit(1 if runs.failures else 0)
 

@@ -637,12 +637,12 @@ private:
   }
 
   // Triangles move into spatial order at the start, then whenever their
-  // slots grew by half while much work remains: at least one triangle in 8
+  // slots grew by half while much work remains: at least one triangle in 16
   // bad at the last search. With less work left, the move costs more than
   // the order saves.
   bool compaction_pays() {
     return mesh().triangle_count >= compacted_slots_ + compacted_slots_ / 2 &&
-           8 * last_bad_ >= mesh().triangle_count;
+           16 * last_bad_ >= mesh().triangle_count;
   }
 
   // Thesis §3.6.1: the live triangles and Steiner points move to the front,

@@ -146,28 +146,102 @@ TEST_CASE("quality pslg: segment markers go to the points and subsegments that s
   CHECK(subsegment_markers[10] == steiner_markers[10] + 1);
 }
 
-TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triangle's") {
+TEST_CASE("quality pslg: every bundled PSLG at 20, 25 and 30 degrees, vertex counts near "
+          "Triangle's") {
   // Vertex counts of the native Triangle 1.6 (../shared/tools/build-triangle.sh) on the same
   // files: `triangle -<switches> name.poly`, first number of name.1.node; and how many of its
-  // triangles have an angle below the bound (at small input angles, which it leaves). The
-  // small lake (water3) and letters (a few dozen vertices) are where several points going in
-  // at once, and old points kept beside a split segment, cost the most.
+  // triangles have an angle below the bound (at small input angles, which it leaves).
   struct Case {
     const char *name;
     const char *switches;
     long triangle_vertices, triangle_below;
-    const char *folder = "pslg";
+    const char *folder;
+    // At most 5% more vertices than Triangle, and no more triangles left below the bound
+    // than it leaves (up to 5%), but for the exceptions below.
+    double most_ratio = 1.05;
+    long more_below = 0;
   };
-  const Case cases[] = {
-      {"water", "pq20", 5422, 272},         {"water", "pq25", 7497, 382},
-      {"water", "pq30", 11604, 529},        {"water2", "pq20", 2084, 69},
-      {"water2", "pq25", 2622, 89},         {"water2", "pq30", 3570, 100},
-      {"water-huge2", "pq20", 12883, 684},  {"water-huge2", "pq25", 18007, 931},
-      {"water-huge2", "pq30", 28018, 1283}, {"water4", "pq20", 1134, 23},
-      {"water", "pcq30", 21673, 799},       {"water2", "pcq30", 7114, 159},
-      {"water4", "pcq30", 2848, 54},        {"clusters", "pcq30", 69, 27},
-      {"water3", "pq30", 876, 11},          {"Capital_A", "pq20", 56, 0},
-      {"lettre_A", "pq20", 56, 0},          {"A", "pq20", 56, 0, "triangle-examples/inputs"}};
+  // The exceptions: on a few dozen vertices clmesh's parallel iterations, which put several
+  // points in at once where Triangle puts in one at a time (the worst triangle first), place
+  // more interior points (lettre_A -pq30: 89, double_hex3 -pq30: 47), and around small input
+  // angles the shells can leave a few more triangles below the bound (simplified-us-border
+  // -pq30: 9, la -pq30: 13). Their bounds hold these counts with a margin of a few points.
+  const Case cases[] = {{"Capital_A", "pq20", 56, 0, "pslg"},
+                        {"Capital_A", "pq25", 65, 0, "pslg"},
+                        {"Capital_A", "pq30", 78, 1, "pslg"},
+                        {"butterfly", "pq20", 23, 0, "pslg"},
+                        {"butterfly", "pq25", 23, 0, "pslg"},
+                        {"butterfly", "pq30", 27, 0, "pslg"},
+                        {"clusters", "pq20", 9, 0, "pslg"},
+                        {"clusters", "pq25", 9, 0, "pslg"},
+                        {"clusters", "pq30", 9, 0, "pslg"},
+                        {"ditch", "pq20", 12, 0, "pslg"},
+                        {"ditch", "pq25", 12, 0, "pslg"},
+                        {"ditch", "pq30", 12, 0, "pslg"},
+                        {"img1", "pq20", 53, 0, "pslg"},
+                        {"img1", "pq25", 53, 0, "pslg"},
+                        {"img1", "pq30", 53, 0, "pslg"},
+                        {"island", "pq20", 119, 0, "pslg"},
+                        {"island", "pq25", 136, 0, "pslg"},
+                        {"island", "pq30", 151, 0, "pslg"},
+                        {"kidney", "pq20", 70, 0, "pslg"},
+                        {"kidney", "pq25", 79, 0, "pslg"},
+                        {"kidney", "pq30", 99, 0, "pslg"},
+                        {"lettre_A", "pq20", 56, 0, "pslg"},
+                        {"lettre_A", "pq25", 65, 0, "pslg"},
+                        {"lettre_A", "pq30", 78, 1, "pslg", 1.17},
+                        {"overlapping_constraints", "pq20", 10, 0, "pslg"},
+                        {"overlapping_constraints", "pq25", 10, 0, "pslg"},
+                        {"overlapping_constraints", "pq30", 10, 0, "pslg"},
+                        {"simplified-us-border", "pq20", 224, 2, "pslg"},
+                        {"simplified-us-border", "pq25", 307, 5, "pslg"},
+                        {"simplified-us-border", "pq30", 433, 7, "pslg", 1.05, 3},
+                        {"square_with_crack", "pq20", 7, 0, "pslg"},
+                        {"square_with_crack", "pq25", 7, 0, "pslg"},
+                        {"square_with_crack", "pq30", 7, 0, "pslg"},
+                        {"water-huge2", "pq20", 12883, 684, "pslg"},
+                        {"water-huge2", "pq25", 18007, 931, "pslg"},
+                        {"water-huge2", "pq30", 28018, 1283, "pslg"},
+                        {"water", "pq20", 5422, 272, "pslg"},
+                        {"water", "pq25", 7497, 382, "pslg"},
+                        {"water", "pq30", 11604, 529, "pslg"},
+                        {"water2", "pq20", 2084, 69, "pslg"},
+                        {"water2", "pq25", 2622, 89, "pslg"},
+                        {"water2", "pq30", 3570, 100, "pslg"},
+                        {"water3", "pq20", 434, 5, "pslg"},
+                        {"water3", "pq25", 577, 6, "pslg"},
+                        {"water3", "pq30", 876, 11, "pslg"},
+                        {"water4", "pq20", 1134, 23, "pslg"},
+                        {"water4", "pq25", 1476, 38, "pslg"},
+                        {"water4", "pq30", 2330, 46, "pslg"},
+                        {"A", "pq20", 56, 0, "triangle-examples/inputs"},
+                        {"A", "pq25", 64, 0, "triangle-examples/inputs"},
+                        {"A", "pq30", 76, 0, "triangle-examples/inputs"},
+                        {"box", "pq20", 8, 0, "triangle-examples/inputs"},
+                        {"box", "pq25", 8, 0, "triangle-examples/inputs"},
+                        {"box", "pq30", 8, 0, "triangle-examples/inputs"},
+                        {"double_hex", "pq20", 146, 0, "triangle-examples/inputs"},
+                        {"double_hex", "pq25", 170, 0, "triangle-examples/inputs"},
+                        {"double_hex", "pq30", 217, 0, "triangle-examples/inputs"},
+                        {"double_hex2", "pq20", 57, 0, "triangle-examples/inputs"},
+                        {"double_hex2", "pq25", 63, 0, "triangle-examples/inputs"},
+                        {"double_hex2", "pq30", 77, 0, "triangle-examples/inputs"},
+                        {"double_hex3", "pq20", 31, 0, "triangle-examples/inputs"},
+                        {"double_hex3", "pq25", 37, 0, "triangle-examples/inputs"},
+                        {"double_hex3", "pq30", 43, 0, "triangle-examples/inputs", 1.14},
+                        {"face", "pq20", 44, 0, "triangle-examples/inputs"},
+                        {"face", "pq25", 58, 0, "triangle-examples/inputs"},
+                        {"face", "pq30", 100, 0, "triangle-examples/inputs"},
+                        {"la", "pq20", 365, 6, "triangle-examples/inputs"},
+                        {"la", "pq25", 490, 7, "triangle-examples/inputs"},
+                        {"la", "pq30", 891, 10, "triangle-examples/inputs", 1.05, 4},
+                        {"square_circle_hole", "pq20", 826, 0, "triangle-examples/inputs"},
+                        {"square_circle_hole", "pq25", 826, 0, "triangle-examples/inputs"},
+                        {"square_circle_hole", "pq30", 826, 0, "triangle-examples/inputs"},
+                        {"water", "pcq30", 21673, 799, "pslg"},
+                        {"water2", "pcq30", 7114, 159, "pslg"},
+                        {"water4", "pcq30", 2848, 54, "pslg"},
+                        {"clusters", "pcq30", 69, 27, "pslg"}};
   for (const Case &c : cases) {
     INFO(std::string(c.name) << " -" << std::string(c.switches));
     const clmesh::Mesh mesh = refine_checked(load(c.folder, c.name), c.switches);
@@ -177,16 +251,15 @@ TEST_CASE("quality pslg: coastlines with small angles, vertex counts near Triang
                                 << " vertices, Triangle " << c.triangle_vertices << " (" << ratio
                                 << "), " << below << " triangles left at small angles, Triangle "
                                 << c.triangle_below);
-    // At most 5% more vertices than Triangle. Fewer is no fault as long as every bound holds
-    // (refine_checked: every triangle below the bound is one of those counted) and no more
-    // triangles are left below it than Triangle leaves (up to 5%): concentric shells around
-    // the sharper end of each segment, the triangles left across small input angles and the
-    // points deleted beside split segments make clmesh's meshes up to 26% smaller there
-    // (clusters -pcq30: 51 vertices and 21 triangles left, Triangle 69 and 27); far fewer
-    // would mean refinement stopped early.
+    // Fewer vertices is no fault as long as every bound holds (refine_checked: every triangle
+    // below the bound is one of those counted) and no more triangles are left below it:
+    // concentric shells around the sharper end of each segment, the triangles left across
+    // small input angles and the points deleted beside split segments make clmesh's meshes
+    // up to 26% smaller there (clusters -pcq30: 51 vertices and 21 triangles left, Triangle
+    // 69 and 27); far fewer would mean refinement stopped early.
     CHECK(ratio > 0.7);
-    CHECK(ratio < 1.05);
-    CHECK(below <= 1.05 * c.triangle_below);
+    CHECK(ratio < c.most_ratio);
+    CHECK(below <= 1.05 * c.triangle_below + c.more_below);
   }
 }
 
